@@ -1,0 +1,207 @@
+//! The `helixhair` command line: its arguments and what each command does.
+//!
+//! The binary only parses arguments and reports errors; [`run`] does the
+//! work, writing to the streams it is given so that tests can drive it.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context as _;
+use clap::{Args, Parser, Subcommand};
+use helixhair_physics::Method;
+use helixhair_physics::settings::MAX_ITERATIONS;
+
+use crate::atomic_write::write_atomically;
+use crate::headless::{HeadlessSim, SimOverrides};
+use crate::sim_report::SimReport;
+use crate::style::Style;
+
+/// Frames `helixhair sim` runs unless told otherwise: one second at 60 Hz.
+pub const DEFAULT_STEPS: u32 = 60;
+
+/// Most frames one `helixhair sim` may run (the per-frame timings are kept).
+pub const MAX_STEPS: u32 = 1_000_000;
+
+/// What `helixhair` prints without a command.
+pub const NO_WINDOW_MESSAGE: &str = "\
+helixhair: the interactive window is not built yet.
+Run a simulation headless instead, for example:
+    helixhair sim --style assets/styles/curly.ron
+See `helixhair sim --help` for the options (solver, time step, JSON output).
+";
+
+/// HelixHair: Super-Helix hair simulation.
+#[derive(Clone, Debug, Parser)]
+#[command(name = "helixhair", version, about)]
+pub struct Cli {
+    /// The command; without one, explains how to run headless.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The commands of `helixhair`.
+#[derive(Clone, Debug, Subcommand)]
+pub enum Command {
+    /// Simulate a style headless on a still head and report timings, energies
+    /// and final strand shapes.
+    Sim(SimArgs),
+}
+
+/// Arguments of `helixhair sim`.
+#[derive(Clone, Debug, Args)]
+pub struct SimArgs {
+    /// The style file (RON; see docs/style-format.md).
+    #[arg(long, value_name = "FILE")]
+    pub style: PathBuf,
+    /// Solver, instead of the style's: exact, dense, block, block-own or
+    /// iterative:K (K block-preconditioned CG iterations).
+    #[arg(long, value_name = "METHOD", value_parser = parse_method)]
+    pub method: Option<Method>,
+    /// Frame time step in seconds, instead of the style's (1e-6 to 0.1).
+    #[arg(long, value_name = "SECS", allow_negative_numbers = true)]
+    pub dt: Option<f64>,
+    /// Number of frames to simulate.
+    #[arg(long, value_name = "K", default_value_t = DEFAULT_STEPS,
+          value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_STEPS)))]
+    pub steps: u32,
+    /// Write a JSON report (docs/sim-json.md) to OUT, creating its folder if
+    /// needed; `-` writes it to stdout, and the summary then goes to stderr.
+    #[arg(long, value_name = "OUT")]
+    pub json: Option<PathBuf>,
+}
+
+/// Parses a solver name as [`Method::label`] spells it (`exact`,
+/// `iterative:4`, …).
+pub fn parse_method(name: &str) -> Result<Method, String> {
+    Method::from_name(name).ok_or_else(|| {
+        let names: Vec<String> = Method::ALL
+            .iter()
+            .map(|m| match m {
+                Method::Iterative { .. } => format!("{}:K (K ≤ {MAX_ITERATIONS})", m.name()),
+                _ => m.label(),
+            })
+            .collect();
+        format!(
+            "unknown method `{name}`; expected one of {}",
+            names.join(", ")
+        )
+    })
+}
+
+/// Runs the command `cli` asks for. Normal output goes to `stdout`; the
+/// summary goes to `stderr` when the JSON report takes stdout.
+pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow::Result<()> {
+    match &cli.command {
+        None => {
+            stdout.write_all(NO_WINDOW_MESSAGE.as_bytes())?;
+            Ok(())
+        }
+        Some(Command::Sim(args)) => run_sim(args, stdout, stderr),
+    }
+}
+
+fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow::Result<()> {
+    // A style error already names the file, line and field: no context to add.
+    let style = Style::load(&args.style)?;
+    let style_path = args.style.display().to_string();
+    let overrides = SimOverrides {
+        method: args.method,
+        dt_secs: args.dt,
+    };
+    let mut sim = HeadlessSim::new(&style, overrides)
+        .with_context(|| format!("cannot simulate {style_path}"))?;
+    let steps = usize::try_from(args.steps).context("--steps does not fit this machine")?;
+    let per_step_secs = sim
+        .run(steps)
+        .with_context(|| format!("simulating {style_path}"))?;
+    let report = SimReport::new(&style_path, &style.name, &sim, per_step_secs);
+
+    let json_to_stdout = args.json.as_deref() == Some(Path::new("-"));
+    let summary_out: &mut dyn Write = if json_to_stdout {
+        &mut *stderr
+    } else {
+        &mut *stdout
+    };
+    summary_out.write_all(report.summary().as_bytes())?;
+    let Some(json_path) = &args.json else {
+        return Ok(());
+    };
+    let mut json =
+        serde_json::to_string_pretty(&report).context("cannot encode the JSON report")?;
+    json.push('\n');
+    if json_to_stdout {
+        stdout.write_all(json.as_bytes())?;
+    } else {
+        write_json(json_path, &json)
+            .with_context(|| format!("cannot write the JSON report to {}", json_path.display()))?;
+        writeln!(summary_out, "  wrote {}", json_path.display())?;
+    }
+    Ok(())
+}
+
+/// Writes the report atomically, creating the folder it goes in.
+fn write_json(path: &Path, json: &str) -> std::io::Result<()> {
+    if let Some(dir) = path.parent()
+        && !dir.as_os_str().is_empty()
+    {
+        std::fs::create_dir_all(dir)?;
+    }
+    write_atomically(path, json.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run_args(args: &[&str]) -> (anyhow::Result<()>, String, String) {
+        let cli = Cli::try_parse_from(std::iter::once("helixhair").chain(args.iter().copied()))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let result = run(&cli, &mut out, &mut err);
+        let text = |b: Vec<u8>| String::from_utf8(b).expect("UTF-8 output");
+        (result, text(out), text(err))
+    }
+
+    #[test]
+    fn method_names_parse_as_the_physics_crate_spells_them() {
+        for method in Method::ALL {
+            assert_eq!(parse_method(&method.label()), Ok(method));
+        }
+        assert_eq!(
+            parse_method("iterative:9"),
+            Ok(Method::Iterative { iterations: 9 })
+        );
+        let error = parse_method("Dense").expect_err("names are lower case");
+        assert!(error.contains("expected one of dense, block"), "{error}");
+    }
+
+    #[test]
+    fn no_command_explains_how_to_run_headless() {
+        let (result, out, err) = run_args(&[]);
+        assert!(result.is_ok());
+        assert_eq!((out.as_str(), err.as_str()), (NO_WINDOW_MESSAGE, ""));
+    }
+
+    #[test]
+    fn sim_with_json_to_stdout_puts_the_summary_on_stderr() {
+        let style = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/styles/coily.ron");
+        let (result, out, err) =
+            run_args(&["sim", "--style", style, "--steps", "2", "--json", "-"]);
+        result.expect("runs");
+        let report: serde_json::Value =
+            serde_json::from_str(&out).expect("stdout is the JSON report");
+        assert_eq!(report["steps"], 2);
+        assert!(err.contains("style `coily`"), "{err}");
+    }
+
+    #[test]
+    fn a_broken_style_is_an_error_naming_it() {
+        let (result, out, _) = run_args(&["sim", "--style", "no/such/style.ron"]);
+        let error = result.expect_err("no such file");
+        assert!(
+            format!("{error:#}").starts_with("no/such/style.ron: cannot read the style"),
+            "{error:#}"
+        );
+        assert!(out.is_empty());
+    }
+}

@@ -1,0 +1,255 @@
+//! The headless simulation: a style's strands on a still head, stepped
+//! frame by frame and timed.
+//!
+//! The head sits at the origin and does not move (root positions in the
+//! style are therefore also world positions). Every frame is timed with a
+//! wall clock around [`HairSystem::step_frame`], and the state is checked
+//! for NaN and infinities after each one, so a blow-up is reported at the
+//! frame where it happened.
+
+use std::ops::Range;
+use std::time::Instant;
+
+use helixhair_physics::{HairSystem, Method, ParamError, RigidMotion};
+use thiserror::Error;
+
+use crate::field_path::FieldPath;
+use crate::style::Style;
+use crate::style_error::StyleIssue;
+use crate::style_validate::param_issue;
+
+/// Command-line overrides of the style's settings.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SimOverrides {
+    /// Solver to use instead of the style's `sim.method`.
+    pub method: Option<Method>,
+    /// Frame time step in seconds instead of the style's `sim.dt_secs`.
+    pub dt_secs: Option<f64>,
+}
+
+/// Why a headless simulation could not be set up or finished. Each message
+/// is complete on its own, so no variant reports a separate `source`.
+#[derive(Debug, Error)]
+pub enum SimError {
+    /// A command-line override is out of range.
+    #[error("{option} {value}: {error}")]
+    Override {
+        /// The option, e.g. `--dt`.
+        option: &'static str,
+        /// The value given.
+        value: String,
+        /// What the physics crate says about it.
+        error: ParamError,
+    },
+    /// The style does not describe a valid hair system (a loaded style has
+    /// been validated, so this concerns styles built in code).
+    #[error("style `{style}`: {issue}")]
+    Style {
+        /// The style's name.
+        style: String,
+        /// The offending field.
+        issue: StyleIssue,
+    },
+    /// The state held NaN or infinities after a frame.
+    #[error(
+        "the simulation blew up: the strand state is not finite after step {step} of {steps} \
+         (t = {time_secs} s); try a smaller --dt or more substeps"
+    )]
+    NotFinite {
+        /// The frame after which it happened, counted from 1.
+        step: usize,
+        /// The number of frames asked for.
+        steps: usize,
+        /// Simulated time at that point, seconds.
+        time_secs: f64,
+    },
+}
+
+/// A hair system built from a style, with a still head.
+#[derive(Clone, Debug)]
+pub struct HeadlessSim {
+    system: HairSystem,
+    group_names: Vec<String>,
+    group_of_strand: Vec<usize>,
+    head: RigidMotion,
+}
+
+impl HeadlessSim {
+    /// Builds the hair system of `style`, with `overrides` applied to its
+    /// settings (and checked).
+    pub fn new(style: &Style, overrides: SimOverrides) -> Result<Self, SimError> {
+        let mut settings = style.sim.clone();
+        if let Some(method) = overrides.method {
+            settings.method = method;
+        }
+        if let Some(dt_secs) = overrides.dt_secs {
+            settings.dt_secs = dt_secs;
+            if let Err(error) = settings.validate()
+                && error.field == "dt_secs"
+            {
+                return Err(SimError::Override {
+                    option: "--dt",
+                    value: dt_secs.to_string(),
+                    error,
+                });
+            }
+        }
+        let style_issue = |issue| SimError::Style {
+            style: style.name.clone(),
+            issue,
+        };
+        let sim_path = FieldPath::root().field("sim");
+        let mut system =
+            HairSystem::new(settings).map_err(|e| style_issue(param_issue(&sim_path, &e)))?;
+        let mut group_of_strand = Vec::with_capacity(style.strand_count());
+        for (i, group) in style.groups.iter().enumerate() {
+            let params_path = FieldPath::root().field("groups").index(i).field("params");
+            let range: Range<usize> = system
+                .add_group(&group.params, &group.root_poses())
+                .map_err(|e| style_issue(param_issue(&params_path, &e)))?;
+            group_of_strand.extend(range.map(|_| i));
+        }
+        Ok(Self {
+            system,
+            group_names: style.groups.iter().map(|g| g.name.clone()).collect(),
+            group_of_strand,
+            head: RigidMotion::default(),
+        })
+    }
+
+    /// The hair system.
+    pub fn system(&self) -> &HairSystem {
+        &self.system
+    }
+
+    /// Mutable access to the hair system (tests poison its state).
+    pub fn system_mut(&mut self) -> &mut HairSystem {
+        &mut self.system
+    }
+
+    /// The name of the group strand `index` belongs to.
+    pub fn group_name(&self, index: usize) -> &str {
+        self.group_of_strand
+            .get(index)
+            .and_then(|&g| self.group_names.get(g))
+            .map_or("", String::as_str)
+    }
+
+    /// Advances one frame; returns its wall time in seconds.
+    pub fn step(&mut self) -> f64 {
+        let start = Instant::now();
+        self.system.step_frame(&self.head);
+        start.elapsed().as_secs_f64()
+    }
+
+    /// Advances `steps` frames, checking the state after each; returns the
+    /// wall time of each frame in seconds.
+    pub fn run(&mut self, steps: usize) -> Result<Vec<f64>, SimError> {
+        let mut wall_secs = Vec::with_capacity(steps);
+        for step in 1..=steps {
+            wall_secs.push(self.step());
+            if !self.system.is_finite() {
+                return Err(SimError::NotFinite {
+                    step,
+                    steps,
+                    time_secs: self.system.time_secs(),
+                });
+            }
+        }
+        Ok(wall_secs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use glam::DVec3;
+
+    use super::*;
+
+    const STYLE: &str = r#"(
+        version: 1,
+        name: "two",
+        groups: [
+            (name: "a", params: (elements: 3), roots: [(position_m: (0.0, 0.1, 0.0), direction: (1.0, 0.0, 0.0))]),
+            (name: "b", roots: [
+                (position_m: (0.1, 0.0, 0.0), direction: (1.0, 0.0, 0.0)),
+                (position_m: (-0.1, 0.0, 0.0), direction: (-1.0, 0.0, 0.0)),
+            ]),
+        ],
+    )"#;
+
+    fn style() -> Style {
+        Style::from_ron(STYLE, Path::new("two.ron")).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn strands_follow_the_style_groups_in_order() {
+        let sim = HeadlessSim::new(&style(), SimOverrides::default()).expect("builds");
+        assert_eq!(sim.system().strands().len(), 3);
+        let groups: Vec<&str> = (0..3).map(|i| sim.group_name(i)).collect();
+        assert_eq!(groups, ["a", "b", "b"]);
+        assert_eq!(sim.group_name(3), "", "out of range");
+        assert_eq!(sim.system().element_count(), 3 + 10 + 10);
+    }
+
+    #[test]
+    fn overrides_replace_the_style_settings() {
+        let overrides = SimOverrides {
+            method: Some(Method::Dense),
+            dt_secs: Some(0.004),
+        };
+        let mut sim = HeadlessSim::new(&style(), overrides).expect("builds");
+        assert_eq!(sim.system().settings().method, Method::Dense);
+        assert_eq!(sim.system().settings().dt_secs, 0.004);
+        let wall = sim.run(5).expect("finite");
+        assert_eq!(wall.len(), 5);
+        assert!((sim.system().time_secs() - 0.02).abs() < 1e-15);
+    }
+
+    #[test]
+    fn an_out_of_range_dt_names_the_option() {
+        for dt in [0.5, -1.0, f64::NAN] {
+            let overrides = SimOverrides {
+                method: None,
+                dt_secs: Some(dt),
+            };
+            let error = HeadlessSim::new(&style(), overrides).expect_err("refused");
+            assert!(
+                matches!(error, SimError::Override { option: "--dt", .. }),
+                "{error}"
+            );
+            assert!(
+                error
+                    .to_string()
+                    .starts_with(&format!("--dt {dt}: field `dt_secs`")),
+                "{error}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_non_finite_state_stops_the_run_at_that_step() {
+        let mut sim = HeadlessSim::new(&style(), SimOverrides::default()).expect("builds");
+        sim.run(2).expect("finite so far");
+        let strand = &mut sim.system_mut().strands_mut()[1];
+        let mut q = strand.q().to_vec();
+        q[4] = DVec3::new(f64::NAN, 0.0, 0.0);
+        let v = strand.v().to_vec();
+        strand.set_state(&q, &v);
+        let error = sim.run(10).expect_err("blows up");
+        assert!(
+            matches!(
+                error,
+                SimError::NotFinite {
+                    step: 1,
+                    steps: 10,
+                    ..
+                }
+            ),
+            "{error}"
+        );
+        assert!(error.to_string().contains("after step 1 of 10"), "{error}");
+    }
+}

@@ -1,0 +1,257 @@
+//! The result of a headless run, as `helixhair sim --json` writes it and as
+//! its summary prints it.
+//!
+//! The JSON format `helixhair-sim`, version [`SIM_REPORT_VERSION`], is
+//! documented field by field in `docs/sim-json.md`; a change to these
+//! structs that renames, removes or re-means a field must bump the version.
+
+use std::fmt::Write as _;
+
+use helixhair_physics::{Energies, StageTimes};
+use serde::Serialize;
+
+use crate::headless::HeadlessSim;
+
+/// Value of the `format` field.
+pub const SIM_REPORT_FORMAT: &str = "helixhair-sim";
+
+/// Value of the `version` field.
+pub const SIM_REPORT_VERSION: u32 = 1;
+
+/// Everything a headless run reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SimReport {
+    /// Always [`SIM_REPORT_FORMAT`].
+    pub format: &'static str,
+    /// Always [`SIM_REPORT_VERSION`].
+    pub version: u32,
+    /// The style file, as given on the command line.
+    pub style_path: String,
+    /// The style's `name`.
+    pub style_name: String,
+    /// Solver, as `--method` spells it ([`helixhair_physics::Method::label`]:
+    /// `exact`, `iterative:4`, …).
+    pub method: String,
+    /// Frame time step, seconds.
+    pub dt_secs: f64,
+    /// Substeps per frame.
+    pub substeps: u32,
+    /// Frames simulated.
+    pub steps: usize,
+    /// Simulated time at the end, seconds.
+    pub time_secs: f64,
+    /// Number of strands.
+    pub strand_count: usize,
+    /// Number of Super-Helix elements over all strands.
+    pub element_count: usize,
+    /// Energies of the final state.
+    pub energies: EnergiesReport,
+    /// Wall-clock time of the frames.
+    pub wall_time: WallTimeReport,
+    /// Stage times of the last frame, summed over strands and substeps.
+    pub last_step_stages: StageTimesReport,
+    /// Final shape of every strand, in the order of the style's roots.
+    pub strands: Vec<StrandReport>,
+}
+
+/// Energies in joules, summed over strands.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EnergiesReport {
+    /// Kinetic energy, J.
+    pub kinetic_j: f64,
+    /// Elastic (bending and twisting) energy, J.
+    pub elastic_j: f64,
+    /// Gravitational potential energy, J (zero at height 0).
+    pub gravity_j: f64,
+    /// Sum of the three, J.
+    pub total_j: f64,
+}
+
+/// Wall-clock time per frame.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WallTimeReport {
+    /// Each frame's time, seconds, in order.
+    pub per_step_secs: Vec<f64>,
+    /// Median of `per_step_secs`, seconds.
+    pub median_secs: f64,
+    /// Mean of `per_step_secs`, seconds.
+    pub mean_secs: f64,
+    /// Sum of `per_step_secs`, seconds.
+    pub total_secs: f64,
+}
+
+/// Time per pipeline stage, seconds, summed over strands and substeps (so
+/// with parallel stepping the sum can exceed the frame's wall time).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct StageTimesReport {
+    /// Stage "reconstruct".
+    pub reconstruct_secs: f64,
+    /// Stage "forces".
+    pub forces_secs: f64,
+    /// Stage "mass".
+    pub mass_secs: f64,
+    /// Stage "solve".
+    pub solve_secs: f64,
+    /// Stage "integrate".
+    pub integrate_secs: f64,
+    /// Sum of the five.
+    pub total_secs: f64,
+}
+
+/// The final state of one strand.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StrandReport {
+    /// The name of the strand's group.
+    pub group: String,
+    /// The N + 1 element boundary points, root first, metres, world frame.
+    pub points_m: Vec<[f64; 3]>,
+    /// Strains (τ, κ₁, κ₂) of each of the N elements, root first, m⁻¹.
+    pub q_per_m: Vec<[f64; 3]>,
+}
+
+impl From<Energies> for EnergiesReport {
+    fn from(e: Energies) -> Self {
+        Self {
+            kinetic_j: e.kinetic_j,
+            elastic_j: e.elastic_j,
+            gravity_j: e.gravity_j,
+            total_j: e.total_j(),
+        }
+    }
+}
+
+impl From<StageTimes> for StageTimesReport {
+    fn from(t: StageTimes) -> Self {
+        Self {
+            reconstruct_secs: t.reconstruct_secs,
+            forces_secs: t.forces_secs,
+            mass_secs: t.mass_secs,
+            solve_secs: t.solve_secs,
+            integrate_secs: t.integrate_secs,
+            total_secs: t.total_secs(),
+        }
+    }
+}
+
+impl WallTimeReport {
+    /// Statistics of per-frame times (all zero for no frames).
+    pub fn new(per_step_secs: Vec<f64>) -> Self {
+        let total_secs: f64 = per_step_secs.iter().sum();
+        let mean_secs = if per_step_secs.is_empty() {
+            0.0
+        } else {
+            total_secs / per_step_secs.len() as f64
+        };
+        Self {
+            median_secs: median(&per_step_secs),
+            mean_secs,
+            total_secs,
+            per_step_secs,
+        }
+    }
+}
+
+/// Median of `values` (mean of the middle two for an even count; 0 if
+/// empty).
+pub fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let n = sorted.len();
+    match n {
+        0 => 0.0,
+        _ if n % 2 == 1 => sorted[n / 2],
+        _ => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+    }
+}
+
+impl SimReport {
+    /// The report of `sim` after a run whose frames took `per_step_secs`.
+    pub fn new(
+        style_path: &str,
+        style_name: &str,
+        sim: &HeadlessSim,
+        per_step_secs: Vec<f64>,
+    ) -> Self {
+        let system = sim.system();
+        let settings = system.settings();
+        let strands = system
+            .strands()
+            .iter()
+            .enumerate()
+            .map(|(i, strand)| StrandReport {
+                group: sim.group_name(i).to_owned(),
+                points_m: system
+                    .boundary_points_world(i)
+                    .iter()
+                    .map(|p| p.to_array())
+                    .collect(),
+                q_per_m: strand.q().iter().map(|q| q.to_array()).collect(),
+            })
+            .collect();
+        Self {
+            format: SIM_REPORT_FORMAT,
+            version: SIM_REPORT_VERSION,
+            style_path: style_path.to_owned(),
+            style_name: style_name.to_owned(),
+            method: settings.method.label(),
+            dt_secs: settings.dt_secs,
+            substeps: settings.substeps,
+            steps: per_step_secs.len(),
+            time_secs: system.time_secs(),
+            strand_count: system.strands().len(),
+            element_count: system.element_count(),
+            energies: system.energies().into(),
+            wall_time: WallTimeReport::new(per_step_secs),
+            last_step_stages: system.last_stage_times().into(),
+            strands,
+        }
+    }
+
+    /// A few lines for a person: what ran, how fast, where it ended.
+    pub fn summary(&self) -> String {
+        let mut out = String::new();
+        let w = &self.wall_time;
+        let e = &self.energies;
+        // Writing to a String cannot fail.
+        let _ = writeln!(out, "style `{}` ({})", self.style_name, self.style_path);
+        let _ = writeln!(
+            out,
+            "  {} strands, {} elements; method {}, dt {} s x {} substep(s)",
+            self.strand_count, self.element_count, self.method, self.dt_secs, self.substeps
+        );
+        let _ = writeln!(
+            out,
+            "  {} step{} = {:.4} s simulated in {:.4} s wall (per step: median {:.3} ms, mean {:.3} ms)",
+            self.steps,
+            if self.steps == 1 { "" } else { "s" },
+            self.time_secs,
+            w.total_secs,
+            w.median_secs * 1e3,
+            w.mean_secs * 1e3
+        );
+        let _ = writeln!(
+            out,
+            "  final energies: kinetic {:.4e} J, elastic {:.4e} J, gravity {:.4e} J, total {:.4e} J",
+            e.kinetic_j, e.elastic_j, e.gravity_j, e.total_j
+        );
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_of_odd_even_and_empty_lists() {
+        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 2.5);
+        assert_eq!(median(&[]), 0.0);
+    }
+
+    #[test]
+    fn wall_time_statistics() {
+        let w = WallTimeReport::new(vec![1.0, 2.0, 6.0]);
+        assert_eq!((w.median_secs, w.mean_secs, w.total_secs), (2.0, 3.0, 9.0));
+    }
+}

@@ -1,0 +1,234 @@
+//! Hair styles: groups of strands with their physics and their roots on the
+//! head, read from and written to versioned RON files.
+//!
+//! The format is documented field by field in `docs/style-format.md`. The
+//! physics types ([`SimSettings`], [`StrandParams`]) are embedded as they
+//! are, so a style can set every parameter the solver has, with the
+//! solver's defaults for what it leaves out.
+//!
+//! Loading is three passes over the text: a version probe (so that a file
+//! from a newer format says so instead of failing on its new fields), the
+//! strict parse (`deny_unknown_fields` everywhere), and
+//! [`Style::validate`]. Errors of all three name the file, line and field
+//! ([`StyleError::Located`]); see [`crate::source_map`] for how positions
+//! are found for values rejected after parsing.
+
+use std::path::Path;
+
+use glam::DVec3;
+use helixhair_physics::{RootPose, SimSettings, StrandParams};
+use serde::{Deserialize, Serialize};
+
+use crate::atomic_write::write_atomically;
+use crate::field_path::FieldPath;
+use crate::source_map::{SourceMap, TextPosition};
+use crate::style_error::{StyleError, StyleErrorKind, StyleIssue};
+use crate::style_validate::check_version;
+
+/// The style format version this build reads and writes. Files with any
+/// other version are refused (see "Version policy" in the format docs).
+pub const STYLE_VERSION: u32 = 1;
+
+/// The reference direction of a root when the file gives none: +z, the
+/// direction the face looks in head coordinates.
+pub const DEFAULT_REFERENCE: DVec3 = DVec3::Z;
+
+/// A hair style: simulation settings and groups of strands.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Style {
+    /// Format version; must be [`STYLE_VERSION`].
+    pub version: u32,
+    /// Display name of the style.
+    pub name: String,
+    /// Solver, time step, gravity; every field has a default.
+    #[serde(default)]
+    pub sim: SimSettings,
+    /// The strand groups; at least one.
+    pub groups: Vec<StrandGroup>,
+}
+
+/// Strands that share their physical parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrandGroup {
+    /// Name of the group (non-empty), carried into simulation output.
+    pub name: String,
+    /// Physical parameters of every strand of the group; every field has a
+    /// default.
+    #[serde(default)]
+    pub params: StrandParams,
+    /// One root per strand; at least one.
+    pub roots: Vec<Root>,
+}
+
+/// Where a strand grows from, in head coordinates (metres, y up, z towards
+/// the face; the head sits at the origin).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Root {
+    /// Root point in metres.
+    pub position_m: DVec3,
+    /// Growth direction at the root: the strand's first tangent. Any
+    /// non-zero length; it is normalised.
+    pub direction: DVec3,
+    /// Sets the strand's material frame: its first material axis n₁ is the
+    /// part of `reference` orthogonal to `direction` (any orthogonal axis
+    /// when they are parallel). The natural curvature κ₁ bends the strand
+    /// about n₁, so this turns the plane in which a curl starts. Default
+    /// [`DEFAULT_REFERENCE`].
+    #[serde(
+        default = "default_reference",
+        skip_serializing_if = "is_default_reference"
+    )]
+    pub reference: DVec3,
+}
+
+fn default_reference() -> DVec3 {
+    DEFAULT_REFERENCE
+}
+
+fn is_default_reference(reference: &DVec3) -> bool {
+    *reference == DEFAULT_REFERENCE
+}
+
+impl Root {
+    /// A root with the default reference direction.
+    pub fn new(position_m: DVec3, direction: DVec3) -> Self {
+        Self {
+            position_m,
+            direction,
+            reference: DEFAULT_REFERENCE,
+        }
+    }
+
+    /// The physics root frame; the direction must be non-zero (as
+    /// [`Style::validate`] checks).
+    pub fn pose(&self) -> RootPose {
+        RootPose::from_direction(self.position_m, self.direction, self.reference)
+    }
+}
+
+/// What the version probe reads: only the version, ignoring every other
+/// field, so that files of any version get this far.
+#[derive(Deserialize)]
+#[serde(rename = "Style")]
+struct VersionProbe {
+    version: u32,
+}
+
+impl Style {
+    /// Reads, parses and validates the style file at `path`.
+    pub fn load(path: &Path) -> Result<Style, StyleError> {
+        let src = std::fs::read_to_string(path).map_err(|error| StyleError::Read {
+            path: path.to_owned(),
+            error,
+        })?;
+        Self::from_ron(&src, path)
+    }
+
+    /// Parses and validates a style from RON text; `path` is only used to
+    /// name the file in errors.
+    pub fn from_ron(src: &str, path: &Path) -> Result<Style, StyleError> {
+        if let Ok(probe) = ron::from_str::<VersionProbe>(src)
+            && let Err(issue) = check_version(probe.version)
+        {
+            return Err(locate_issue(src, path, issue));
+        }
+        let style: Style =
+            ron::from_str(src).map_err(|error| locate_ron_error(src, path, &error))?;
+        style
+            .validate()
+            .map_err(|issue| locate_issue(src, path, issue))?;
+        Ok(style)
+    }
+
+    /// The style as pretty RON text, with a header comment naming the
+    /// format. Comments of a loaded file are not kept.
+    pub fn to_ron(&self) -> Result<String, StyleError> {
+        let body = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
+            .map_err(StyleError::Serialize)?;
+        Ok(format!(
+            "// HelixHair style, format version {STYLE_VERSION}: see docs/style-format.md.\n{body}\n"
+        ))
+    }
+
+    /// Writes the style to `path` as pretty RON, atomically: the file holds
+    /// either its old content or the whole new style, never a part.
+    pub fn save(&self, path: &Path) -> Result<(), StyleError> {
+        let text = self.to_ron()?;
+        write_atomically(path, text.as_bytes()).map_err(|error| StyleError::Write {
+            path: path.to_owned(),
+            error,
+        })
+    }
+
+    /// Total number of strands (roots) over all groups.
+    pub fn strand_count(&self) -> usize {
+        self.groups.iter().map(|g| g.roots.len()).sum()
+    }
+}
+
+impl StrandGroup {
+    /// The physics root frames of the group's strands.
+    pub fn root_poses(&self) -> Vec<RootPose> {
+        self.roots.iter().map(Root::pose).collect()
+    }
+}
+
+/// Ties a validation issue to the line of its field in `src`.
+fn locate_issue(src: &str, path: &Path, issue: StyleIssue) -> StyleError {
+    let (position, _) = SourceMap::new(src).locate(&issue.field);
+    StyleError::Located {
+        path: path.to_owned(),
+        position,
+        field: issue.field,
+        kind: issue.kind,
+        message: issue.message,
+    }
+}
+
+/// Names the field of a `ron` error from the position `ron` reports.
+fn locate_ron_error(src: &str, path: &Path, error: &ron::error::SpannedError) -> StyleError {
+    let map = SourceMap::new(src);
+    let position = map.skip_whitespace(TextPosition {
+        line: error.span.start.line,
+        col: error.span.start.col,
+    });
+    let mut field = map.path_at(position);
+    match &error.code {
+        // ron reports a missing field somewhere in or just after the struct
+        // that lacks it; the struct's start is where a reader looks.
+        ron::Error::MissingStructField { field: name, .. } => {
+            if let Some((parent, start)) = map.enclosing_struct(&field) {
+                return located_ron(path, start, parent.field(name), error);
+            }
+            field = field.field(name);
+        }
+        // An unknown or repeated field is reported on its name, which the
+        // path then already ends with.
+        ron::Error::DuplicateStructField { field: name, .. } if !field.ends_with_field(name) => {
+            field = field.field(name);
+        }
+        ron::Error::NoSuchStructField { found, .. } if !field.ends_with_field(found) => {
+            field = field.field(found);
+        }
+        _ => {}
+    }
+    located_ron(path, position, field, error)
+}
+
+fn located_ron(
+    path: &Path,
+    position: TextPosition,
+    field: FieldPath,
+    error: &ron::error::SpannedError,
+) -> StyleError {
+    StyleError::Located {
+        path: path.to_owned(),
+        position,
+        field,
+        kind: StyleErrorKind::of_ron(&error.code),
+        message: error.code.to_string(),
+    }
+}

@@ -1,0 +1,130 @@
+//! The checks a style passes after parsing: ranges, NaN, and lists that
+//! must not be empty.
+//!
+//! Physical parameters are checked by the physics crate itself
+//! ([`StrandParams::validate`], [`SimSettings::validate`]), whose field
+//! names are prefixed here with where the parameters sit in the file.
+
+use glam::DVec3;
+use helixhair_physics::ParamError;
+
+use crate::field_path::FieldPath;
+use crate::style::{Root, STYLE_VERSION, Style};
+use crate::style_error::{StyleErrorKind, StyleIssue};
+
+/// Largest distance of a root coordinate from the head's origin, metres:
+/// a head is a tenth of that, so anything beyond is a typo.
+pub const MAX_ROOT_COORDINATE_M: f64 = 10.0;
+
+/// Shortest accepted root direction (it is normalised, so any unit works;
+/// only a zero or vanishing vector has no direction).
+pub const MIN_DIRECTION_LENGTH: f64 = 1e-9;
+
+impl Style {
+    /// Checks the whole style; the first problem found is returned, naming
+    /// its field (e.g. `groups[1].roots[4].direction`).
+    pub fn validate(&self) -> Result<(), StyleIssue> {
+        check_version(self.version)?;
+        let sim = FieldPath::root().field("sim");
+        self.sim.validate().map_err(|e| param_issue(&sim, &e))?;
+        let groups = FieldPath::root().field("groups");
+        if self.groups.is_empty() {
+            return Err(invalid(groups, "must list at least one strand group"));
+        }
+        for (i, group) in self.groups.iter().enumerate() {
+            let at = groups.index(i);
+            if group.name.trim().is_empty() {
+                return Err(invalid(at.field("name"), "must not be empty"));
+            }
+            group
+                .params
+                .validate()
+                .map_err(|e| param_issue(&at.field("params"), &e))?;
+            let roots = at.field("roots");
+            if group.roots.is_empty() {
+                return Err(invalid(
+                    roots,
+                    "must list at least one root (one per strand)",
+                ));
+            }
+            for (j, root) in group.roots.iter().enumerate() {
+                validate_root(root, &roots.index(j))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Refuses every format version but [`STYLE_VERSION`].
+pub(crate) fn check_version(version: u32) -> Result<(), StyleIssue> {
+    if version == STYLE_VERSION {
+        return Ok(());
+    }
+    Err(issue(
+        FieldPath::root().field("version"),
+        StyleErrorKind::Version,
+        format!("version {version} is not supported: this build reads version {STYLE_VERSION}"),
+    ))
+}
+
+fn validate_root(root: &Root, at: &FieldPath) -> Result<(), StyleIssue> {
+    let limit = MAX_ROOT_COORDINATE_M;
+    check_finite(root.position_m, &at.field("position_m"), Some(limit))?;
+    let direction = at.field("direction");
+    check_finite(root.direction, &direction, None)?;
+    if root.direction.length() < MIN_DIRECTION_LENGTH {
+        return Err(invalid(
+            direction,
+            format!(
+                "must not be zero (length at least {MIN_DIRECTION_LENGTH:e}); found {}",
+                format_vec(root.direction)
+            ),
+        ));
+    }
+    check_finite(root.reference, &at.field("reference"), None)
+}
+
+/// Every component finite and, with `limit`, inside `[-limit, limit]`.
+fn check_finite(v: DVec3, at: &FieldPath, limit: Option<f64>) -> Result<(), StyleIssue> {
+    for (k, x) in v.to_array().into_iter().enumerate() {
+        if !x.is_finite() {
+            return Err(invalid(
+                at.index(k),
+                format!("must be a finite number; found {x}"),
+            ));
+        }
+        if let Some(limit) = limit
+            && x.abs() > limit
+        {
+            return Err(invalid(
+                at.index(k),
+                format!("must lie in [-{limit}, {limit}]; found {x}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn format_vec(v: DVec3) -> String {
+    format!("({}, {}, {})", v.x, v.y, v.z)
+}
+
+fn issue(field: FieldPath, kind: StyleErrorKind, message: String) -> StyleIssue {
+    StyleIssue {
+        field,
+        kind,
+        message,
+    }
+}
+
+fn invalid(field: FieldPath, message: impl Into<String>) -> StyleIssue {
+    issue(field, StyleErrorKind::InvalidValue, message.into())
+}
+
+/// A physics parameter error, its field placed under `prefix`.
+pub(crate) fn param_issue(prefix: &FieldPath, error: &ParamError) -> StyleIssue {
+    invalid(
+        prefix.join(&FieldPath::parse(&error.field)),
+        format!("{}; found {}", error.reason, error.value),
+    )
+}

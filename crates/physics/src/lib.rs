@@ -1,0 +1,50 @@
+//! Super-Helix hair strands: the model of Bertails et al. 2006 and the
+//! block-diagonal integrator of Mitsutake et al. (the seed paper).
+//!
+//! A strand is a chain of N helical elements; its generalized coordinates
+//! are each element's twist and two curvatures, q_Q = (τ, κ₁, κ₂), so it
+//! cannot stretch and its curl is a physical parameter. `PHYSICS.md` (in the
+//! shared docs) is the brief; every formula has a check in this crate's
+//! tests.
+//!
+//! # One step
+//!
+//! [`HairSystem::step_frame`] runs, for every strand (in parallel), the
+//! stages of [`step`]: **reconstruct** ([`reconstruct`]), **forces**
+//! ([`forces`]), **mass** ([`mass`]), **solve** ([`solve`]: Dense or
+//! Block-diagonal) and **integrate**. Everything is f64 and O(N) per strand
+//! except the dense solve.
+//!
+//! This crate knows nothing of rendering, windows or file formats; its
+//! parameter types derive serde so that callers can embed them in theirs.
+
+#![warn(missing_docs)]
+
+pub mod energy;
+pub mod error;
+pub mod forces;
+pub mod hair_system;
+pub mod helix;
+pub mod jet;
+pub mod mass;
+pub mod model;
+pub mod motion;
+pub mod natural_shape;
+pub mod params;
+pub mod quadrature;
+pub mod reconstruct;
+pub mod settings;
+pub mod solve;
+pub mod step;
+pub mod strand;
+
+pub use energy::Energies;
+pub use error::ParamError;
+pub use hair_system::HairSystem;
+pub use model::StrandModel;
+pub use motion::{HeadTrajectory, Oscillation, RigidMotion, RootPose};
+pub use natural_shape::NaturalShape;
+pub use params::{ElementLayout, StrandParams};
+pub use settings::{Method, SimSettings};
+pub use step::StageTimes;
+pub use strand::Strand;

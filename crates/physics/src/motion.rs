@@ -1,0 +1,149 @@
+//! Rigid motion of the head and of the root frames it carries.
+//!
+//! Every strand is clamped at its root to a rigid frame. The frame's pose
+//! places the strand; its velocity and acceleration enter the dynamics as the
+//! root's own motion (the strand is carried along, and feels the inertial
+//! forces of an accelerating head). A [`RigidMotion`] is that full state at
+//! one instant; a [`HeadTrajectory`] gives it at any time.
+//!
+//! Conventions: rotations are matrices whose columns are the body's axes in
+//! world coordinates (`world_from_body`); angular velocity and acceleration
+//! are world vectors. A root frame's first axis is the strand's tangent n₀ at
+//! the root, the other two are the material directions n₁, n₂.
+
+use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Pose of a root frame in the head's coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RootPose {
+    /// Root point in head coordinates, metres.
+    pub position_m: DVec3,
+    /// Columns (n₀, n₁, n₂) in head coordinates; n₀ is the growth direction.
+    pub head_from_root: DMat3,
+}
+
+impl RootPose {
+    /// A root at `position_m` growing along `direction`, with n₁ the part of
+    /// `reference` orthogonal to the direction (any orthogonal vector when
+    /// `reference` is parallel to it).
+    pub fn from_direction(position_m: DVec3, direction: DVec3, reference: DVec3) -> Self {
+        let n0 = direction.normalize();
+        let mut n1 = reference - reference.dot(n0) * n0;
+        if n1.length_squared() < 1e-12 {
+            n1 = n0.any_orthonormal_vector();
+        }
+        let n1 = n1.normalize();
+        let n2 = n0.cross(n1);
+        Self {
+            position_m,
+            head_from_root: DMat3::from_cols(n0, n1, n2),
+        }
+    }
+}
+
+/// Pose, velocity and acceleration of a rigid body at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidMotion {
+    /// Body origin in world coordinates, metres.
+    pub position_m: DVec3,
+    /// Rotation taking body coordinates to world coordinates.
+    pub world_from_body: DMat3,
+    /// Velocity of the body origin, m/s.
+    pub velocity_m_per_s: DVec3,
+    /// Angular velocity in world coordinates, rad/s.
+    pub angular_velocity_rad_per_s: DVec3,
+    /// Acceleration of the body origin, m/s².
+    pub acceleration_m_per_s2: DVec3,
+    /// Angular acceleration in world coordinates, rad/s².
+    pub angular_acceleration_rad_per_s2: DVec3,
+}
+
+impl Default for RigidMotion {
+    fn default() -> Self {
+        Self::at_rest(DVec3::ZERO, DMat3::IDENTITY)
+    }
+}
+
+impl RigidMotion {
+    /// A body resting at a pose.
+    pub fn at_rest(position_m: DVec3, world_from_body: DMat3) -> Self {
+        Self {
+            position_m,
+            world_from_body,
+            velocity_m_per_s: DVec3::ZERO,
+            angular_velocity_rad_per_s: DVec3::ZERO,
+            acceleration_m_per_s2: DVec3::ZERO,
+            angular_acceleration_rad_per_s2: DVec3::ZERO,
+        }
+    }
+
+    /// The motion of a frame fixed to this body at `root` (body
+    /// coordinates): same angular motion, and the rigid-body velocity and
+    /// acceleration (with centripetal term) of the attachment point.
+    pub fn carry(&self, root: &RootPose) -> RigidMotion {
+        let offset = self.world_from_body * root.position_m;
+        let w = self.angular_velocity_rad_per_s;
+        let alpha = self.angular_acceleration_rad_per_s2;
+        RigidMotion {
+            position_m: self.position_m + offset,
+            world_from_body: self.world_from_body * root.head_from_root,
+            velocity_m_per_s: self.velocity_m_per_s + w.cross(offset),
+            angular_velocity_rad_per_s: w,
+            acceleration_m_per_s2: self.acceleration_m_per_s2
+                + alpha.cross(offset)
+                + w.cross(w.cross(offset)),
+            angular_acceleration_rad_per_s2: alpha,
+        }
+    }
+}
+
+/// Where the head is, and how it moves, at any time.
+pub trait HeadTrajectory: Sync {
+    /// The head's motion at time `t_secs`.
+    fn motion_at(&self, t_secs: f64) -> RigidMotion;
+}
+
+/// A head that never moves.
+impl HeadTrajectory for RigidMotion {
+    fn motion_at(&self, _t_secs: f64) -> RigidMotion {
+        RigidMotion {
+            velocity_m_per_s: DVec3::ZERO,
+            angular_velocity_rad_per_s: DVec3::ZERO,
+            acceleration_m_per_s2: DVec3::ZERO,
+            angular_acceleration_rad_per_s2: DVec3::ZERO,
+            ..*self
+        }
+    }
+}
+
+/// A head turning back and forth about a fixed axis through its origin:
+/// angle(t) = amplitude · sin(2π f t). With a vertical axis this is a head
+/// shake, with a sideways axis a nod.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Oscillation {
+    /// Rotation axis in world coordinates (normalised on use).
+    pub axis: DVec3,
+    /// Peak angle in radians.
+    pub amplitude_rad: f64,
+    /// Frequency in hertz.
+    pub frequency_hz: f64,
+}
+
+impl HeadTrajectory for Oscillation {
+    fn motion_at(&self, t_secs: f64) -> RigidMotion {
+        let axis = self.axis.normalize();
+        let w = std::f64::consts::TAU * self.frequency_hz;
+        let angle = self.amplitude_rad * (w * t_secs).sin();
+        let rate = self.amplitude_rad * w * (w * t_secs).cos();
+        let accel = -self.amplitude_rad * w * w * (w * t_secs).sin();
+        RigidMotion {
+            position_m: DVec3::ZERO,
+            world_from_body: DMat3::from_axis_angle(axis, angle),
+            velocity_m_per_s: DVec3::ZERO,
+            angular_velocity_rad_per_s: axis * rate,
+            acceleration_m_per_s2: DVec3::ZERO,
+            angular_acceleration_rad_per_s2: axis * accel,
+        }
+    }
+}

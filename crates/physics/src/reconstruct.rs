@@ -1,0 +1,129 @@
+//! Stage "reconstruct": the strand's shape, velocities and Jacobians from q
+//! and q̇, root to tip in O(N).
+//!
+//! Element Q starts at point p_Q with frame R_Q (columns n₀, n₁, n₂). Its
+//! centreline is p_Q + R_Q h(σ, q_Q) and its end frame R_Q exp(ℓ_Q[q_Q]×)
+//! (see [`crate::helix`]). The sweep runs on [`Jet`]s seeded with the root's
+//! motion and (q, q̇, 0), so each quadrature sample gets its position,
+//! velocity and its acceleration with q̈ = 0 (Coriolis, centrifugal and root
+//! terms) in the same pass.
+//!
+//! Jacobians. Moving q_Q moves element Q and carries everything beyond it
+//! rigidly: for a point r beyond element Q,
+//! ∂r/∂q_Q = a_Q − [r − p_{Q+1}]× b_Q = A_Q − [r]× B_Q, with
+//! a_Q = R_Q ∂h(ℓ_Q)/∂k, b_Q = ℓ_Q R_Q J_l(ℓ_Q q_Q) and A_Q = a_Q + [p_{Q+1}]× b_Q.
+//! Writing it as A − [r]×B makes every later integral a function of the
+//! mass moments of what lies beyond, which suffix sums give in O(N). Inside
+//! element Q the Jacobian is R_Q ∂h(σ)/∂k, stored per sample.
+//!
+//! Positions are relative to the root point, so magnitudes stay of the
+//! strand's size wherever the head is.
+
+use glam::{DMat3, DVec3};
+
+use crate::helix::{
+    centreline_and_jacobian, centreline_and_rotation_jets, centreline_jet, left_jacobian, skew,
+};
+use crate::jet::Jet;
+use crate::model::StrandModel;
+use crate::motion::RigidMotion;
+
+/// One quadrature sample of the centreline.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Position relative to the root point, metres.
+    pub position_m: DVec3,
+    /// Velocity, m/s (root motion included).
+    pub velocity_m_per_s: DVec3,
+    /// Acceleration with q̈ = 0, m/s²: the velocity-dependent part of r̈.
+    pub free_acceleration_m_per_s2: DVec3,
+    /// ∂r/∂q of the sample's own element, R_Q ∂h(σ)/∂k, in metres².
+    pub jacobian: DMat3,
+    /// Quadrature weight times element length, metres.
+    pub weight_m: f64,
+}
+
+/// The "beyond" Jacobian of an element: ∂r/∂q_Q = A − [r]×B for any point r
+/// past the element's end.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ElementJacobian {
+    /// A_Q = a_Q + [p_{Q+1}]× b_Q, metres².
+    pub a: DMat3,
+    /// B_Q = ℓ_Q R_Q J_l(ℓ_Q q_Q), metres.
+    pub b: DMat3,
+}
+
+/// Everything the later stages need about the current shape.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Kinematics {
+    /// Frames R_Q at element starts, plus the tip frame (N + 1).
+    pub frames: Vec<DMat3>,
+    /// Element boundary points relative to the root point (N + 1).
+    pub points_m: Vec<DVec3>,
+    /// Velocities of the boundary points, m/s (N + 1).
+    pub point_velocities_m_per_s: Vec<DVec3>,
+    /// Quadrature samples, element by element (N × points).
+    pub samples: Vec<Sample>,
+    /// Beyond-Jacobians per element (N).
+    pub elements: Vec<ElementJacobian>,
+}
+
+/// Rebuilds `out` from the strains `q`, their rates `v` and the root motion.
+pub fn reconstruct(
+    model: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &RigidMotion,
+    out: &mut Kinematics,
+) {
+    let n = model.elements();
+    out.frames.clear();
+    out.points_m.clear();
+    out.point_velocities_m_per_s.clear();
+    out.samples.clear();
+    out.elements.clear();
+
+    let w = skew(root.angular_velocity_rad_per_s);
+    let alpha = skew(root.angular_acceleration_rad_per_s2);
+    let r0 = root.world_from_body;
+    let mut frame = Jet::new(r0, w * r0, (alpha + w * w) * r0);
+    let mut point = Jet::new(
+        DVec3::ZERO,
+        root.velocity_m_per_s,
+        root.acceleration_m_per_s2,
+    );
+    out.frames.push(frame.v);
+    out.points_m.push(point.v);
+    out.point_velocities_m_per_s.push(point.d);
+
+    for e in 0..n {
+        let length = model.lengths_m[e];
+        let k = Jet::new(q[e], v[e], DVec3::ZERO);
+        for (node, weight) in model.quadrature.nodes.iter().zip(&model.quadrature.weights) {
+            let sigma = node * length;
+            let r = point + frame * centreline_jet(sigma, k);
+            let (_, dh_dk) = centreline_and_jacobian(sigma, q[e]);
+            out.samples.push(Sample {
+                position_m: r.v,
+                velocity_m_per_s: r.d,
+                free_acceleration_m_per_s2: r.dd,
+                jacobian: frame.v * dh_dk,
+                weight_m: weight * length,
+            });
+        }
+        let (h_end, rotation_end) = centreline_and_rotation_jets(length, k);
+        let (_, dh_end) = centreline_and_jacobian(length, q[e]);
+        let next_point = point + frame * h_end;
+        let a = frame.v * dh_end;
+        let b = frame.v * left_jacobian(length * q[e]) * length;
+        out.elements.push(ElementJacobian {
+            a: a + skew(next_point.v) * b,
+            b,
+        });
+        frame = frame * rotation_end;
+        point = next_point;
+        out.frames.push(frame.v);
+        out.points_m.push(point.v);
+        out.point_velocities_m_per_s.push(point.d);
+    }
+}

@@ -1,0 +1,138 @@
+//! One strand: its model, root, state and step buffers.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::energy::{Energies, energies};
+use crate::forces::ForceInputs;
+use crate::model::StrandModel;
+use crate::motion::{RigidMotion, RootPose};
+use crate::reconstruct::{Kinematics, reconstruct};
+use crate::settings::Method;
+use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
+
+/// A Super-Helix strand clamped to a root on the head.
+#[derive(Clone, Debug)]
+pub struct Strand {
+    model: Arc<StrandModel>,
+    root: RootPose,
+    q: Vec<DVec3>,
+    v: Vec<DVec3>,
+    external_n_per_m: Vec<DVec3>,
+    workspace: StepWorkspace,
+}
+
+impl Strand {
+    /// A strand at its natural shape, at rest, solved with `method`.
+    pub fn new(model: Arc<StrandModel>, root: RootPose, method: Method) -> Self {
+        let n = model.elements();
+        Self {
+            q: model.natural.clone(),
+            v: vec![DVec3::ZERO; n],
+            external_n_per_m: Vec::new(),
+            workspace: StepWorkspace::new(method),
+            model,
+            root,
+        }
+    }
+
+    /// The shared model.
+    pub fn model(&self) -> &Arc<StrandModel> {
+        &self.model
+    }
+
+    /// The root pose on the head.
+    pub fn root(&self) -> &RootPose {
+        &self.root
+    }
+
+    /// Strains q = (τ, κ₁, κ₂) per element, m⁻¹.
+    pub fn q(&self) -> &[DVec3] {
+        &self.q
+    }
+
+    /// Strain rates q̇ per element, m⁻¹/s.
+    pub fn v(&self) -> &[DVec3] {
+        &self.v
+    }
+
+    /// Sets strains and rates (lengths must match the element count).
+    pub fn set_state(&mut self, q: &[DVec3], v: &[DVec3]) {
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+    }
+
+    /// Sets the per-sample external force per unit length (N/m; one entry
+    /// per quadrature sample, element by element), or clears it with an
+    /// empty slice.
+    pub fn set_external_forces(&mut self, forces_n_per_m: &[DVec3]) {
+        self.external_n_per_m.clear();
+        self.external_n_per_m.extend_from_slice(forces_n_per_m);
+    }
+
+    /// The solver method.
+    pub fn method(&self) -> Method {
+        self.workspace.solver.method()
+    }
+
+    /// Switches the solver; the state is kept.
+    pub fn set_method(&mut self, method: Method) {
+        self.workspace = StepWorkspace::new(method);
+    }
+
+    /// Step buffers of the last step (kinematics, mass, forces, solver).
+    pub fn workspace(&self) -> &StepWorkspace {
+        &self.workspace
+    }
+
+    /// One step of `h_secs` with the root moving as `root`.
+    pub fn step(
+        &mut self,
+        root: &RigidMotion,
+        gravity: DVec3,
+        air_velocity: DVec3,
+        h_secs: f64,
+    ) -> StageTimes {
+        let inputs = StepInputs {
+            h_secs,
+            forces: ForceInputs {
+                root,
+                gravity_m_per_s2: gravity,
+                air_velocity_m_per_s: air_velocity,
+                external_n_per_m: &self.external_n_per_m,
+            },
+        };
+        step_strand(
+            &self.model,
+            &mut self.q,
+            &mut self.v,
+            &mut self.workspace,
+            &inputs,
+        )
+    }
+
+    /// The shape and velocities for a root moving as `root`.
+    pub fn kinematics(&self, root: &RigidMotion) -> Kinematics {
+        let mut kin = Kinematics::default();
+        reconstruct(&self.model, &self.q, &self.v, root, &mut kin);
+        kin
+    }
+
+    /// The N + 1 element boundary points in world coordinates, root first.
+    pub fn boundary_points_world(&self, root: &RigidMotion) -> Vec<DVec3> {
+        let kin = self.kinematics(root);
+        kin.points_m.iter().map(|p| *p + root.position_m).collect()
+    }
+
+    /// Energies for a root moving as `root`, under `gravity`.
+    pub fn energies(&self, root: &RigidMotion, gravity: DVec3) -> Energies {
+        let kin = self.kinematics(root);
+        energies(&self.model, &self.q, &kin, root.position_m, gravity)
+    }
+
+    /// Whether every strain and rate is finite.
+    pub fn is_finite(&self) -> bool {
+        self.q.iter().chain(&self.v).all(|x| x.is_finite())
+    }
+}

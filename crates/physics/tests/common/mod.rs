@@ -1,0 +1,148 @@
+//! Builders shared by the physics tests.
+#![allow(dead_code, missing_docs)] // each test file uses a different subset
+
+use std::sync::Arc;
+
+use glam::{DMat3, DVec3};
+use helixhair_physics::reconstruct::{Kinematics, reconstruct};
+use helixhair_physics::{
+    Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
+};
+
+/// A small deterministic generator (xorshift) so tests need no rand crate.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    /// Uniform in [-1, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+    pub fn vec3(&mut self, scale: f64) -> DVec3 {
+        DVec3::new(self.next(), self.next(), self.next()) * scale
+    }
+    pub fn rotation(&mut self) -> DMat3 {
+        let axis = self.vec3(1.0).normalize();
+        DMat3::from_axis_angle(axis, 3.0 * self.next())
+    }
+}
+
+/// Default hair, `elements` elements of a `length_m` strand, no friction or
+/// drag unless set later.
+pub fn params(length_m: f64, elements: usize) -> StrandParams {
+    StrandParams {
+        length_m,
+        elements,
+        internal_friction: 0.0,
+        air_drag: 0.0,
+        ..StrandParams::default()
+    }
+}
+
+pub fn model(p: &StrandParams, quadrature_points: usize) -> StrandModel {
+    StrandModel::new(p, quadrature_points).expect("valid test parameters")
+}
+
+pub fn strand(p: &StrandParams, method: Method) -> Strand {
+    Strand::new(Arc::new(model(p, 4)), horizontal_root(), method)
+}
+
+/// Root at the origin growing along +x, n₁ = +y, n₂ = +z.
+pub fn horizontal_root() -> RootPose {
+    RootPose {
+        position_m: DVec3::ZERO,
+        head_from_root: DMat3::IDENTITY,
+    }
+}
+
+pub fn at_rest(world_from_root: DMat3) -> RigidMotion {
+    RigidMotion::at_rest(DVec3::ZERO, world_from_root)
+}
+
+pub fn kinematics(m: &StrandModel, q: &[DVec3], v: &[DVec3], root: &RigidMotion) -> Kinematics {
+    let mut k = Kinematics::default();
+    reconstruct(m, q, v, root, &mut k);
+    k
+}
+
+pub fn random_strains(rng: &mut Rng, n: usize, scale_per_m: f64) -> Vec<DVec3> {
+    (0..n).map(|_| rng.vec3(scale_per_m)).collect()
+}
+
+pub fn helix_shape() -> NaturalShape {
+    NaturalShape::Helix {
+        radius_m: 0.01,
+        step_m: 0.02,
+    }
+}
+
+/// Largest absolute difference of two vector lists.
+pub fn max_diff(a: &[DVec3], b: &[DVec3]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (*x - *y).abs().max_element())
+        .fold(0.0, f64::max)
+}
+
+/// Steps a strand with a fixed root until its strain rates fall below
+/// `rate_tol` (m⁻¹/s), returning the steps taken; panics after `max_steps`.
+pub fn settle(
+    s: &mut Strand,
+    root: &RigidMotion,
+    gravity: DVec3,
+    h: f64,
+    rate_tol: f64,
+    max_steps: usize,
+) -> usize {
+    for step in 0..max_steps {
+        s.step(root, gravity, DVec3::ZERO, h);
+        assert!(s.is_finite(), "non-finite state at step {step}");
+        let rate = s
+            .v()
+            .iter()
+            .map(|v| v.abs().max_element())
+            .fold(0.0, f64::max);
+        if rate < rate_tol {
+            return step + 1;
+        }
+    }
+    panic!("strand did not settle in {max_steps} steps");
+}
+
+/// Parameters of a heavy elastica: `elements` elements, gravity magnitude
+/// chosen so that α = ρS g L³/EI, strong friction so that it settles.
+pub fn elastica(alpha: f64, elements: usize) -> (StrandParams, DVec3) {
+    let mut p = params(0.1, elements);
+    let ei = p.stiffness()[2];
+    let g = alpha * ei / (p.mass_per_length() * p.length_m.powi(3));
+    p.internal_friction = 2e-10;
+    (p, DVec3::new(0.0, -g, 0.0))
+}
+
+/// Tip drop y/L, pull-in (L − x)/L and tip angle of a strand rooted at the
+/// origin growing along +x.
+pub fn tip_measures(s: &Strand) -> (f64, f64, f64) {
+    let kin = s.kinematics(&at_rest(DMat3::IDENTITY));
+    let l = s.model().params.length_m;
+    let tip = *kin.points_m.last().expect("a strand has points");
+    let n0 = kin.frames.last().expect("a strand has frames").col(0);
+    (-tip.y / l, (l - tip.x) / l, (-n0.y).atan2(n0.x))
+}
+
+/// A 20 cm curl (radius 1 cm, step 2 cm), N = 12, default friction, on a
+/// root 10 cm up and turned 0.8 rad about an oblique axis.
+pub fn curl_on_oblique_root() -> (StrandParams, RigidMotion) {
+    let mut p = params(0.2, 12);
+    p.natural_shape = helix_shape();
+    p.internal_friction = 2e-10;
+    let root = RigidMotion::at_rest(
+        DVec3::new(0.0, 0.1, 0.0),
+        DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 0.5).normalize(), 0.8),
+    );
+    (p, root)
+}

@@ -1,0 +1,104 @@
+//! Helpers for the end-to-end tests of the `helixhair` binary.
+//!
+//! The tests run the binary that Cargo built in the same profile as the
+//! test itself: a test executable lives in `target/<profile>/deps/`, the
+//! binary in `target/<profile>/`. Cargo builds that binary during
+//! `cargo test --workspace` (or `-p helixhair-app -p helixhair-e2e`)
+//! because the app package has integration tests of its own; when only this
+//! package is tested, build it first with `cargo build -p helixhair-app`
+//! (add `--release` for release tests), or the tests fail saying so.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The marker that broken fixtures put on the line an error must name.
+pub const ERROR_MARKER: &str = "// <- error";
+
+/// The workspace root (the parent of this package's directory).
+pub fn workspace_root() -> PathBuf {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.parent().unwrap_or(here).to_path_buf()
+}
+
+/// Path of the `helixhair` binary next to the running test's profile
+/// directory; panics with build instructions when it is missing.
+pub fn helixhair_bin() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test executable's path");
+    // target/<profile>/deps/<test>-<hash> → target/<profile>/helixhair
+    let profile_dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("the test executable lies in target/<profile>/deps");
+    let bin = profile_dir.join(format!("helixhair{}", std::env::consts::EXE_SUFFIX));
+    if !bin.is_file() {
+        let release = if profile_dir.ends_with("release") {
+            " --release"
+        } else {
+            ""
+        };
+        panic!(
+            "the helixhair binary is missing at {}: build it with `cargo build -p helixhair-app{release}` \
+             (or run `cargo test --workspace{release}`, which builds it)",
+            bin.display()
+        );
+    }
+    bin
+}
+
+/// Runs `helixhair` with `args` from the workspace root.
+pub fn run_helixhair(args: &[&str]) -> Output {
+    Command::new(helixhair_bin())
+        .args(args)
+        .current_dir(workspace_root())
+        .output()
+        .expect("helixhair starts")
+}
+
+/// stdout and stderr of `output`, for assertion messages.
+pub fn describe(output: &Output) -> String {
+    format!(
+        "status {}\n--- stdout\n{}\n--- stderr\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    )
+}
+
+/// The example styles shipped in `assets/styles/`, relative to the root.
+pub fn example_styles() -> Vec<String> {
+    let dir = workspace_root().join("assets/styles");
+    let mut styles: Vec<String> = std::fs::read_dir(&dir)
+        .expect("assets/styles is readable")
+        .map(|entry| {
+            entry
+                .expect("a directory entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .filter(|name| name.ends_with(".ron"))
+        .map(|name| format!("assets/styles/{name}"))
+        .collect();
+    styles.sort();
+    styles
+}
+
+/// The line number (from 1) of [`ERROR_MARKER`] in the file at `path`
+/// (relative to the workspace root).
+pub fn marker_line(path: &str) -> usize {
+    let text =
+        std::fs::read_to_string(workspace_root().join(path)).expect("the fixture is readable");
+    text.lines()
+        .position(|line| line.contains(ERROR_MARKER))
+        .map(|i| i + 1)
+        .unwrap_or_else(|| panic!("{path} has no `{ERROR_MARKER}` line"))
+}
+
+/// A fresh scratch directory for one test's output files.
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("helixhair-e2e-{name}-{}", std::process::id()));
+    // A leftover from an earlier run with the same id is simply replaced.
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create a scratch directory");
+    dir
+}

@@ -1,0 +1,488 @@
+//! `helixhair sim` end to end: every example style runs with the dense and
+//! block-diagonal solvers, its JSON report (docs/sim-json.md) is complete
+//! and consistent with the style, and the hair does what hair does.
+
+use std::path::Path;
+
+use helixhair_app::Style;
+use helixhair_e2e::{describe, example_styles, run_helixhair, scratch_dir, workspace_root};
+use serde_json::Value;
+
+/// Frames per run in the per-style checks: a third of a second at 60 Hz.
+const STEPS: usize = 20;
+
+/// Positions are compared with this tolerance, metres: the root point is
+/// copied, not computed, so only round-off can separate them.
+const POSITION_TOL_M: f64 = 1e-12;
+
+fn load_style(path: &str) -> Style {
+    Style::load(&workspace_root().join(path)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Runs `helixhair sim` with `args` plus `--json FILE`, checks it succeeded
+/// and returns the parsed report.
+fn sim_json(name: &str, args: &[&str]) -> Value {
+    let out = scratch_dir(name).join("report.json");
+    let out_str = out.to_str().expect("a UTF-8 temp path");
+    let mut all = vec!["sim"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--json", out_str]);
+    let output = run_helixhair(&all);
+    assert!(output.status.success(), "{args:?}: {}", describe(&output));
+    let text = std::fs::read_to_string(&out).expect("the JSON report exists");
+    let _ = std::fs::remove_dir_all(out.parent().unwrap_or(Path::new(".")));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: invalid JSON ({e}):\n{text}"))
+}
+
+fn num(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("`{key}` is not a number in {v}"))
+}
+
+fn triples(v: &Value) -> Vec<[f64; 3]> {
+    v.as_array()
+        .expect("a list of triples")
+        .iter()
+        .map(|t| {
+            let t = t.as_array().expect("a triple");
+            assert_eq!(t.len(), 3, "a triple: {t:?}");
+            [0, 1, 2].map(|k| t[k].as_f64().expect("a number"))
+        })
+        .collect()
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Checks a report against the style it came from.
+fn check_report(report: &Value, style_path: &str, style: &Style, method: &str, steps: usize) {
+    let ctx = format!("{style_path} with {method}");
+    assert_eq!(report["format"], "helixhair-sim", "{ctx}");
+    assert_eq!(report["version"], 1, "{ctx}");
+    assert_eq!(report["style_path"], style_path, "{ctx}");
+    assert_eq!(report["style_name"], style.name.as_str(), "{ctx}");
+    assert_eq!(report["method"], method, "{ctx}");
+    assert_eq!(report["steps"], steps, "{ctx}");
+    assert_eq!(report["substeps"], style.sim.substeps, "{ctx}");
+    assert_eq!(num(report, "dt_secs"), style.sim.dt_secs, "{ctx}");
+    let time = num(report, "time_secs");
+    assert!(
+        (time - steps as f64 * style.sim.dt_secs).abs() < 1e-9,
+        "{ctx}: time {time}"
+    );
+
+    let e = &report["energies"];
+    let parts = num(e, "kinetic_j") + num(e, "elastic_j") + num(e, "gravity_j");
+    assert!(
+        (num(e, "total_j") - parts).abs() <= 1e-12 * parts.abs().max(1e-12),
+        "{ctx}: {e}"
+    );
+    assert!(
+        num(e, "kinetic_j") >= 0.0 && num(e, "elastic_j") >= 0.0,
+        "{ctx}: {e}"
+    );
+
+    let wall = &report["wall_time"];
+    let per_step: Vec<f64> = wall["per_step_secs"]
+        .as_array()
+        .expect("per_step_secs")
+        .iter()
+        .map(|t| t.as_f64().expect("a number"))
+        .collect();
+    assert_eq!(per_step.len(), steps, "{ctx}");
+    assert!(
+        per_step.iter().all(|t| t.is_finite() && *t >= 0.0),
+        "{ctx}: {per_step:?}"
+    );
+    let (min, max) = per_step
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(lo, hi), t| (lo.min(*t), hi.max(*t)));
+    let median = num(wall, "median_secs");
+    assert!(
+        min <= median && median <= max,
+        "{ctx}: median {median} outside [{min}, {max}]"
+    );
+    let mean = per_step.iter().sum::<f64>() / steps as f64;
+    assert!(
+        (num(wall, "mean_secs") - mean).abs() <= 1e-12 * mean.max(1e-12),
+        "{ctx}"
+    );
+
+    let stages = &report["last_step_stages"];
+    let names = [
+        "reconstruct_secs",
+        "forces_secs",
+        "mass_secs",
+        "solve_secs",
+        "integrate_secs",
+    ];
+    let sum: f64 = names.iter().map(|k| num(stages, k)).sum();
+    assert!(
+        names.iter().all(|k| num(stages, k) >= 0.0),
+        "{ctx}: {stages}"
+    );
+    assert!(
+        (num(stages, "total_secs") - sum).abs() <= 1e-12,
+        "{ctx}: {stages}"
+    );
+
+    let strands = report["strands"].as_array().expect("strands");
+    assert_eq!(strands.len(), style.strand_count(), "{ctx}");
+    assert_eq!(report["strand_count"], style.strand_count(), "{ctx}");
+    let elements: usize = style
+        .groups
+        .iter()
+        .map(|g| g.params.elements * g.roots.len())
+        .sum();
+    assert_eq!(report["element_count"], elements, "{ctx}");
+
+    let expected = style
+        .groups
+        .iter()
+        .flat_map(|g| g.roots.iter().map(move |r| (g, r)));
+    for (i, (strand, (group, root))) in strands.iter().zip(expected).enumerate() {
+        let ctx = format!("{ctx}, strand {i} ({})", group.name);
+        assert_eq!(strand["group"], group.name.as_str(), "{ctx}");
+        let n = group.params.elements;
+        let points = triples(&strand["points_m"]);
+        let q = triples(&strand["q_per_m"]);
+        assert_eq!(points.len(), n + 1, "{ctx}: N + 1 points");
+        assert_eq!(q.len(), n, "{ctx}: N strain triples");
+        assert!(
+            points.iter().chain(&q).flatten().all(|x| x.is_finite()),
+            "{ctx}"
+        );
+        let root = root.position_m.to_array();
+        assert!(
+            distance(points[0], root) <= POSITION_TOL_M,
+            "{ctx}: root {:?} vs {root:?}",
+            points[0]
+        );
+        // Inextensible: each chord is at most its element's (arc) length.
+        for (k, (pair, length)) in points
+            .windows(2)
+            .zip(group.params.element_lengths())
+            .enumerate()
+        {
+            let chord = distance(pair[0], pair[1]);
+            assert!(
+                chord <= length * (1.0 + 1e-9),
+                "{ctx}: element {k} chord {chord} > length {length}"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_example_style_runs_with_dense_and_block() {
+    let styles = example_styles();
+    assert!(styles.len() >= 4, "the examples: {styles:?}");
+    for path in &styles {
+        let style = load_style(path);
+        for method in ["dense", "block"] {
+            let steps = STEPS.to_string();
+            let report = sim_json(
+                "examples",
+                &["--style", path, "--method", method, "--steps", &steps],
+            );
+            check_report(&report, path, &style, method, STEPS);
+        }
+    }
+}
+
+/// Tip minus root height, metres, of every strand of a report's groups.
+fn tip_drops(report: &Value, groups: &[&str]) -> Vec<f64> {
+    report["strands"]
+        .as_array()
+        .expect("strands")
+        .iter()
+        .filter(|s| groups.iter().any(|g| s["group"] == *g))
+        .map(|s| {
+            let points = triples(&s["points_m"]);
+            points[points.len() - 1][1] - points[0][1]
+        })
+        .collect()
+}
+
+#[test]
+fn straight_hair_falls_under_gravity() {
+    // Every root points outwards, most of them upwards: within a third of a
+    // second the strands growing sideways hang below their roots, and after
+    // a second every strand does.
+    for method in ["dense", "block"] {
+        let report = sim_json(
+            "fall-20",
+            &[
+                "--style",
+                "assets/styles/straight.ron",
+                "--method",
+                method,
+                "--steps",
+                "20",
+            ],
+        );
+        let sideways = tip_drops(&report, &["left", "right", "back"]);
+        assert!(!sideways.is_empty());
+        assert!(
+            sideways.iter().all(|dy| *dy < 0.0),
+            "{method}, 20 steps: {sideways:?}"
+        );
+
+        let report = sim_json(
+            "fall-60",
+            &[
+                "--style",
+                "assets/styles/straight.ron",
+                "--method",
+                method,
+                "--steps",
+                "60",
+            ],
+        );
+        let all = tip_drops(&report, &["crown", "fringe", "left", "right", "back"]);
+        assert_eq!(
+            all.len(),
+            load_style("assets/styles/straight.ron").strand_count()
+        );
+        assert!(
+            all.iter().all(|dy| *dy < 0.0),
+            "{method}, 60 steps: {all:?}"
+        );
+    }
+}
+
+#[test]
+fn coils_stay_coiled_and_straight_hair_stays_straight() {
+    // End-to-end distance over length: a 15 cm coily strand holds about
+    // 4.6 turns of 8 mm pitch (3.7 cm), and gravity stretches it little;
+    // a straight strand has no curl to shorten it.
+    let ratios = |path: &str| -> Vec<f64> {
+        let style = load_style(path);
+        let report = sim_json("shape", &["--style", path, "--steps", "60"]);
+        let lengths = style
+            .groups
+            .iter()
+            .flat_map(|g| g.roots.iter().map(|_| g.params.length_m));
+        report["strands"]
+            .as_array()
+            .expect("strands")
+            .iter()
+            .zip(lengths)
+            .map(|(s, length)| {
+                let points = triples(&s["points_m"]);
+                distance(points[0], points[points.len() - 1]) / length
+            })
+            .collect()
+    };
+    let coily = ratios("assets/styles/coily.ron");
+    assert!(
+        coily.iter().all(|r| *r < 0.5),
+        "coily end-to-end / length: {coily:?}"
+    );
+    let straight = ratios("assets/styles/straight.ron");
+    assert!(
+        straight.iter().all(|r| *r > 0.7),
+        "straight end-to-end / length: {straight:?}"
+    );
+}
+
+#[test]
+fn default_run_prints_a_summary() {
+    let output = run_helixhair(&["sim", "--style", "assets/styles/curly.ron"]);
+    assert!(output.status.success(), "{}", describe(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("style `curly` (assets/styles/curly.ron)"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("60 steps = 1.0000 s simulated"), "{stdout}");
+    assert!(
+        stdout.contains("method exact,"),
+        "the style's method: {stdout}"
+    );
+}
+
+#[test]
+fn json_dash_goes_to_stdout_and_the_summary_to_stderr() {
+    let output = run_helixhair(&[
+        "sim",
+        "--style",
+        "assets/styles/wavy.ron",
+        "--steps",
+        "3",
+        "--json",
+        "-",
+    ]);
+    assert!(output.status.success(), "{}", describe(&output));
+    let report: Value = serde_json::from_slice(&output.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", describe(&output)));
+    assert_eq!(report["steps"], 3);
+    assert!(
+        String::from_utf8_lossy(&output.stderr).contains("style `wavy`"),
+        "{}",
+        describe(&output)
+    );
+}
+
+#[test]
+fn method_and_dt_override_the_style() {
+    let report = sim_json(
+        "override",
+        &[
+            "--style",
+            "assets/styles/coily.ron",
+            "--method",
+            "block-own",
+            "--dt",
+            "0.005",
+            "--steps",
+            "10",
+        ],
+    );
+    assert_eq!(report["method"], "block-own");
+    assert_eq!(num(&report, "dt_secs"), 0.005);
+    assert!((num(&report, "time_secs") - 0.05).abs() < 1e-12);
+}
+
+#[test]
+fn bad_options_fail_with_a_clear_message() {
+    for (args, code, expected) in [
+        (vec!["--dt", "0.5"], 1, "--dt 0.5: field `dt_secs`"),
+        (vec!["--dt", "-1"], 1, "--dt -1: field `dt_secs`"),
+        (vec!["--dt", "NaN"], 1, "must be a finite number"),
+        (
+            vec!["--method", "fast"],
+            2,
+            "expected one of dense, block, block-own, exact, iterative:K",
+        ),
+        (
+            vec!["--method", "iterative:x"],
+            2,
+            "unknown method `iterative:x`",
+        ),
+        (vec!["--steps", "0"], 2, "--steps"),
+    ] {
+        let mut all = vec!["sim", "--style", "assets/styles/straight.ron"];
+        all.extend_from_slice(&args);
+        let output = run_helixhair(&all);
+        assert_eq!(
+            output.status.code(),
+            Some(code),
+            "{args:?}: {}",
+            describe(&output)
+        );
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            stderr.contains(expected),
+            "{args:?}: expected {expected:?} in\n{stderr}"
+        );
+    }
+}
+
+#[test]
+fn json_folder_is_created_but_an_impossible_path_fails_naming_it() {
+    let dir = scratch_dir("json-folder");
+    let nested = dir.join("a/b/report.json");
+    let nested = nested.to_str().expect("a UTF-8 temp path");
+    let output = run_helixhair(&[
+        "sim",
+        "--style",
+        "assets/styles/straight.ron",
+        "--steps",
+        "1",
+        "--json",
+        nested,
+    ]);
+    assert!(output.status.success(), "{}", describe(&output));
+    assert!(Path::new(nested).is_file());
+    std::fs::remove_dir_all(&dir).expect("clean up");
+
+    // A folder cannot be made below a file.
+    let below_a_file = "assets/styles/straight.ron/report.json";
+    let output = run_helixhair(&[
+        "sim",
+        "--style",
+        "assets/styles/straight.ron",
+        "--steps",
+        "1",
+        "--json",
+        below_a_file,
+    ]);
+    assert_eq!(output.status.code(), Some(1), "{}", describe(&output));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.starts_with(&format!(
+            "error: cannot write the JSON report to {below_a_file}: "
+        )),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn no_command_explains_how_to_run_headless() {
+    let output = run_helixhair(&[]);
+    assert!(output.status.success(), "{}", describe(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("not built yet"), "{stdout}");
+    assert!(
+        stdout.contains("helixhair sim --style assets/styles/curly.ron"),
+        "{stdout}"
+    );
+}
+
+/// Documented paths of every field of `value`: `a`, `a.b`, `strands[i].c`.
+fn field_paths(value: &Value, prefix: &str, out: &mut Vec<String>) {
+    match value {
+        Value::Object(map) => {
+            for (key, child) in map {
+                let path = if prefix.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{prefix}.{key}")
+                };
+                out.push(path.clone());
+                field_paths(child, &path, out);
+            }
+        }
+        Value::Array(items) => {
+            if let Some(first) = items.first().filter(|v| v.is_object()) {
+                field_paths(first, &format!("{prefix}[i]"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn every_report_field_is_documented_and_the_doc_example_matches() {
+    let doc = std::fs::read_to_string(workspace_root().join("docs/sim-json.md"))
+        .expect("docs/sim-json.md");
+    let report = sim_json(
+        "doc",
+        &["--style", "assets/styles/curly.ron", "--steps", "3"],
+    );
+    let mut paths = Vec::new();
+    field_paths(&report, "", &mut paths);
+    for path in &paths {
+        assert!(
+            doc.contains(&format!("| `{path}` |")),
+            "`{path}` has no row in docs/sim-json.md"
+        );
+    }
+    let example = doc
+        .split("```json\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("docs/sim-json.md has a JSON example");
+    let example: Value = serde_json::from_str(example).expect("the doc's example is JSON");
+    let mut documented = Vec::new();
+    field_paths(&example, "", &mut documented);
+    paths.sort();
+    documented.sort();
+    assert_eq!(
+        documented, paths,
+        "the doc's example has exactly the report's fields"
+    );
+}
