@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use glam::{DMat3, DVec3};
-use helixhair_physics::{HairSystem, Method, Oscillation, RigidMotion, RootPose, SimSettings};
+use helixhair_physics::{HairSystem, Method, Oscillation, RootPose, SimSettings};
 
 #[test]
 fn own_element_blocks_blow_up_on_a_curly_strand_at_any_usable_step() {
