@@ -1,5 +1,7 @@
 //! Per-step cost of one strand for each method and element count, single
-//! thread: `cargo run --release -p helixhair-physics --example step_cost`.
+//! thread: `cargo run --release -p helixhair-physics --example step_cost`
+//! times a 20 cm curl; add `-- straight` to time a straight strand, on
+//! which every method but the own-element blocks stays finite.
 //!
 //! Each (method, N) pair runs 15 batches of steps after a warm-up and
 //! prints the median seconds per step, with the spread (min and max batch),
@@ -17,15 +19,21 @@ use helixhair_physics::{
 const BATCHES: usize = 15;
 
 fn main() {
+    let straight = std::env::args().any(|a| a == "straight");
+    let shape = if straight {
+        NaturalShape::Straight
+    } else {
+        NaturalShape::Helix {
+            radius_m: 0.02,
+            step_m: 0.05,
+        }
+    };
     println!("method,elements,median_secs_per_step,min_secs_per_step,max_secs_per_step");
     for n in [5usize, 10, 20, 50, 100] {
         for method in Method::ALL {
             let params = StrandParams {
                 elements: n,
-                natural_shape: NaturalShape::Helix {
-                    radius_m: 0.02,
-                    step_m: 0.05,
-                },
+                natural_shape: shape.clone(),
                 ..StrandParams::default()
             };
             let model = Arc::new(StrandModel::new(&params, 4).expect("valid parameters"));
