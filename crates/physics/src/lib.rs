@@ -1,5 +1,6 @@
-//! Super-Helix hair strands: the model of Bertails et al. 2006 and the
-//! block-diagonal integrator of Mitsutake et al. (the seed paper).
+//! Super-Helix hair strands: the model of Bertails et al. 2006, its dense
+//! integrator, the block-diagonal integrator of Mitsutake et al. (the seed
+//! paper), an exact linear-time solve and an iterative one.
 //!
 //! A strand is a chain of N helical elements; its generalized coordinates
 //! are each element's twist and two curvatures, q_Q = (τ, κ₁, κ₂), so it
@@ -11,9 +12,9 @@
 //!
 //! [`HairSystem::step_frame`] runs, for every strand (in parallel), the
 //! stages of [`step`]: **reconstruct** ([`reconstruct`]), **forces**
-//! ([`forces`]), **mass** ([`mass`]), **solve** ([`solve`]: Dense or
-//! Block-diagonal) and **integrate**. Everything is f64 and O(N) per strand
-//! except the dense solve.
+//! ([`forces`]), **mass** ([`mass`]), **solve** ([`solve`]: Dense,
+//! Block-diagonal, Exact or Iterative) and **integrate**. Everything is f64
+//! and O(N) per strand except the dense solve.
 //!
 //! This crate knows nothing of rendering, windows or file formats; its
 //! parameter types derive serde so that callers can embed them in theirs.
