@@ -121,14 +121,22 @@ impl HairSystem {
         for _ in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
             let step_one = |s: &mut Strand| s.step(&motion.carry(s.root()), gravity, air, h);
-            let times: Vec<StageTimes> = if self.parallel {
-                self.strands.par_iter_mut().map(step_one).collect()
-            } else {
-                self.strands.iter_mut().map(step_one).collect()
+            let add = |mut a: StageTimes, b: StageTimes| {
+                a.accumulate(&b);
+                a
             };
-            for t in &times {
-                frame_times.accumulate(t);
-            }
+            let times = if self.parallel {
+                self.strands
+                    .par_iter_mut()
+                    .map(step_one)
+                    .reduce(StageTimes::default, add)
+            } else {
+                self.strands
+                    .iter_mut()
+                    .map(step_one)
+                    .fold(StageTimes::default(), add)
+            };
+            frame_times.accumulate(&times);
             self.time_secs += h;
         }
         self.head = head.motion_at(self.time_secs);

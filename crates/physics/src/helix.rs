@@ -116,7 +116,10 @@ pub fn rotation(phi: DVec3) -> DMat3 {
 /// J_l(φ), the left Jacobian of SO(3): a change δk of an element's strains
 /// turns its end frame by the world rotation ℓ R_Q J_l(ℓk) δk.
 pub fn left_jacobian(phi: DVec3) -> DMat3 {
-    let co = HelixCoefficients::at(phi.length_squared());
+    left_jacobian_with(phi, &HelixCoefficients::at(phi.length_squared()))
+}
+
+fn left_jacobian_with(phi: DVec3, co: &HelixCoefficients) -> DMat3 {
     let s = skew(phi);
     DMat3::IDENTITY + s * co.b[0] + s * s * co.c[0]
 }
@@ -127,16 +130,22 @@ pub fn centreline_and_jacobian(sigma: f64, k: DVec3) -> (DVec3, DMat3) {
     let phi = sigma * k;
     let co = HelixCoefficients::at(phi.length_squared());
     let e0 = DVec3::X;
+    let f = e0 + co.b[0] * phi.cross(e0) + co.c[0] * phi.cross(phi.cross(e0));
+    (sigma * f, centreline_jacobian_with(sigma, phi, &co))
+}
+
+/// ∂h(σ, k)/∂k = σ² ∂f/∂φ at φ = σk, with f(φ) = J_l(φ) e₀:
+/// ∂f/∂φ = B(−[e₀]×) + C(φe₀ᵀ + (φ·e₀)I − 2e₀φᵀ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ.
+fn centreline_jacobian_with(sigma: f64, phi: DVec3, co: &HelixCoefficients) -> DMat3 {
+    let e0 = DVec3::X;
     let phi_x_e0 = phi.cross(e0);
     let phi_x_phi_x_e0 = phi.cross(phi_x_e0);
-    let f = e0 + co.b[0] * phi_x_e0 + co.c[0] * phi_x_phi_x_e0;
-    // ∂f/∂φ = B(−[e₀]×) + C(φe₀ᵀ + (φ·e₀)I − 2e₀φᵀ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ
     let df = skew(e0) * (-co.b[0])
         + (outer(phi, e0) + DMat3::from_diagonal(DVec3::splat(phi.x)) - outer(e0, phi) * 2.0)
             * co.c[0]
         + outer(phi_x_e0, phi) * (2.0 * co.b[1])
         + outer(phi_x_phi_x_e0, phi) * (2.0 * co.c[1]);
-    (sigma * f, df * (sigma * sigma))
+    df * (sigma * sigma)
 }
 
 /// The outer product a bᵀ.
@@ -144,35 +153,64 @@ pub fn outer(a: DVec3, b: DVec3) -> DMat3 {
     DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
-/// Coefficient jets from a jet of y by the chain rule.
-fn coefficient_jets(y: Jet<f64>) -> [Jet<f64>; 3] {
+/// The geometry of an element at one arc length, from one evaluation of
+/// A, B, C (the jets and the Jacobian share it: y = σ²|q|² for both).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointGeometry {
+    /// Jet of the centreline h(σ, k) in the element's start frame.
+    pub centreline: Jet<DVec3>,
+    /// ∂h(σ, k)/∂k at the strains' value, metres².
+    pub centreline_jacobian: DMat3,
+}
+
+/// [`PointGeometry`] at the element's end, with the frame's turn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EndGeometry {
+    /// Centreline and its Jacobian at σ = ℓ.
+    pub point: PointGeometry,
+    /// Jet of the rotation E(ℓk) across the element.
+    pub rotation: Jet<DMat3>,
+    /// J_l(ℓk) at the strains' value.
+    pub left_jacobian: DMat3,
+}
+
+/// The shared part of [`point_geometry`] and [`end_geometry`]: φ = σk as a
+/// jet, the coefficients at its value, their jets, and h's jet.
+fn geometry_parts(
+    sigma: f64,
+    k: Jet<DVec3>,
+) -> (Jet<DVec3>, HelixCoefficients, [Jet<f64>; 3], PointGeometry) {
+    let phi = k.map_linear(|v| v * sigma);
+    let y = phi.dot(phi);
     let co = HelixCoefficients::at(y.v);
-    [y.chain(co.a), y.chain(co.b), y.chain(co.c)]
+    let jets = [y.chain(co.a), y.chain(co.b), y.chain(co.c)];
+    let e0 = Jet::new(DVec3::X, DVec3::ZERO, DVec3::ZERO);
+    let phi_x_e0 = phi.cross(e0);
+    let f = e0 + jets[1] * phi_x_e0 + jets[2] * phi.cross(phi_x_e0);
+    let point = PointGeometry {
+        centreline: f.map_linear(|v| v * sigma),
+        centreline_jacobian: centreline_jacobian_with(sigma, phi.v, &co),
+    };
+    (phi, co, jets, point)
 }
 
-/// Jets of the centreline h(σ, k) and of the frame rotation E(σk), for a
-/// strain jet k = (q, q̇, q̈).
-pub fn centreline_and_rotation_jets(sigma: f64, k: Jet<DVec3>) -> (Jet<DVec3>, Jet<DMat3>) {
-    let phi = k.map_linear(|v| v * sigma);
-    let [a, b, c] = coefficient_jets(phi.dot(phi));
+/// Centreline jet and Jacobian at arc length σ, for a strain jet
+/// k = (q, q̇, q̈).
+pub fn point_geometry(sigma: f64, k: Jet<DVec3>) -> PointGeometry {
+    geometry_parts(sigma, k).3
+}
+
+/// Centreline, rotation and left Jacobian at the end of an element of
+/// length `length`, for a strain jet k = (q, q̇, q̈).
+pub fn end_geometry(length: f64, k: Jet<DVec3>) -> EndGeometry {
+    let (phi, co, [a, b, _], point) = geometry_parts(length, k);
     let s = phi.map_linear(skew);
-    let s2 = s * s;
-    let identity = Jet::constant(DMat3::IDENTITY);
-    let rot = identity + a * s + b * s2;
-    let e0 = Jet::new(DVec3::X, DVec3::ZERO, DVec3::ZERO);
-    let phi_x_e0 = phi.cross(e0);
-    let f = e0 + b * phi_x_e0 + c * phi.cross(phi_x_e0);
-    (f.map_linear(|v| v * sigma), rot)
-}
-
-/// Jet of the centreline h(σ, k) alone (no frame), for quadrature points.
-pub fn centreline_jet(sigma: f64, k: Jet<DVec3>) -> Jet<DVec3> {
-    let phi = k.map_linear(|v| v * sigma);
-    let [_, b, c] = coefficient_jets(phi.dot(phi));
-    let e0 = Jet::new(DVec3::X, DVec3::ZERO, DVec3::ZERO);
-    let phi_x_e0 = phi.cross(e0);
-    let f = e0 + b * phi_x_e0 + c * phi.cross(phi_x_e0);
-    f.map_linear(|v| v * sigma)
+    let rotation = Jet::constant(DMat3::IDENTITY) + a * s + b * (s * s);
+    EndGeometry {
+        point,
+        rotation,
+        left_jacobian: left_jacobian_with(phi.v, &co),
+    }
 }
 
 #[cfg(test)]

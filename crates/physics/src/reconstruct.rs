@@ -21,9 +21,7 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::helix::{
-    centreline_and_jacobian, centreline_and_rotation_jets, centreline_jet, left_jacobian, skew,
-};
+use crate::helix::{end_geometry, point_geometry, skew};
 use crate::jet::Jet;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
@@ -101,26 +99,25 @@ pub fn reconstruct(
         let k = Jet::new(q[e], v[e], DVec3::ZERO);
         for (node, weight) in model.quadrature.nodes.iter().zip(&model.quadrature.weights) {
             let sigma = node * length;
-            let r = point + frame * centreline_jet(sigma, k);
-            let (_, dh_dk) = centreline_and_jacobian(sigma, q[e]);
+            let geometry = point_geometry(sigma, k);
+            let r = point + frame * geometry.centreline;
             out.samples.push(Sample {
                 position_m: r.v,
                 velocity_m_per_s: r.d,
                 free_acceleration_m_per_s2: r.dd,
-                jacobian: frame.v * dh_dk,
+                jacobian: frame.v * geometry.centreline_jacobian,
                 weight_m: weight * length,
             });
         }
-        let (h_end, rotation_end) = centreline_and_rotation_jets(length, k);
-        let (_, dh_end) = centreline_and_jacobian(length, q[e]);
-        let next_point = point + frame * h_end;
-        let a = frame.v * dh_end;
-        let b = frame.v * left_jacobian(length * q[e]) * length;
+        let end = end_geometry(length, k);
+        let next_point = point + frame * end.point.centreline;
+        let a = frame.v * end.point.centreline_jacobian;
+        let b = frame.v * end.left_jacobian * length;
         out.elements.push(ElementJacobian {
             a: a + skew(next_point.v) * b,
             b,
         });
-        frame = frame * rotation_end;
+        frame = frame * end.rotation;
         point = next_point;
         out.frames.push(frame.v);
         out.points_m.push(point.v);

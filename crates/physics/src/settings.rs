@@ -90,7 +90,7 @@ impl Method {
 pub struct SimSettings {
     /// Solver for the step matrix. Default Exact: Dense's answer (to
     /// round-off) at O(N) cost, 1.1× Block-diagonal's per step at N = 10
-    /// and 3.3× cheaper than Dense at N = 50, while Block-diagonal blows up
+    /// and 4× cheaper than Dense at N = 50, while Block-diagonal blows up
     /// on a hanging curl at 60 Hz from N = 8 (see `docs/solvers.md`).
     pub method: Method,
     /// Frame time step in seconds, range [1e-6, 0.1]. Default 1/60 s: one

@@ -48,26 +48,22 @@ impl IterativeSolver {
     pub fn iterations(&self) -> u32 {
         self.iterations
     }
-
-    /// product = (s M + D) x.
-    fn apply(&mut self, kin: &Kinematics, mass: &MassData, which: Operand) {
-        let x = match which {
-            Operand::Solution(x) => x,
-            Operand::Direction => &self.direction,
-        };
-        let mut out = std::mem::take(&mut self.product);
-        out.resize(x.len(), DVec3::ZERO);
-        mass_times(kin, mass, x, &mut out);
-        for ((o, d), x) in out.iter_mut().zip(&self.diagonal).zip(x) {
-            *o = *o * self.mass_scale + *d * *x;
-        }
-        self.product = out;
-    }
 }
 
-enum Operand<'a> {
-    Solution(&'a [DVec3]),
-    Direction,
+/// out = (s M + D) x, with M applied matrix-free.
+fn step_matrix_times(
+    kin: &Kinematics,
+    mass: &MassData,
+    mass_scale: f64,
+    diagonal: &[DVec3],
+    x: &[DVec3],
+    out: &mut Vec<DVec3>,
+) {
+    out.resize(x.len(), DVec3::ZERO);
+    mass_times(kin, mass, x, out);
+    for ((o, d), x) in out.iter_mut().zip(diagonal).zip(x) {
+        *o = *o * mass_scale + *d * *x;
+    }
 }
 
 fn dot(a: &[DVec3], b: &[DVec3]) -> f64 {
@@ -88,7 +84,14 @@ impl StepSolver for IterativeSolver {
         if self.iterations == 0 {
             return;
         }
-        self.apply(kin, mass, Operand::Solution(out));
+        step_matrix_times(
+            kin,
+            mass,
+            self.mass_scale,
+            &self.diagonal,
+            out,
+            &mut self.product,
+        );
         self.residual.clear();
         self.residual
             .extend(rhs.iter().zip(&self.product).map(|(b, ax)| *b - *ax));
@@ -102,7 +105,14 @@ impl StepSolver for IterativeSolver {
             if rz <= 0.0 || !rz.is_finite() {
                 break; // converged to round-off (or non-finite input)
             }
-            self.apply(kin, mass, Operand::Direction);
+            step_matrix_times(
+                kin,
+                mass,
+                self.mass_scale,
+                &self.diagonal,
+                &self.direction,
+                &mut self.product,
+            );
             let alpha = rz / dot(&self.direction, &self.product);
             for (x, d) in out.iter_mut().zip(&self.direction) {
                 *x += alpha * *d;
