@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use crate::energy::{Energies, energies};
 use crate::forces::ForceInputs;
+use crate::guard::GuardState;
 use crate::model::StrandModel;
 use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
@@ -21,6 +22,9 @@ pub struct Strand {
     v: Vec<DVec3>,
     external_n_per_m: Vec<DVec3>,
     workspace: StepWorkspace,
+    checkpoint_q: Vec<DVec3>,
+    checkpoint_v: Vec<DVec3>,
+    guard_state: GuardState,
 }
 
 impl Strand {
@@ -32,6 +36,9 @@ impl Strand {
             v: vec![DVec3::ZERO; n],
             external_n_per_m: Vec::new(),
             workspace: StepWorkspace::new(method),
+            checkpoint_q: model.natural.clone(),
+            checkpoint_v: vec![DVec3::ZERO; n],
+            guard_state: GuardState::default(),
             model,
             root,
         }
@@ -129,6 +136,33 @@ impl Strand {
     pub fn energies(&self, root: &RigidMotion, gravity: DVec3) -> Energies {
         let kin = self.kinematics(root);
         energies(&self.model, &self.q, &kin, root.position_m, gravity)
+    }
+
+    /// The strand's standing with the guard.
+    pub fn guard_state(&self) -> GuardState {
+        self.guard_state
+    }
+
+    /// Sets the strand's standing with the guard.
+    pub fn set_guard_state(&mut self, state: GuardState) {
+        self.guard_state = state;
+    }
+
+    /// Remembers the current state (no allocation after the first call).
+    pub fn checkpoint(&mut self) {
+        self.checkpoint_q.clone_from(&self.q);
+        self.checkpoint_v.clone_from(&self.v);
+    }
+
+    /// Returns to the state of the last [`Strand::checkpoint`]; with
+    /// `at_rest`, with zero strain rates (at rest relative to the root).
+    pub fn restore_checkpoint(&mut self, at_rest: bool) {
+        self.q.clone_from(&self.checkpoint_q);
+        if at_rest {
+            self.v.fill(DVec3::ZERO);
+        } else {
+            self.v.clone_from(&self.checkpoint_v);
+        }
     }
 
     /// Whether every strain and rate is finite.
