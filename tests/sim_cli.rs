@@ -501,6 +501,8 @@ fn bench_quick_writes_every_study_as_csv_and_svg() {
         "accuracy_bounce-curly.svg",
         "accuracy_shake.svg",
         "error_model.ron",
+        "iterations.csv",
+        "iterations.svg",
         "stability.csv",
         "stability.svg",
         "curly_dt.csv",

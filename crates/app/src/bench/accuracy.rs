@@ -168,7 +168,8 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
         rows.extend(scene_rows);
     }
     write_csv(&ctx.file("accuracy.csv"), &rows)?;
-    ErrorModel::from_rows(&rows, reference, duration).save(&ctx.file("error_model.ron"))
+    ErrorModel::from_rows(&rows, reference, duration).save(&ctx.file("error_model.ron"))?;
+    super::iterations::run(ctx, duration)
 }
 
 /// Prints the headline numbers of one scene: each solver's error at the

@@ -9,13 +9,14 @@
 //! | study | question | files |
 //! | --- | --- | --- |
 //! | `cost` | seconds per step against N, per solver | `cost.csv`, `cost.svg` |
-//! | `accuracy` | error against cost on three scenes, Pareto front | `accuracy.csv`, `accuracy_*.svg`, `error_model.ron` |
+//! | `accuracy` | error against cost on three scenes, Pareto front; iterations that win back Block-diagonal's error | `accuracy.csv`, `accuracy_*.svg`, `error_model.ron`, `iterations.csv`, `iterations.svg` |
 //! | `stability` | stable, damped-out or blown-up over dt × stiffness × root speed | `stability.csv`, `stability.svg`, `curly_dt.csv` |
 //! | `modes` | first-mode frequency and damping against N and the analytic value | `modes.csv`, `modes_*.svg` |
 
 pub mod accuracy;
 pub mod chart;
 pub mod cost;
+pub mod iterations;
 pub mod modes;
 pub mod pareto;
 pub mod scenes;
