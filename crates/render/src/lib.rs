@@ -1,55 +1,54 @@
 //! Draws hair strands and a head mesh from plain buffers.
 //!
 //! The renderer knows nothing of the physics: it takes strand polylines
-//! (points per strand) and colours. This crate is a placeholder for the
-//! wgpu renderer of a later issue; today it holds the plain-data buffer the
-//! renderer will consume, so the app already hands strands over in that
-//! form.
+//! ([`StrandBuffers`], points per strand plus offsets) with a colour per
+//! strand, and a triangle mesh ([`Mesh`], [`HeadMesh`]). The physics can
+//! therefore feed it from CPU memory now and from GPU buffers later.
+//!
+//! # How it works
+//!
+//! - **Strands** are drawn as ribbons that face the camera: every point is
+//!   uploaded twice ([`ribbons`]) and the vertex shader pushes the two
+//!   copies apart across the strand's screen-space direction, tapering from
+//!   root to tip. Strands thinner than a pixel are drawn a pixel wide with
+//!   partial coverage, which 4× MSAA turns into antialiased, order-free
+//!   transparency (alpha to coverage).
+//! - **Fibre shading**: Kajiya–Kay diffuse plus Marschner-style R, TRT and
+//!   TT lobes from shifted tangents (`shaders/hair.wgsl`).
+//! - **Self-shadowing**: a deep opacity map from the key light
+//!   ([`gpu::shadow`]) makes a dense groom read as a volume.
+//! - The **head** is lit with wrapped diffuse and receives the hair's
+//!   shadow; a neutral **backdrop** fills the rest.
+//! - The **orbit camera** ([`camera`]) is math only; windows own input.
+//!
+//! Besides drawing, this crate owns the head's geometry: the default head
+//! ([`head_generate`]), OBJ heads ([`obj`]), even root placement on the
+//! scalp ([`scalp_sampling`]) and render strands interpolated from guides
+//! ([`interpolate`]). All of it is plain `f32` geometry.
+//!
+//! Shaders live in the workspace's `shaders/` folder ([`gpu::shaders`]) and
+//! are validated by a test that needs no GPU.
 
 #![warn(missing_docs)]
 
-use glam::Vec3;
+pub mod camera;
+pub mod gpu;
+pub mod head_generate;
+pub mod interpolate;
+pub mod mesh;
+pub mod obj;
+pub mod obj_locate;
+pub mod ribbons;
+pub mod rng;
+pub mod scalp_sampling;
+pub mod scene;
+pub mod strand_buffers;
 
-/// Strand polylines in one flat buffer, as the renderer consumes them.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct StrandBuffers {
-    /// All points, strand after strand, metres in world coordinates.
-    pub points: Vec<Vec3>,
-    /// Start of each strand in `points`, plus a final end index.
-    pub offsets: Vec<u32>,
-}
-
-impl StrandBuffers {
-    /// Appends one strand's polyline.
-    pub fn push_strand(&mut self, points: impl IntoIterator<Item = Vec3>) {
-        if self.offsets.is_empty() {
-            self.offsets.push(0);
-        }
-        self.points.extend(points);
-        self.offsets.push(self.points.len() as u32);
-    }
-
-    /// Number of strands.
-    pub fn strand_count(&self) -> usize {
-        self.offsets.len().saturating_sub(1)
-    }
-
-    /// The points of strand `i`.
-    pub fn strand(&self, i: usize) -> &[Vec3] {
-        &self.points[self.offsets[i] as usize..self.offsets[i + 1] as usize]
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn strands_round_trip_through_the_flat_buffer() {
-        let mut b = StrandBuffers::default();
-        b.push_strand([Vec3::ZERO, Vec3::X]);
-        b.push_strand([Vec3::Y, Vec3::Z, Vec3::ONE]);
-        assert_eq!(b.strand_count(), 2);
-        assert_eq!(b.strand(1), &[Vec3::Y, Vec3::Z, Vec3::ONE]);
-    }
-}
+pub use camera::OrbitCamera;
+pub use gpu::context::{GpuContext, GpuError};
+pub use gpu::offscreen::OffscreenRenderer;
+pub use gpu::readback::RgbaImage;
+pub use gpu::settings::RenderSettings;
+pub use mesh::{HeadMesh, Mesh};
+pub use scene::{HairStrands, Light, Scene};
+pub use strand_buffers::StrandBuffers;

@@ -1,0 +1,240 @@
+//! Draws a [`Scene`] into a texture and reads it back: pictures without a
+//! window, on any adapter (lavapipe included).
+//!
+//! # One frame
+//!
+//! 1. Upload ([`super::frame_data`]): strands become ribbon vertices
+//!    ([`crate::ribbons`]), the head becomes mesh vertices; uniforms for
+//!    the camera, the light and the materials.
+//! 2. Shadow depth and shadow opacity passes from the light
+//!    ([`super::shadow`]).
+//! 3. The main pass at 4× MSAA: backdrop, head, hair; resolved into the
+//!    picture.
+//! 4. The picture is copied into a buffer and read back
+//!    ([`super::readback`]).
+
+use wgpu::util::DeviceExt as _;
+
+use super::context::{GpuContext, GpuError};
+use super::frame_data::{FrameUniforms, IndexedGeometry, head_vertices};
+use super::passes::Pipelines;
+use super::readback::{RgbaImage, copy_to_buffer, read_buffer};
+use super::settings::RenderSettings;
+use super::targets::Targets;
+use crate::ribbons::ribbon_mesh;
+use crate::scene::Scene;
+
+/// Renders scenes into pictures, headless.
+#[derive(Debug)]
+pub struct OffscreenRenderer {
+    gpu: GpuContext,
+    settings: RenderSettings,
+    pipelines: Pipelines,
+    targets: Targets,
+    sampler: wgpu::Sampler,
+}
+
+/// The bind groups of one frame.
+struct FrameBindings {
+    camera: wgpu::BindGroup,
+    light: wgpu::BindGroup,
+    lighting: wgpu::BindGroup,
+    opacity: wgpu::BindGroup,
+}
+
+impl OffscreenRenderer {
+    /// Builds the pipelines and the targets for `settings`' size.
+    pub fn new(gpu: GpuContext, settings: RenderSettings) -> Result<Self, GpuError> {
+        let max_px = gpu.device.limits().max_texture_dimension_2d;
+        let sides = [
+            settings.width_px,
+            settings.height_px,
+            settings.shadow_map_px,
+        ];
+        if sides.iter().any(|&s| s == 0 || s > max_px) {
+            return Err(GpuError::BadSize {
+                width_px: settings.width_px,
+                height_px: settings.height_px,
+                max_px,
+            });
+        }
+        let pipelines = Pipelines::new(&gpu.device);
+        let targets = Targets::new(&gpu.device, &settings);
+        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("opacity"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Ok(Self {
+            gpu,
+            settings,
+            pipelines,
+            targets,
+            sampler,
+        })
+    }
+
+    /// The adapter's name, for reports.
+    pub fn adapter_label(&self) -> &str {
+        &self.gpu.adapter_label
+    }
+
+    /// The settings the renderer was made with.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    fn bindings(&self, uniforms: &FrameUniforms) -> FrameBindings {
+        let device = &self.gpu.device;
+        let layouts = &self.pipelines.layouts;
+        let bind = |layout, entries: &[wgpu::BindingResource<'_>]| {
+            let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
+                .iter()
+                .enumerate()
+                .map(|(i, resource)| wgpu::BindGroupEntry {
+                    binding: i as u32,
+                    resource: resource.clone(),
+                })
+                .collect();
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: None,
+                layout,
+                entries: &entries,
+            })
+        };
+        let uniform = |bytes: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("uniform"),
+                contents: bytes,
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        };
+        let camera = uniform(bytemuck::bytes_of(&uniforms.camera));
+        let light = uniform(bytemuck::bytes_of(&uniforms.light));
+        let lighting = uniform(bytemuck::bytes_of(&uniforms.lighting));
+        let t = &self.targets;
+        FrameBindings {
+            camera: bind(&layouts.view, &[camera.as_entire_binding()]),
+            light: bind(&layouts.view, &[light.as_entire_binding()]),
+            lighting: bind(
+                &layouts.lighting,
+                &[
+                    lighting.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&t.light_depth),
+                ],
+            ),
+            opacity: bind(
+                &layouts.opacity,
+                &[
+                    wgpu::BindingResource::TextureView(&t.opacity),
+                    wgpu::BindingResource::Sampler(&self.sampler),
+                ],
+            ),
+        }
+    }
+
+    /// Draws `scene` and returns the picture.
+    pub fn render(&mut self, scene: &Scene<'_>) -> Result<RgbaImage, GpuError> {
+        let device = &self.gpu.device;
+        let bindings = self.bindings(&FrameUniforms::new(scene, &self.settings));
+        let (strand_vertices, strand_indices) = ribbon_mesh(scene.hair);
+        let hair = IndexedGeometry::upload(device, "strands", &strand_vertices, &strand_indices);
+        let head = IndexedGeometry::upload(
+            device,
+            "head",
+            &head_vertices(scene.head),
+            &scene.head.mesh.indices,
+        );
+
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let t = &self.targets;
+        let p = &self.pipelines;
+        let mut pass = begin(&mut encoder, "shadow depth", None, Some(&t.light_depth));
+        if let Some(hair) = &hair {
+            pass.set_pipeline(&p.shadow_depth);
+            pass.set_bind_group(0, &bindings.light, &[]);
+            hair.draw(&mut pass);
+        }
+        drop(pass);
+        let mut pass = begin(
+            &mut encoder,
+            "shadow opacity",
+            Some((&t.opacity, None)),
+            None,
+        );
+        if let Some(hair) = &hair {
+            pass.set_pipeline(&p.shadow_opacity);
+            pass.set_bind_group(0, &bindings.light, &[]);
+            pass.set_bind_group(1, &bindings.lighting, &[]);
+            hair.draw(&mut pass);
+        }
+        drop(pass);
+        let picture = t.picture.create_view(&Default::default());
+        let mut pass = begin(
+            &mut encoder,
+            "main",
+            Some((&t.msaa_colour, Some(&picture))),
+            Some(&t.msaa_depth),
+        );
+        pass.set_bind_group(0, &bindings.camera, &[]);
+        pass.set_bind_group(1, &bindings.lighting, &[]);
+        pass.set_bind_group(2, &bindings.opacity, &[]);
+        pass.set_pipeline(&p.backdrop);
+        pass.draw(0..3, 0..1);
+        for (pipeline, geometry) in [(&p.head, &head), (&p.hair, &hair)] {
+            if let Some(geometry) = geometry {
+                pass.set_pipeline(pipeline);
+                geometry.draw(&mut pass);
+            }
+        }
+        drop(pass);
+        copy_to_buffer(&mut encoder, &t.picture, &t.readback);
+        self.gpu.queue.submit([encoder.finish()]);
+        read_buffer(
+            device,
+            &t.readback,
+            self.settings.width_px,
+            self.settings.height_px,
+        )
+    }
+}
+
+/// Starts a pass that clears its targets: colour (with an optional
+/// resolve target, in which case the multisampled colour is discarded)
+/// and depth.
+fn begin<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    colour: Option<(&wgpu::TextureView, Option<&wgpu::TextureView>)>,
+    depth: Option<&wgpu::TextureView>,
+) -> wgpu::RenderPass<'e> {
+    let colour = colour.map(|(view, resolve_target)| wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: if resolve_target.is_some() {
+                wgpu::StoreOp::Discard
+            } else {
+                wgpu::StoreOp::Store
+            },
+        },
+    });
+    let colours = [colour];
+    let colour_count = usize::from(colours[0].is_some());
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &colours[..colour_count],
+        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    })
+}

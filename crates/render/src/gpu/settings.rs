@@ -1,0 +1,43 @@
+//! Picture size and quality settings of the offscreen renderer.
+
+/// Picture size and quality settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Picture width, pixels.
+    pub width_px: u32,
+    /// Picture height, pixels.
+    pub height_px: u32,
+    /// Side of the deep opacity map, texels. 1024 resolves single strands
+    /// over a head at a few tenths of a millimetre per texel.
+    pub shadow_map_px: u32,
+    /// Narrowest ribbon drawn, pixels; thinner strands are drawn this wide
+    /// with partial coverage (alpha to coverage), so they neither vanish
+    /// nor alias.
+    pub min_ribbon_px: f32,
+    /// Thickness of the first opacity layer, metres (the others end 2, 4
+    /// and 8 times deeper): about the depth over which hair goes from lit
+    /// to shaded.
+    pub shadow_layer_m: f32,
+    /// Opacity one strand fragment adds in the opacity map (light through
+    /// n strands: exp(−n × this)).
+    pub strand_opacity: f32,
+}
+
+impl RenderSettings {
+    /// Default settings for a `width_px` × `height_px` picture.
+    pub fn new(width_px: u32, height_px: u32) -> Self {
+        Self {
+            width_px,
+            height_px,
+            shadow_map_px: 1024,
+            min_ribbon_px: 1.0,
+            shadow_layer_m: 0.004,
+            strand_opacity: 0.25,
+        }
+    }
+
+    /// Width over height.
+    pub fn aspect(&self) -> f32 {
+        self.width_px as f32 / self.height_px as f32
+    }
+}

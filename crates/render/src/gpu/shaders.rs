@@ -1,0 +1,58 @@
+//! The WGSL sources, from the top-level `shaders/` folder.
+//!
+//! WGSL has no `#include`: each pass's file is compiled with
+//! `shaders/common.wgsl` (structs, bindings, ribbon expansion, the deep
+//! opacity lookup) put in front of it. [`composed`] does that, for the
+//! renderer and for the test that validates every shader without a GPU.
+
+/// `shaders/common.wgsl`: what every pass shares.
+pub const COMMON: &str = include_str!("../../../../shaders/common.wgsl");
+
+/// One pass's shader file.
+#[derive(Clone, Copy, Debug)]
+pub struct ShaderFile {
+    /// File name in `shaders/`.
+    pub name: &'static str,
+    /// Its text (without the common part).
+    pub source: &'static str,
+}
+
+/// Hair ribbons, shaded (`vs_hair`, `fs_hair`).
+pub const HAIR: ShaderFile = ShaderFile {
+    name: "hair.wgsl",
+    source: include_str!("../../../../shaders/hair.wgsl"),
+};
+
+/// The deep opacity map passes (`vs_shadow`, `fs_opacity`).
+pub const HAIR_SHADOW: ShaderFile = ShaderFile {
+    name: "hair_shadow.wgsl",
+    source: include_str!("../../../../shaders/hair_shadow.wgsl"),
+};
+
+/// The head (`vs_head`, `fs_head`).
+pub const HEAD: ShaderFile = ShaderFile {
+    name: "head.wgsl",
+    source: include_str!("../../../../shaders/head.wgsl"),
+};
+
+/// The backdrop (`vs_backdrop`, `fs_backdrop`).
+pub const BACKDROP: ShaderFile = ShaderFile {
+    name: "backdrop.wgsl",
+    source: include_str!("../../../../shaders/backdrop.wgsl"),
+};
+
+/// Every pass's file.
+pub const ALL: [ShaderFile; 4] = [HAIR, HAIR_SHADOW, HEAD, BACKDROP];
+
+/// The source a pass is compiled from: the common part, then the file.
+pub fn composed(file: &ShaderFile) -> String {
+    format!("{COMMON}\n// ---- {} ----\n{}", file.name, file.source)
+}
+
+/// Compiles `file` into a shader module.
+pub fn module(device: &wgpu::Device, file: &ShaderFile) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(file.name),
+        source: wgpu::ShaderSource::Wgsl(composed(file).into()),
+    })
+}

@@ -1,0 +1,173 @@
+//! The renderer draws hair where it should: small pictures, checked with
+//! stated thresholds rather than against one machine's pixels.
+//!
+//! The scene is the default head with straight strands hanging from a grid
+//! of roots on its scalp, seen from the front, in a 128 × 128 picture.
+
+use glam::Vec3;
+use helixhair_render::gpu::require::gpu_or_skip;
+use helixhair_render::head_generate::default_head;
+use helixhair_render::{
+    HairStrands, HeadMesh, Light, OffscreenRenderer, OrbitCamera, RenderSettings, RgbaImage, Scene,
+    StrandBuffers,
+};
+
+const SIDE_PX: u32 = 128;
+
+/// Straight strands from the centres of every scalp triangle, along the
+/// surface normal for 2 cm and then down for 15 cm.
+fn hanging_hair(head: &HeadMesh) -> HairStrands {
+    let mut strands = StrandBuffers::default();
+    for &t in &head.scalp_triangles {
+        let corners = head.mesh.triangle(t as usize);
+        let normal = head
+            .mesh
+            .triangle_normals(t as usize)
+            .iter()
+            .sum::<Vec3>()
+            .normalize();
+        let root = corners.iter().sum::<Vec3>() / 3.0;
+        let bend = root + normal * 0.02;
+        strands.push_strand((0..=12).map(|k| {
+            let s = k as f32 / 12.0;
+            if s < 0.2 {
+                root.lerp(bend, s / 0.2)
+            } else {
+                bend - Vec3::Y * 0.15 * (s - 0.2) / 0.8
+            }
+        }));
+    }
+    let n = strands.strand_count();
+    HairStrands {
+        strands,
+        colours: vec![Vec3::new(0.35, 0.2, 0.08); n],
+        root_width_m: 4e-4,
+        tip_width_m: 1e-4,
+    }
+}
+
+fn front_camera() -> OrbitCamera {
+    OrbitCamera {
+        yaw_rad: 0.0,
+        pitch_rad: 0.0,
+        ..OrbitCamera::default()
+    }
+}
+
+fn render(hair: &HairStrands, head: &HeadMesh, test: &str) -> Option<RgbaImage> {
+    let gpu = gpu_or_skip(test)?;
+    let mut renderer =
+        OffscreenRenderer::new(gpu, RenderSettings::new(SIDE_PX, SIDE_PX)).expect("renderer");
+    let scene = Scene {
+        hair,
+        head,
+        camera: front_camera(),
+        light: Light::default(),
+    };
+    let image = renderer.render(&scene).expect("renders");
+    if let Ok(dir) = std::env::var("HELIXHAIR_TEST_IMAGES") {
+        let path = std::path::Path::new(&dir).join(format!("{test}.png"));
+        image::save_buffer(
+            &path,
+            &image.rgba,
+            image.width_px,
+            image.height_px,
+            image::ExtendedColorType::Rgba8,
+        )
+        .expect("saved");
+    }
+    Some(image)
+}
+
+/// Where a world point lands in the picture, in pixels (x right, y down).
+fn pixel_of(p: Vec3) -> (u32, u32) {
+    let clip = front_camera().clip_from_world(1.0) * p.extend(1.0);
+    let ndc = clip.truncate() / clip.w;
+    let x = (ndc.x * 0.5 + 0.5) * SIDE_PX as f32;
+    let y = (0.5 - ndc.y * 0.5) * SIDE_PX as f32;
+    (x as u32, y as u32)
+}
+
+fn luma(px: [u8; 4]) -> f32 {
+    0.2126 * px[0] as f32 + 0.7152 * px[1] as f32 + 0.0722 * px[2] as f32
+}
+
+#[test]
+fn hair_covers_the_scalp_and_the_face_stays_visible() {
+    let head = default_head();
+    let hair = hanging_hair(&head);
+    let Some(with_hair) = render(&hair, &head, "hair_covers_the_scalp") else {
+        return;
+    };
+    let Some(bald) = render(&HairStrands::default(), &head, "bald") else {
+        return;
+    };
+
+    // Projected scalp triangle centres: the hair must change most of them.
+    let scalp_pixels: Vec<(u32, u32)> = head
+        .scalp_triangles
+        .iter()
+        .map(|&t| pixel_of(head.mesh.triangle(t as usize).iter().sum::<Vec3>() / 3.0))
+        .collect();
+    let changed = scalp_pixels
+        .iter()
+        .filter(|&&(x, y)| {
+            let (a, b) = (with_hair.pixel(x, y), bald.pixel(x, y));
+            (0..3)
+                .map(|c| (a[c] as i32 - b[c] as i32).abs())
+                .sum::<i32>()
+                > 12
+        })
+        .count();
+    let coverage = changed as f32 / scalp_pixels.len() as f32;
+    assert!(
+        coverage > 0.6,
+        "hair changes only {:.0}% of the scalp's pixels",
+        100.0 * coverage
+    );
+
+    // The face (nose tip, below the hairline) is skin in both pictures:
+    // lit, reddish, and not hidden by hair.
+    let (x, y) = pixel_of(Vec3::new(0.0, -0.02, 0.11));
+    for image in [&with_hair, &bald] {
+        let px = image.pixel(x, y);
+        assert!(px[0] > px[2] + 15 && luma(px) > 50.0, "face pixel {px:?}");
+    }
+    // The backdrop corner is neutral grey.
+    let corner = bald.pixel(2, 2);
+    assert!(
+        (corner[0] as i32 - corner[2] as i32).abs() < 12,
+        "backdrop {corner:?}"
+    );
+}
+
+#[test]
+fn shading_varies_along_a_strand() {
+    let head = default_head();
+    // One thick strand in front of the face, hanging straight down: the
+    // root is buried (ambient darkening) and the tip is not.
+    let mut strands = StrandBuffers::default();
+    strands.push_strand((0..=20).map(|k| Vec3::new(-0.05, 0.08 - 0.012 * k as f32, 0.16)));
+    let hair = HairStrands {
+        strands,
+        colours: vec![Vec3::new(0.6, 0.45, 0.25)],
+        root_width_m: 5e-3,
+        tip_width_m: 5e-3,
+    };
+    let Some(image) = render(&hair, &head, "shading_along") else {
+        return;
+    };
+    let samples: Vec<f32> = (1..=18)
+        .map(|k| {
+            let (x, y) = pixel_of(Vec3::new(-0.05, 0.08 - 0.012 * k as f32, 0.16));
+            luma(image.pixel(x, y))
+        })
+        .collect();
+    let (lo, hi) = samples
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+    assert!(
+        hi - lo > 20.0,
+        "luma along the strand only spans {lo}..{hi}: {samples:?}"
+    );
+}

@@ -1,0 +1,72 @@
+// Hair strands as camera-facing ribbons, shaded for fibres.
+// (common.wgsl comes first.)
+//
+// Shading: Kajiya-Kay diffuse (light scattered around the fibre, sin of the
+// angle between tangent and light), and Marschner's lobes approximated with
+// shifted tangents (Scheuermann 2004): a white primary highlight R shifted
+// towards the root, a coloured secondary TRT shifted towards the tip with a
+// per-strand sparkle, and forward transmission TT when the light is behind
+// the hair. Direct light passes the deep opacity map; the ambient term
+// darkens towards the root, where strands are buried in the others.
+
+struct HairOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) tangent: vec3<f32>,
+    @location(2) colour: vec3<f32>,
+    @location(3) params: vec3<f32>,
+    @location(4) coverage: f32,
+}
+
+@vertex
+fn vs_hair(v: StrandVertex) -> HairOut {
+    let r = ribbon_vertex(v);
+    var out: HairOut;
+    out.clip = r.clip;
+    out.world = v.position;
+    out.tangent = v.tangent;
+    out.colour = v.colour;
+    out.params = v.params;
+    out.coverage = r.coverage;
+    return out;
+}
+
+// A strand highlight: (sin of the angle between tangent and half vector)^e.
+fn strand_highlight(tangent: vec3<f32>, half_vector: vec3<f32>, exponent: f32) -> f32 {
+    let th = dot(tangent, half_vector);
+    let sin_th = sqrt(max(1.0 - th * th, 0.0));
+    return pow(sin_th, exponent) * smoothstep(-1.0, 0.0, th);
+}
+
+@fragment
+fn fs_hair(in: HairOut) -> @location(0) vec4<f32> {
+    let t = normalize(in.tangent);
+    let to_eye = normalize(view.eye.xyz - in.world);
+    let to_light = lighting.light_direction.xyz;
+    let along = in.params.x;
+    let seed = in.params.z;
+    let albedo = in.colour;
+
+    var n = to_eye - t * dot(t, to_eye);
+    n = select(vec3<f32>(0.0, 1.0, 0.0), normalize(n), length(n) > 1e-4);
+    let tl = dot(t, to_light);
+    let diffuse = mix(0.25, 1.0, sqrt(max(1.0 - tl * tl, 0.0)));
+
+    let jitter = hash1(seed) - 0.5;
+    let h = normalize(to_light + to_eye);
+    let t_r = normalize(t + n * (lighting.specular.x + 0.04 * jitter));
+    let t_trt = normalize(t + n * (lighting.specular.y + 0.08 * jitter));
+    let sparkle = 0.6 + 0.8 * hash1(seed * 7.31 + floor(along * 24.0));
+    let r = 0.28 * strand_highlight(t_r, h, lighting.specular.z);
+    let trt = 0.55 * sparkle * strand_highlight(t_trt, h, lighting.specular.w);
+    let tt = 0.6 * pow(max(dot(-to_light, to_eye), 0.0), 6.0);
+
+    let shadow = light_transmittance(in.world);
+    let light = lighting.light_colour.rgb * lighting.light_direction.w;
+    let direct = (albedo * (diffuse * 0.8 + trt + tt) + vec3<f32>(r)) * light * shadow;
+    let buried = mix(0.3, 1.0, smoothstep(0.0, 0.45, along));
+    let ambient = albedo * lighting.ambient.rgb * lighting.ambient.w * buried * (0.4 + 0.6 * shadow);
+
+    let alpha = in.coverage * (1.0 - 0.6 * smoothstep(0.8, 1.0, along));
+    return vec4<f32>(direct + ambient, alpha);
+}
