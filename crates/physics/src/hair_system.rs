@@ -12,6 +12,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::energy::Energies;
 use crate::error::ParamError;
 use crate::guard::{Guard, GuardAction, GuardEvent, GuardState, speed_bound_m_per_s};
@@ -34,6 +35,8 @@ pub struct HairSystem {
     guard: Option<Guard>,
     last_events: Vec<GuardEvent>,
     event_count: usize,
+    collider: Option<Arc<SignedDistanceField>>,
+    contact: ContactSettings,
 }
 
 impl HairSystem {
@@ -50,6 +53,8 @@ impl HairSystem {
             guard: Some(Guard::default()),
             last_events: Vec::new(),
             event_count: 0,
+            collider: None,
+            contact: ContactSettings::default(),
         })
     }
 
@@ -119,6 +124,22 @@ impl HairSystem {
         self.last_times
     }
 
+    /// Sets the head's collider (head coordinates; it moves with the head),
+    /// or removes it with `None`.
+    pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
+        self.collider = collider;
+    }
+
+    /// The head's collider, if any.
+    pub fn collider(&self) -> Option<&Arc<SignedDistanceField>> {
+        self.collider.as_ref()
+    }
+
+    /// Sets how hair meets the collider.
+    pub fn set_contact_settings(&mut self, settings: ContactSettings) {
+        self.contact = settings;
+    }
+
     /// Sets the guard (`None`: no checks, as the stability study runs).
     /// Default: [`Guard::default`].
     pub fn set_guard(&mut self, guard: Option<Guard>) {
@@ -151,6 +172,8 @@ impl HairSystem {
             substeps: self.settings.substeps,
             gravity: self.settings.gravity_m_per_s2,
             air: self.settings.air_velocity_m_per_s,
+            collider: self.collider.as_deref(),
+            contact: self.contact,
         };
         let guard = self.guard;
         let step_one = |(index, s): (usize, &mut Strand)| guarded_frame(s, index, &frame, guard);
@@ -214,6 +237,8 @@ struct FrameInputs<'a> {
     substeps: u32,
     gravity: DVec3,
     air: DVec3,
+    collider: Option<&'a SignedDistanceField>,
+    contact: ContactSettings,
 }
 
 /// Stage times and guard events of one frame (of one strand, or summed).
@@ -230,7 +255,14 @@ fn plain_frame(s: &mut Strand, frame: &FrameInputs<'_>, substeps: u32) -> StageT
     let mut times = StageTimes::default();
     for _ in 0..substeps {
         let motion = frame.head.motion_at(t);
-        times.accumulate(&s.step(&motion.carry(s.root()), frame.gravity, frame.air, h));
+        let contact = frame.collider.map(|collider| ContactInputs {
+            collider,
+            head: &motion,
+            settings: frame.contact,
+            h_secs: h,
+        });
+        let root = motion.carry(s.root());
+        times.accumulate(&s.step_with_contact(&root, frame.gravity, frame.air, h, contact));
         t += h;
     }
     times

@@ -4,6 +4,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
+use crate::collision::ContactInputs;
 use crate::energy::{Energies, energies};
 use crate::forces::ForceInputs;
 use crate::guard::GuardState;
@@ -101,6 +102,19 @@ impl Strand {
         air_velocity: DVec3,
         h_secs: f64,
     ) -> StageTimes {
+        self.step_with_contact(root, gravity, air_velocity, h_secs, None)
+    }
+
+    /// One step of `h_secs` with the root moving as `root`, pushed out of
+    /// the head by `contact` if given.
+    pub fn step_with_contact(
+        &mut self,
+        root: &RigidMotion,
+        gravity: DVec3,
+        air_velocity: DVec3,
+        h_secs: f64,
+        contact: Option<ContactInputs<'_>>,
+    ) -> StageTimes {
         let inputs = StepInputs {
             h_secs,
             forces: ForceInputs {
@@ -108,6 +122,7 @@ impl Strand {
                 gravity_m_per_s2: gravity,
                 air_velocity_m_per_s: air_velocity,
                 external_n_per_m: &self.external_n_per_m,
+                contact,
             },
         };
         step_strand(

@@ -225,6 +225,7 @@ fn gravity_force_is_minus_the_gradient_of_its_potential() {
         gravity_m_per_s2: gravity,
         air_velocity_m_per_s: DVec3::ZERO,
         external_n_per_m: &[],
+        contact: None,
     };
     let mut forces = vec![DVec3::ZERO; m.elements()];
     generalized_forces(&m, &kin, &inputs, &mut forces);

@@ -18,6 +18,7 @@ use super::pareto::pareto_front;
 use super::scenes::{CurlClass, RunSetting, Scene, run_scene, tip_rms_error};
 use super::table::write_csv;
 use crate::error_model::ErrorModel;
+use crate::sim_report::median;
 
 /// The reference setting: Dense, 64 elements, 16 substeps (h = 1/960 s).
 pub const REFERENCE: RunSetting = RunSetting {
@@ -31,6 +32,10 @@ pub const QUICK_REFERENCE: RunSetting = RunSetting {
     elements: 16,
     substeps: 4,
 };
+/// Runs of each setting whose median CPU time is its cost (full, quick):
+/// the machine is shared, and a single run can be slowed by a neighbour.
+/// The runs are deterministic, so their trajectories are identical.
+pub const REPEATS: (usize, usize) = (3, 1);
 /// Simulated seconds per scene (full, quick).
 pub const DURATION_SECS: (f64, f64) = (3.0, 1.0);
 
@@ -64,7 +69,8 @@ pub struct AccuracyRow {
     /// Tip-position RMS error over the run, fraction of the length
     /// (infinite when the run blew up).
     pub error: f64,
-    /// CPU milliseconds per simulated second, one thread.
+    /// CPU milliseconds per simulated second, one thread (median of
+    /// [`REPEATS`] runs).
     pub cost_ms_per_sim_sec: f64,
     /// Whether the run stayed finite.
     pub finite: bool,
@@ -92,12 +98,18 @@ pub fn measure_scene(
     scene: &Scene,
     reference: RunSetting,
     grid: &[RunSetting],
+    repeats: usize,
 ) -> Vec<AccuracyRow> {
     let truth = run_scene(scene, reference);
     let mut rows: Vec<AccuracyRow> = grid
         .iter()
         .map(|&setting| {
-            let run = run_scene(scene, setting);
+            let mut run = run_scene(scene, setting);
+            let mut secs = vec![run.step_secs];
+            for _ in 1..repeats {
+                secs.push(run_scene(scene, setting).step_secs);
+            }
+            run.step_secs = median(&secs);
             AccuracyRow {
                 scene: scene.name.clone(),
                 method: setting.method.label(),
@@ -160,7 +172,8 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
     }
     let mut rows = Vec::new();
     for (i, scene) in scenes(duration).iter().enumerate() {
-        let scene_rows = measure_scene(scene, reference, &grid);
+        let repeats = if ctx.quick { REPEATS.1 } else { REPEATS.0 };
+        let scene_rows = measure_scene(scene, reference, &grid, repeats);
         report_scene(ctx, scene, &scene_rows)?;
         if i < 3 {
             draw_scene_chart(ctx, scene, &scene_rows, methods)?;
