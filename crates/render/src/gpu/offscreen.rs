@@ -136,6 +136,60 @@ impl OffscreenRenderer {
 
     /// Draws `scene` and returns the picture.
     pub fn render(&mut self, scene: &Scene<'_>) -> Result<RgbaImage, GpuError> {
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        self.encode(scene, &mut encoder);
+        copy_to_buffer(&mut encoder, &self.targets.picture, &self.targets.readback);
+        self.gpu.queue.submit([encoder.finish()]);
+        read_buffer(
+            &self.gpu.device,
+            &self.targets.readback,
+            self.settings.width_px,
+            self.settings.height_px,
+        )
+    }
+
+    /// Draws `scene` into the picture texture and submits it, without
+    /// reading it back: what a window does every frame before showing the
+    /// picture through [`Self::picture_view_unorm`].
+    pub fn draw(&mut self, scene: &Scene<'_>) {
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        self.encode(scene, &mut encoder);
+        self.gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// A view of the picture that samples its sRGB-encoded bytes as they
+    /// are (`Rgba8Unorm`), which is what UI toolkits that work in gamma
+    /// space (egui) expect of a texture.
+    pub fn picture_view_unorm(&self) -> wgpu::TextureView {
+        self.targets
+            .picture
+            .create_view(&wgpu::TextureViewDescriptor {
+                format: Some(wgpu::TextureFormat::Rgba8Unorm),
+                ..Default::default()
+            })
+    }
+
+    /// Changes the picture size (a window was resized); the shadow map
+    /// keeps its size. Zero or too large sides are refused.
+    pub fn resize(&mut self, width_px: u32, height_px: u32) -> Result<(), GpuError> {
+        let max_px = self.gpu.device.limits().max_texture_dimension_2d;
+        if [width_px, height_px].iter().any(|&s| s == 0 || s > max_px) {
+            return Err(GpuError::BadSize {
+                width_px,
+                height_px,
+                max_px,
+            });
+        }
+        if (width_px, height_px) != (self.settings.width_px, self.settings.height_px) {
+            self.settings.width_px = width_px;
+            self.settings.height_px = height_px;
+            self.targets = Targets::new(&self.gpu.device, &self.settings);
+        }
+        Ok(())
+    }
+
+    /// Records the shadow and main passes of `scene` into `encoder`.
+    fn encode(&mut self, scene: &Scene<'_>, encoder: &mut wgpu::CommandEncoder) {
         let device = &self.gpu.device;
         let bindings = self.bindings(&FrameUniforms::new(scene, &self.settings));
         let (strand_vertices, strand_indices) = ribbon_mesh(scene.hair);
@@ -147,22 +201,16 @@ impl OffscreenRenderer {
             &scene.head.mesh.indices,
         );
 
-        let mut encoder = device.create_command_encoder(&Default::default());
         let t = &self.targets;
         let p = &self.pipelines;
-        let mut pass = begin(&mut encoder, "shadow depth", None, Some(&t.light_depth));
+        let mut pass = begin(encoder, "shadow depth", None, Some(&t.light_depth));
         if let Some(hair) = &hair {
             pass.set_pipeline(&p.shadow_depth);
             pass.set_bind_group(0, &bindings.light, &[]);
             hair.draw(&mut pass);
         }
         drop(pass);
-        let mut pass = begin(
-            &mut encoder,
-            "shadow opacity",
-            Some((&t.opacity, None)),
-            None,
-        );
+        let mut pass = begin(encoder, "shadow opacity", Some((&t.opacity, None)), None);
         if let Some(hair) = &hair {
             pass.set_pipeline(&p.shadow_opacity);
             pass.set_bind_group(0, &bindings.light, &[]);
@@ -172,7 +220,7 @@ impl OffscreenRenderer {
         drop(pass);
         let picture = t.picture.create_view(&Default::default());
         let mut pass = begin(
-            &mut encoder,
+            encoder,
             "main",
             Some((&t.msaa_colour, Some(&picture))),
             Some(&t.msaa_depth),
@@ -189,14 +237,6 @@ impl OffscreenRenderer {
             }
         }
         drop(pass);
-        copy_to_buffer(&mut encoder, &t.picture, &t.readback);
-        self.gpu.queue.submit([encoder.finish()]);
-        read_buffer(
-            device,
-            &t.readback,
-            self.settings.width_px,
-            self.settings.height_px,
-        )
     }
 }
 

@@ -11,7 +11,7 @@ pub struct Targets {
     pub msaa_colour: wgpu::TextureView,
     /// Multisampled depth of the main pass.
     pub msaa_depth: wgpu::TextureView,
-    /// The resolved picture.
+    /// The resolved picture (also sampled by windows, as `Rgba8Unorm`).
     pub picture: wgpu::Texture,
     /// The light's depth map (first hair per texel).
     pub light_depth: wgpu::TextureView,
@@ -28,6 +28,7 @@ fn texture(
     format: wgpu::TextureFormat,
     sample_count: u32,
     usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
 ) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
@@ -41,7 +42,7 @@ fn texture(
         dimension: wgpu::TextureDimension::D2,
         format,
         usage,
-        view_formats: &[],
+        view_formats,
     })
 }
 
@@ -61,6 +62,7 @@ impl Targets {
                 COLOUR_FORMAT,
                 MSAA_SAMPLES,
                 U::RENDER_ATTACHMENT,
+                &[],
             )),
             msaa_depth: view(texture(
                 device,
@@ -69,6 +71,7 @@ impl Targets {
                 DEPTH_FORMAT,
                 MSAA_SAMPLES,
                 U::RENDER_ATTACHMENT,
+                &[],
             )),
             picture: texture(
                 device,
@@ -76,7 +79,8 @@ impl Targets {
                 size,
                 COLOUR_FORMAT,
                 1,
-                U::RENDER_ATTACHMENT | U::COPY_SRC,
+                U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
+                &[wgpu::TextureFormat::Rgba8Unorm],
             ),
             light_depth: view(texture(
                 device,
@@ -85,6 +89,7 @@ impl Targets {
                 DEPTH_FORMAT,
                 1,
                 sampled,
+                &[],
             )),
             opacity: view(texture(
                 device,
@@ -93,6 +98,7 @@ impl Targets {
                 OPACITY_FORMAT,
                 1,
                 sampled,
+                &[],
             )),
             readback: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("readback"),
