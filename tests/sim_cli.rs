@@ -421,14 +421,21 @@ fn json_folder_is_created_but_an_impossible_path_fails_naming_it() {
 }
 
 #[test]
-fn no_command_explains_how_to_run_headless() {
-    let output = run_helixhair(&[]);
-    assert!(output.status.success(), "{}", describe(&output));
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(stdout.contains("not built yet"), "{stdout}");
+fn without_a_display_no_command_points_to_the_headless_commands() {
+    // No command opens the window; with no display to open it on, the
+    // binary says why and how to run headless, and fails.
+    let output = std::process::Command::new(helixhair_e2e::helixhair_bin())
+        .current_dir(helixhair_e2e::workspace_root())
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("helixhair starts");
+    assert_eq!(output.status.code(), Some(1), "{}", describe(&output));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("cannot open a window"), "{stderr}");
     assert!(
-        stdout.contains("helixhair sim --style assets/styles/curly.ron"),
-        "{stdout}"
+        stderr.contains("helixhair sim --style assets/styles/curly.ron"),
+        "{stderr}"
     );
 }
 

@@ -16,6 +16,7 @@ use crate::bench::{BenchArgs, run_bench};
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;
+use crate::window::{WindowArgs, run_window};
 
 /// Frames `helixhair sim` runs unless told otherwise: one second at 60 Hz.
 pub const DEFAULT_STEPS: u32 = 60;
@@ -23,21 +24,21 @@ pub const DEFAULT_STEPS: u32 = 60;
 /// Most frames one `helixhair sim` may run (the per-frame timings are kept).
 pub const MAX_STEPS: u32 = 1_000_000;
 
-/// What `helixhair` prints without a command.
-pub const NO_WINDOW_MESSAGE: &str = "\
-helixhair: the interactive window is not built yet.
-Run a simulation headless instead, for example:
-    helixhair sim --style assets/styles/curly.ron
-See `helixhair sim --help` for the options (solver, time step, JSON output).
-";
-
 /// HelixHair: Super-Helix hair simulation.
 #[derive(Clone, Debug, Parser)]
-#[command(name = "helixhair", version, about)]
+#[command(
+    name = "helixhair",
+    version,
+    about,
+    args_conflicts_with_subcommands = true
+)]
 pub struct Cli {
-    /// The command; without one, explains how to run headless.
+    /// The command; without one, opens the styling window.
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// The window's options (used without a command).
+    #[command(flatten)]
+    pub window: WindowArgs,
 }
 
 /// The commands of `helixhair`.
@@ -102,10 +103,7 @@ pub fn parse_method(name: &str) -> Result<Method, String> {
 /// summary goes to `stderr` when the JSON report takes stdout.
 pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow::Result<()> {
     match &cli.command {
-        None => {
-            stdout.write_all(NO_WINDOW_MESSAGE.as_bytes())?;
-            Ok(())
-        }
+        None => run_window(&cli.window),
         Some(Command::Sim(args)) => run_sim(args, stdout, stderr),
         Some(Command::Bench(args)) => run_bench(args, stdout),
     }
@@ -185,13 +183,6 @@ mod tests {
         );
         let error = parse_method("Dense").expect_err("names are lower case");
         assert!(error.contains("expected one of dense, block"), "{error}");
-    }
-
-    #[test]
-    fn no_command_explains_how_to_run_headless() {
-        let (result, out, err) = run_args(&[]);
-        assert!(result.is_ok());
-        assert_eq!((out.as_str(), err.as_str()), (NO_WINDOW_MESSAGE, ""));
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //! simulation, and the `helixhair` command line.
 //!
 //! The binary (`src/main.rs`) is a thin shell over [`cli::run`], so tests
-//! drive everything through this library.
+//! drive everything through this library. Without a command it opens the
+//! styling window ([`window`]).
 //!
 //! # From a style file to a report
 //!
@@ -30,6 +31,7 @@ pub mod source_map;
 pub mod style;
 pub mod style_error;
 pub mod style_validate;
+pub mod window;
 
 pub use field_path::FieldPath;
 pub use headless::{HeadlessSim, SimError, SimOverrides};

@@ -12,13 +12,35 @@ fn helixhair(args: &[&str]) -> Output {
 }
 
 #[test]
-fn no_command_prints_how_to_run_headless_and_succeeds() {
-    let output = helixhair(&[]);
+fn without_a_display_the_window_points_to_the_headless_commands() {
+    let output = Command::new(env!("CARGO_BIN_EXE_helixhair"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("helixhair starts");
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("cannot open a window"), "{stderr}");
+    assert!(stderr.contains("helixhair sim --style"), "{stderr}");
+}
+
+#[test]
+fn window_options_are_documented() {
+    let output = helixhair(&["--help"]);
     assert!(output.status.success());
-    assert_eq!(
-        String::from_utf8_lossy(&output.stdout),
-        helixhair_app::cli::NO_WINDOW_MESSAGE
-    );
+    let help = String::from_utf8_lossy(&output.stdout);
+    for option in [
+        "--style <FILE>",
+        "--play <MOTION>",
+        "--screenshot <PNG>",
+        "--compare",
+    ] {
+        assert!(
+            help.contains(option),
+            "{option} missing from
+{help}"
+        );
+    }
 }
 
 #[test]

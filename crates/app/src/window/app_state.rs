@@ -1,0 +1,350 @@
+//! Everything the window shows and edits, with no window: the style
+//! document, the running simulation (and the compare view's second run),
+//! the head, presets and readouts. Tests drive it directly.
+//!
+//! Per displayed frame, [`AppState::step_frame`]:
+//!
+//! 1. checks the edited style; if it is valid, brings both runs in line
+//!    with it ([`LiveSim::sync`], state kept); if not, the runs go on with
+//!    the last valid style and the error is shown;
+//! 2. steps the runs on the same head motion ([`HeadDriver::frame`]) and
+//!    then advances the head;
+//! 3. records times, energies, the runs' difference and guard messages.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use helixhair_physics::Method;
+use helixhair_render::HeadMesh;
+use helixhair_render::head_generate::default_head;
+
+use crate::style::Style;
+
+use super::collision::HeadCollider;
+use super::document::StyleDoc;
+use super::head_motion::{Clip, HeadDriver};
+use super::live_sim::{LiveSim, tip_difference_m};
+use super::presets::{
+    Preset, apply_preset, built_in_presets, load_user_presets, save_user_presets, user_presets_path,
+};
+use super::readouts::{PhysicsSample, Readouts};
+
+/// The compare view's setting: which solver each side runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CompareMethods {
+    /// Left view.
+    pub left: Method,
+    /// Right view.
+    pub right: Method,
+}
+
+impl Default for CompareMethods {
+    /// Dense against Block-diagonal, as in the seed paper's Figure 1.
+    fn default() -> Self {
+        Self {
+            left: Method::Dense,
+            right: Method::BlockDiagonal,
+        }
+    }
+}
+
+/// The application's state.
+#[derive(Debug)]
+pub struct AppState {
+    /// The style being edited.
+    pub doc: StyleDoc,
+    /// The main run.
+    pub sim: LiveSim,
+    /// The compare view's second run and its methods, when on.
+    pub compare: Option<(LiveSim, CompareMethods)>,
+    /// The head's motion.
+    pub head: HeadDriver,
+    /// The head mesh, head coordinates.
+    pub head_mesh: HeadMesh,
+    /// Live numbers.
+    pub readouts: Readouts,
+    /// Physics paused.
+    pub paused: bool,
+    /// Why the edited style is not being simulated, if it is invalid.
+    pub invalid: Option<String>,
+    /// The last message for the user (load and save errors, notices).
+    pub message: Option<String>,
+    /// Built-in presets.
+    pub presets: Vec<Preset>,
+    /// The user's presets and their file.
+    pub user_presets: Vec<Preset>,
+    /// Where the user's presets are saved.
+    pub user_presets_path: PathBuf,
+}
+
+impl AppState {
+    /// Starts on `style` (valid), from file `path` if it came from one.
+    pub fn new(style: Style, path: Option<&Path>) -> Result<Self, String> {
+        let head_mesh = default_head();
+        let mut sim = LiveSim::new(&style, None)?;
+        let mut message = None;
+        match HeadCollider::from_head(&head_mesh) {
+            Ok(c) => sim.set_collider(Some(c)),
+            Err(e) => message = Some(e),
+        }
+        let mut doc = StyleDoc::new(style);
+        if let Some(path) = path {
+            // Reloading gives the document its file and a clean state.
+            doc.load(path).map_err(|e| e.to_string())?;
+        }
+        let user_presets_path = user_presets_path();
+        let user_presets = load_user_presets(&user_presets_path).unwrap_or_else(|e| {
+            message = Some(format!("{e:#}"));
+            Vec::new()
+        });
+        Ok(Self {
+            doc,
+            sim,
+            compare: None,
+            head: HeadDriver::default(),
+            head_mesh,
+            readouts: Readouts::default(),
+            paused: false,
+            invalid: None,
+            message,
+            presets: built_in_presets(),
+            user_presets,
+            user_presets_path,
+        })
+    }
+
+    /// Simulated time, seconds.
+    pub fn now_secs(&self) -> f64 {
+        self.sim.now_secs()
+    }
+
+    /// Plays a built-in head motion from now.
+    pub fn play(&mut self, clip: Clip) {
+        let now = self.now_secs();
+        self.head.play(clip, now);
+    }
+
+    /// Turns the compare view on (both runs start from the main run's
+    /// current state) or off.
+    pub fn set_compare(&mut self, methods: Option<CompareMethods>) {
+        match methods {
+            Some(m) => {
+                let mut right = self.sim.clone();
+                right.set_method_override(Some(m.right));
+                self.sim.set_method_override(Some(m.left));
+                self.compare = Some((right, m));
+            }
+            None => {
+                self.sim.set_method_override(None);
+                self.compare = None;
+            }
+        }
+    }
+
+    /// Loads a style file; on error nothing changes and the message names
+    /// file, line and field.
+    pub fn load(&mut self, path: &Path) {
+        self.message = match self.doc.load(path) {
+            Ok(()) => Some(format!("loaded {}", path.display())),
+            Err(e) => Some(e.to_string()),
+        };
+    }
+
+    /// Saves the style (to `path`, or its file).
+    pub fn save(&mut self, path: Option<&Path>) {
+        self.message = Some(match self.doc.save(path) {
+            Ok(p) => format!("saved {}", p.display()),
+            Err(e) => e,
+        });
+    }
+
+    /// Applies a preset to group `group` as one undo step.
+    pub fn apply_preset(&mut self, group: usize, preset: &Preset) {
+        self.doc.edit(|s| apply_preset(s, group, preset));
+    }
+
+    /// Saves group `group`'s parameters as the user's preset `name`
+    /// (replacing one of the same name).
+    pub fn save_user_preset(&mut self, group: usize, name: &str) {
+        let Some(g) = self.doc.style().groups.get(group) else {
+            return;
+        };
+        let preset = Preset {
+            name: name.to_string(),
+            params: g.params.clone(),
+            min_substeps: self.doc.style().sim.substeps,
+        };
+        self.user_presets.retain(|p| p.name != name);
+        self.user_presets.push(preset);
+        self.message = Some(
+            match save_user_presets(&self.user_presets_path, &self.user_presets) {
+                Ok(()) => format!("preset `{name}` saved"),
+                Err(e) => format!("{e:#}"),
+            },
+        );
+    }
+
+    /// One displayed frame of physics (see the module docs).
+    pub fn step_frame(&mut self) {
+        self.invalid = self.doc.validity().err();
+        if self.invalid.is_none() {
+            let style = self.doc.style().clone();
+            for sim in std::iter::once(&mut self.sim).chain(self.compare.as_mut().map(|(s, _)| s)) {
+                if let Err(e) = sim.sync(&style) {
+                    self.invalid = Some(e);
+                }
+            }
+        }
+        if self.paused {
+            return;
+        }
+        let frame = self.head.frame(self.sim.now_secs());
+        let started = Instant::now();
+        self.sim.step(&frame);
+        if let Some((right, _)) = &mut self.compare {
+            right.step(&frame);
+        }
+        let wall_secs = started.elapsed().as_secs_f64();
+        self.head.advance(self.sim.system().settings().dt_secs);
+        let difference_m = self
+            .compare
+            .as_ref()
+            .map(|(right, _)| tip_difference_m(&self.sim.tips_m(), &right.tips_m()));
+        let mut element_steps = self.sim.element_steps_per_frame();
+        if let Some((right, _)) = &self.compare {
+            element_steps += right.element_steps_per_frame();
+        }
+        let sample = PhysicsSample {
+            time_secs: self.sim.now_secs(),
+            wall_secs,
+            stages: self.sim.stage_times(),
+            element_steps,
+            energies: self.sim.energies(),
+            difference_m,
+        };
+        let label = match &self.compare {
+            Some((_, m)) => m.left.label(),
+            None => String::new(),
+        };
+        self.readouts
+            .record_physics(sample, self.sim.guard_events(), &label);
+        if let Some((right, m)) = &self.compare {
+            let events = right.guard_events().to_vec();
+            self.readouts
+                .record_physics_events(&events, &m.right.label());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use helixhair_physics::NaturalShape;
+
+    use super::super::default_style::default_style;
+    use super::*;
+
+    fn app() -> AppState {
+        AppState::new(default_style(8), None).unwrap()
+    }
+
+    #[test]
+    fn a_slider_drag_is_one_undo_step_and_the_title_marks_it() {
+        let mut app = app();
+        assert!(!app.doc.title().contains('*'));
+        for k in 1..=5 {
+            app.doc.style_mut().groups[0].params.ellipticity = 1.0 + 0.1 * f64::from(k);
+            app.doc.settle(true);
+            app.step_frame();
+        }
+        app.doc.settle(false);
+        assert!(app.doc.title().contains('*'), "{}", app.doc.title());
+        assert!(app.doc.undo());
+        assert_eq!(app.doc.style().groups[0].params.ellipticity, 1.35);
+        assert!(!app.doc.title().contains('*'));
+        assert!(app.doc.redo());
+        assert_eq!(app.doc.style().groups[0].params.ellipticity, 1.5);
+    }
+
+    #[test]
+    fn an_invalid_edit_is_reported_and_not_simulated() {
+        let mut app = app();
+        app.step_frame();
+        app.doc.style_mut().groups[0].params.radius_m = f64::NAN;
+        app.step_frame();
+        let error = app.invalid.clone().unwrap();
+        assert!(error.contains("radius_m"), "{error}");
+        assert!(app.sim.system().is_finite());
+        app.doc.undo();
+        app.step_frame();
+        assert!(app.invalid.is_none());
+    }
+
+    #[test]
+    fn a_malformed_file_changes_nothing_and_names_line_and_field() {
+        let mut app = app();
+        let dir = std::env::temp_dir().join(format!("helixhair-app-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bad = dir.join("bad.ron");
+        let good = default_style(3).to_ron().unwrap();
+        std::fs::write(
+            &bad,
+            good.replace("ellipticity: 1.35", "ellipticity: \"oval\""),
+        )
+        .unwrap();
+        let before = app.doc.style().clone();
+        app.load(&bad);
+        let message = app.message.clone().unwrap();
+        assert!(message.contains("bad.ron:"), "{message}");
+        assert!(message.contains("ellipticity"), "{message}");
+        assert_eq!(*app.doc.style(), before);
+        // Saving then loading gives the same style back, with a clean title.
+        let file = dir.join("mine.ron");
+        app.save(Some(&file));
+        assert!(
+            app.doc.title().starts_with("mine.ron —"),
+            "{}",
+            app.doc.title()
+        );
+        app.doc.edit(|s| s.name = "other".into());
+        app.load(&file);
+        assert_eq!(*app.doc.style(), before);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn presets_apply_as_one_step_and_the_hair_follows() {
+        let mut app = app();
+        let coily = app.presets[3].clone();
+        app.apply_preset(0, &coily);
+        app.step_frame();
+        assert_eq!(
+            app.sim.system().strands()[0].model().elements(),
+            coily.params.elements
+        );
+        assert!(matches!(
+            app.doc.style().groups[0].params.natural_shape,
+            NaturalShape::Helix { .. }
+        ));
+        app.doc.undo();
+        assert_ne!(app.doc.style().groups[0].params, coily.params);
+    }
+
+    #[test]
+    fn a_head_shake_moves_the_hair_and_compare_reads_a_difference() {
+        let mut app = app();
+        app.set_compare(Some(CompareMethods::default()));
+        for _ in 0..30 {
+            app.step_frame();
+        }
+        let still = app.sim.tips_m();
+        app.play(Clip::Shake);
+        for _ in 0..30 {
+            app.step_frame();
+        }
+        let moved = tip_difference_m(&still, &app.sim.tips_m()).1;
+        assert!(moved > 0.01, "tips moved only {moved} m");
+        let (rms, _) = app.readouts.last().unwrap().difference_m.unwrap();
+        assert!(rms.is_finite() && rms > 0.0, "{rms}");
+        assert!(app.readouts.last().unwrap().energies.kinetic_j > 0.0);
+    }
+}

@@ -1,0 +1,244 @@
+//! The winit event loop: opens the window, feeds input to egui, and each
+//! frame steps the physics, draws the 3D pictures, lays out the panels and
+//! presents.
+//!
+//! A frame, on `RedrawRequested`:
+//!
+//! 1. [`AppState::step_frame`]: edits reach the simulation, one frame of
+//!    physics runs on the head's motion;
+//! 2. the renderer draws the hair and head into the view's picture(s),
+//!    sized as the view was in the previous frame;
+//! 3. egui lays out the panels around the pictures and handles input;
+//!    a finished drag becomes one undo step;
+//! 4. egui is painted to the surface (and, for `--screenshot`, read back).
+//!
+//! The loop redraws continuously (`about_to_wait` requests the next frame);
+//! the surface's vsync paces it.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::Context as _;
+use helixhair_render::{Light, Scene};
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::window::{Window, WindowId};
+
+use crate::style::Style;
+
+use super::app_state::{AppState, CompareMethods};
+use super::default_style::default_style;
+use super::ui::{ViewState, draw};
+use super::viewport::{HairLook, posed_head};
+use super::window_gpu::{WindowGpu, save_png};
+use super::{HEADLESS_HINT, WindowArgs};
+
+/// Frames run before a screenshot when `--frames` is not given.
+const SCREENSHOT_FRAMES: u32 = 120;
+
+/// Opens the window and runs until it is closed (or `--frames` are done).
+pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
+    let mut app = start_state(args)?;
+    if args.compare {
+        app.set_compare(Some(CompareMethods::default()));
+    }
+    if let Some(clip) = args.play {
+        app.play(clip);
+    }
+    let event_loop = EventLoop::new()
+        .map_err(|e| anyhow::anyhow!("cannot open a window ({e}).\n{HEADLESS_HINT}"))?;
+    let mut handler = Handler {
+        args: args.clone(),
+        look: HairLook::new(&app.head_mesh, args.render_strands),
+        view: ViewState::new(app.doc.style().strand_count()),
+        app,
+        open: None,
+        error: None,
+        frames: 0,
+        last_frame: None,
+    };
+    event_loop
+        .run_app(&mut handler)
+        .context("the window's event loop failed")?;
+    match handler.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+fn start_state(args: &WindowArgs) -> anyhow::Result<AppState> {
+    let style = match &args.style {
+        Some(path) => Style::load(path)?,
+        None => default_style(args.guides),
+    };
+    AppState::new(style, args.style.as_deref()).map_err(|e| anyhow::anyhow!(e))
+}
+
+struct Open {
+    gpu: WindowGpu,
+    egui: egui_winit::State,
+    title: String,
+}
+
+struct Handler {
+    args: WindowArgs,
+    app: AppState,
+    look: HairLook,
+    view: ViewState,
+    open: Option<Open>,
+    error: Option<anyhow::Error>,
+    frames: u32,
+    last_frame: Option<Instant>,
+}
+
+impl Handler {
+    fn open(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<Open> {
+        let attributes = Window::default_attributes()
+            .with_title(self.app.doc.title())
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 800.0));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .context("creating the window")?,
+        );
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
+                Box::new(event_loop.owned_display_handle()),
+            ));
+        let gpu = WindowGpu::new(&instance, window.clone())?;
+        let ctx = egui::Context::default();
+        let egui = egui_winit::State::new(
+            ctx,
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            None,
+        );
+        Ok(Open {
+            gpu,
+            egui,
+            title: String::new(),
+        })
+    }
+
+    fn frame(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
+        let Some(open) = &mut self.open else {
+            return Ok(());
+        };
+        let now = Instant::now();
+        if let Some(last) = self.last_frame.replace(now) {
+            self.app
+                .readouts
+                .record_frame(now.duration_since(last).as_secs_f64());
+        }
+        self.app.step_frame();
+        let head = self.app.sim.system().head();
+        let pose = (head.world_from_body, head.position_m);
+        let head_mesh = posed_head(&self.app.head_mesh, pose);
+        let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
+        for (slot, run) in runs.enumerate() {
+            let hair = self.look.strands(&run.strand_buffers(), pose);
+            let scene = Scene {
+                hair: &hair,
+                head: &head_mesh,
+                camera: self.view.camera,
+                light: Light::default(),
+            };
+            self.view.textures[slot] =
+                Some(open.gpu.draw_scene(slot, &scene, self.view.view_px)?);
+        }
+        let raw = open.egui.take_egui_input(&open.gpu.window);
+        let ctx = open.egui.egui_ctx().clone();
+        let mut output = ctx.run_ui(raw, |ui| draw(ui, &mut self.app, &mut self.view));
+        let platform = std::mem::take(&mut output.platform_output);
+        open.egui.handle_platform_output(&open.gpu.window, platform);
+        self.app.doc.settle(ctx.egui_is_using_pointer());
+        let title = self.app.doc.title();
+        if title != open.title {
+            open.gpu.window.set_title(&title);
+            open.title = title;
+        }
+        self.frames += 1;
+        let last = self
+            .args
+            .frames
+            .or(self.args.screenshot.as_ref().map(|_| SCREENSHOT_FRAMES));
+        let done = last.is_some_and(|n| self.frames >= n);
+        let shot = open
+            .gpu
+            .present(output, &ctx, done && self.args.screenshot.is_some())?;
+        if let (Some(image), Some(path)) = (shot, &self.args.screenshot) {
+            save_png(&image, path)?;
+        }
+        if done {
+            let adapter = open.gpu.adapter_label.clone();
+            self.summary(&adapter);
+            event_loop.exit();
+        }
+        Ok(())
+    }
+
+    /// Prints frame and physics times over the second half of the run.
+    fn summary(&self, adapter: &str) {
+        let n = (self.frames / 2).max(1) as usize;
+        let r = &self.app.readouts;
+        let ms = |s: Option<f64>| s.map_or(f64::NAN, |s| 1e3 * s);
+        println!(
+            "helixhair window: {} frames on {adapter}; {} guide strands, {} render strands, {} elements",
+            self.frames,
+            self.app.sim.system().strands().len(),
+            self.args.render_strands,
+            self.app.sim.system().element_count()
+        );
+        println!(
+            "last {n} frames: frame time {:.1} ms, physics {:.1} ms per frame, {:.3e} element-steps/s",
+            ms(r.mean_frame_secs(n)),
+            ms(r.mean_physics_secs(n)),
+            r.element_steps_per_sec(n).unwrap_or(0.0)
+        );
+    }
+}
+
+impl ApplicationHandler for Handler {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.open.is_some() {
+            return;
+        }
+        match self.open(event_loop) {
+            Ok(open) => {
+                open.gpu.window.request_redraw();
+                self.open = Some(open);
+            }
+            Err(e) => {
+                self.error = Some(e.context(format!("cannot open the window.\n{HEADLESS_HINT}")));
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(open) = &mut self.open else {
+            return;
+        };
+        let _ = open.egui.on_window_event(&open.gpu.window, &event);
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => open.gpu.resize(size.width, size.height),
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.frame(event_loop) {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(open) = &self.open {
+            open.gpu.window.request_redraw();
+        }
+    }
+}

@@ -1,0 +1,96 @@
+//! The styling window: `helixhair` with no command.
+//!
+//! # Modules
+//!
+//! Window-free logic, tested without a display:
+//! [`app_state`] (everything the window shows and edits, stepped once per
+//! frame), [`document`] (the style, its file, unsaved marker, undo via
+//! [`undo`]), [`presets`], [`live_sim`] (the simulation following edits
+//! without a reset, shapes kept by [`resample`]), [`head_motion`] (the
+//! user's head pose and the built-in motions, with velocities and
+//! accelerations for the physics), [`collision`] (the head collider
+//! handed to the physics), [`readouts`], [`default_style`] and
+//! [`viewport`] (camera gestures, render strands from guides).
+//!
+//! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
+//! pictures, egui painting, screenshots) and the egui panels ([`ui`],
+//! [`style_panel`], [`readout_panel`], [`file_picker`]).
+//!
+//! # Without a display
+//!
+//! When no window can be opened (no `DISPLAY` or Wayland socket, or no
+//! graphics adapter), [`run_window`] returns an error that says why and
+//! points to the headless commands; the binary prints it and exits with
+//! status 1, so scripts notice.
+
+pub mod app_state;
+pub mod collision;
+pub mod default_style;
+pub mod document;
+pub mod event_loop;
+pub mod file_picker;
+pub mod head_motion;
+pub mod live_sim;
+pub mod presets;
+pub mod readout_panel;
+pub mod readouts;
+pub mod resample;
+pub mod style_panel;
+pub mod ui;
+pub mod undo;
+pub mod viewport;
+pub mod window_gpu;
+
+use std::path::PathBuf;
+
+use clap::Args;
+use clap::builder::TypedValueParser as _;
+
+use self::default_style::DEFAULT_GUIDES;
+use self::head_motion::Clip;
+use self::viewport::DEFAULT_RENDER_STRANDS;
+
+pub use event_loop::run_window;
+
+/// What `helixhair` prints when it cannot open its window.
+pub const HEADLESS_HINT: &str = "\
+The headless commands need no display:
+    helixhair sim --style assets/styles/curly.ron    simulate a style and report
+    helixhair bench --help                           measure speed and accuracy
+See `helixhair --help` for every command.";
+
+/// Options of the window (`helixhair` without a command).
+#[derive(Clone, Debug, Args)]
+pub struct WindowArgs {
+    /// Style to open (RON); default: curly hair on the default head.
+    #[arg(long, value_name = "FILE")]
+    pub style: Option<PathBuf>,
+    /// Guide strands (simulated) of the default style.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_GUIDES,
+          value_parser = clap::value_parser!(u32).range(1..=5000).map(|n| n as usize))]
+    pub guides: usize,
+    /// Render strands drawn, interpolated from the guides.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_RENDER_STRANDS,
+          value_parser = clap::value_parser!(u32).range(1..=200_000).map(|n| n as usize))]
+    pub render_strands: usize,
+    /// Play a head motion at start: nod, shake, turn or jerk.
+    #[arg(long, value_name = "MOTION", value_parser = parse_clip)]
+    pub play: Option<Clip>,
+    /// Start in the compare view (Dense against Block-diagonal).
+    #[arg(long)]
+    pub compare: bool,
+    /// Quit after K frames and print frame and physics times.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub frames: Option<u32>,
+    /// Save the window as a PNG after the last frame (--frames, default 120)
+    /// and quit.
+    #[arg(long, value_name = "PNG")]
+    pub screenshot: Option<PathBuf>,
+}
+
+fn parse_clip(name: &str) -> Result<Clip, String> {
+    Clip::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Clip::ALL.iter().map(|c| c.name()).collect();
+        format!("unknown motion `{name}`; one of {}", names.join(", "))
+    })
+}

@@ -1,0 +1,335 @@
+//! The window's layout: a tool bar on top, the style on the left, head and
+//! readouts on the right, messages at the bottom, and the 3D view (or the
+//! compare view's two) filling the rest.
+//!
+//! The 3D pictures are textures the renderer drew this frame; the view
+//! only shows them and turns pointer gestures into camera and head moves
+//! ([`super::viewport`]). Keyboard shortcuts: Ctrl+Z undo, Ctrl+Shift+Z or
+//! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, F frame the head, Space pause.
+
+use egui::{Key, Modifiers, PointerButton, Sense, Ui};
+use helixhair_physics::Method;
+use helixhair_render::OrbitCamera;
+
+use super::app_state::{AppState, CompareMethods};
+use super::default_style::regrow_roots;
+use super::file_picker::{FilePicker, PickerMode};
+use super::head_motion::Clip;
+use super::readout_panel::readouts;
+use super::style_panel::{count_field, group_params, sim_settings};
+use super::viewport::{framed_camera, move_head, orbit, pan, turn_head};
+
+/// What the window keeps between frames besides the app state.
+#[derive(Debug)]
+pub struct ViewState {
+    /// The camera.
+    pub camera: OrbitCamera,
+    /// The 3D pictures to show (main, compare), as egui textures.
+    pub textures: [Option<egui::TextureId>; 2],
+    /// Size in pixels the 3D view had in the last frame.
+    pub view_px: [u32; 2],
+    /// The open file dialog.
+    pub picker: Option<FilePicker>,
+    /// Name field of "save as preset".
+    pub preset_name: String,
+    /// Guide strand count field.
+    pub guides: usize,
+}
+
+impl ViewState {
+    /// A view framing the head, for a style with `guides` strands.
+    pub fn new(guides: usize) -> Self {
+        Self {
+            camera: framed_camera(),
+            textures: [None, None],
+            view_px: [1, 1],
+            picker: None,
+            preset_name: "my style".into(),
+            guides,
+        }
+    }
+}
+
+/// Draws the whole window for one frame.
+pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    shortcuts(ui.ctx(), app, view);
+    egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, app, view));
+    egui::Panel::bottom("messages").show(ui, |ui| {
+        if let Some(e) = &app.invalid {
+            ui.colored_label(
+                egui::Color32::from_rgb(255, 120, 90),
+                format!("not simulated: {e}"),
+            );
+        }
+        ui.label(app.message.as_deref().unwrap_or("ready"));
+    });
+    egui::Panel::left("style")
+        .default_size(330.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| style_column(ui, app, view));
+        });
+    egui::Panel::right("readouts")
+        .default_size(330.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                head_controls(ui, app);
+                ui.separator();
+                readouts(ui, app);
+            });
+        });
+    egui::CentralPanel::no_frame().show(ui, |ui| view_area(ui, app, view));
+    if let Some(picker) = &mut view.picker {
+        let (chosen, keep) = picker.show(ui.ctx());
+        let mode = picker.mode;
+        if !keep {
+            view.picker = None;
+        }
+        if let Some(path) = chosen {
+            match mode {
+                PickerMode::Open => app.load(&path),
+                PickerMode::SaveAs => app.save(Some(&path)),
+            }
+        }
+    }
+    let dropped = ui
+        .ctx()
+        .input(|i| i.raw.dropped_files.first().map(|f| f.path().to_owned()));
+    if let Some(path) = dropped {
+        app.load(&path);
+    }
+}
+
+fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
+    let typing = ctx.egui_wants_keyboard_input();
+    ctx.input_mut(|i| {
+        if i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z)
+            || i.consume_key(Modifiers::COMMAND, Key::Y)
+        {
+            app.doc.redo();
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::Z) {
+            app.doc.undo();
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::S) {
+            app.save(None);
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::O) {
+            view.picker = Some(open_picker(app, PickerMode::Open));
+        }
+        if !typing && i.consume_key(Modifiers::NONE, Key::F) {
+            view.camera = framed_camera();
+        }
+        if !typing && i.consume_key(Modifiers::NONE, Key::Space) {
+            app.paused = !app.paused;
+        }
+    });
+}
+
+fn open_picker(app: &AppState, mode: PickerMode) -> FilePicker {
+    let (folder, name) = match app.doc.path() {
+        Some(p) => (
+            p.parent().map(|d| d.to_owned()).unwrap_or_default(),
+            p.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        ),
+        None => (
+            std::env::current_dir().unwrap_or_default(),
+            format!("{}.ron", app.doc.style().name),
+        ),
+    };
+    FilePicker::new(mode, folder, name)
+}
+
+fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    ui.horizontal(|ui| {
+        if ui.button("Open…").clicked() {
+            view.picker = Some(open_picker(app, PickerMode::Open));
+        }
+        if ui.button("Save").clicked() {
+            if app.doc.path().is_some() {
+                app.save(None);
+            } else {
+                view.picker = Some(open_picker(app, PickerMode::SaveAs));
+            }
+        }
+        if ui.button("Save as…").clicked() {
+            view.picker = Some(open_picker(app, PickerMode::SaveAs));
+        }
+        ui.separator();
+        let (can_undo, can_redo) = app.doc.can_undo_redo();
+        if ui
+            .add_enabled(can_undo, egui::Button::new("Undo"))
+            .clicked()
+        {
+            app.doc.undo();
+        }
+        if ui
+            .add_enabled(can_redo, egui::Button::new("Redo"))
+            .clicked()
+        {
+            app.doc.redo();
+        }
+        ui.separator();
+        let pause = if app.paused { "Play" } else { "Pause" };
+        if ui.button(pause).clicked() {
+            app.paused = !app.paused;
+        }
+        ui.separator();
+        let mut on = app.compare.is_some();
+        if ui.checkbox(&mut on, "compare solvers").changed() {
+            app.set_compare(on.then(CompareMethods::default));
+        }
+        if let Some((_, methods)) = app.compare {
+            let mut m = methods;
+            method_combo(ui, "left", &mut m.left);
+            method_combo(ui, "right", &mut m.right);
+            if m != methods {
+                app.set_compare(Some(m));
+            }
+        }
+        ui.separator();
+        ui.label(app.doc.title());
+    });
+}
+
+fn method_combo(ui: &mut Ui, label: &str, method: &mut Method) {
+    egui::ComboBox::from_label(label)
+        .selected_text(method.label())
+        .show_ui(ui, |ui| {
+            for m in Method::ALL {
+                ui.selectable_value(method, m, m.label());
+            }
+        });
+}
+
+fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    ui.heading("Simulation");
+    sim_settings(ui, app.doc.style_mut());
+    ui.horizontal(|ui| {
+        count_field(ui, "guide strands", &mut view.guides, 2000);
+        if ui.button("regrow on scalp").clicked() {
+            let (head, count) = (&app.head_mesh, view.guides);
+            app.doc.edit(|s| regrow_roots(s, head, count));
+        }
+    });
+    let groups = app.doc.style().groups.len();
+    for g in 0..groups {
+        let name = app.doc.style().groups[g].name.clone();
+        let roots = app.doc.style().groups[g].roots.len();
+        egui::CollapsingHeader::new(format!("group `{name}` ({roots} strands)"))
+            .default_open(g == 0)
+            .show(ui, |ui| {
+                ui.horizontal_wrapped(|ui| {
+                    ui.label("preset:");
+                    let presets: Vec<_> = app
+                        .presets
+                        .iter()
+                        .chain(&app.user_presets)
+                        .cloned()
+                        .collect();
+                    for p in presets {
+                        if ui.button(&p.name).clicked() {
+                            app.apply_preset(g, &p);
+                        }
+                    }
+                });
+                ui.horizontal(|ui| {
+                    ui.text_edit_singleline(&mut view.preset_name);
+                    if ui.button("save as preset").clicked() {
+                        let name = view.preset_name.trim().to_string();
+                        if !name.is_empty() {
+                            app.save_user_preset(g, &name);
+                        }
+                    }
+                });
+                group_params(ui, &mut app.doc.style_mut().groups[g].params);
+            });
+    }
+}
+
+fn head_controls(ui: &mut Ui, app: &mut AppState) {
+    ui.heading("Head");
+    ui.horizontal(|ui| {
+        for clip in Clip::ALL {
+            if ui.button(clip.name()).clicked() {
+                app.play(clip);
+            }
+        }
+    });
+    let pose = &mut app.head.target;
+    ui.add(
+        egui::Slider::new(&mut pose.turn_rad, -1.4..=1.4)
+            .text("turn")
+            .suffix(" rad"),
+    );
+    ui.add(
+        egui::Slider::new(&mut pose.tilt_rad, -0.7..=0.7)
+            .text("tilt")
+            .suffix(" rad"),
+    );
+    if ui.button("centre head").clicked() {
+        *pose = Default::default();
+    }
+    ui.small("Alt + left drag turns the head, Alt + right drag moves it.");
+}
+
+fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    let rect = ui.available_rect_before_wrap();
+    let ppp = ui.ctx().pixels_per_point();
+    let halves = if app.compare.is_some() { 2 } else { 1 };
+    let width_pt = rect.width() / halves as f32;
+    view.view_px = [
+        ((width_pt * ppp) as u32).max(1),
+        ((rect.height() * ppp) as u32).max(1),
+    ];
+    let response = ui.allocate_rect(rect, Sense::click_and_drag());
+    for (k, texture) in view.textures.iter().take(halves).enumerate() {
+        if let Some(id) = texture {
+            let sub = egui::Rect::from_min_size(
+                rect.min + egui::vec2(width_pt * k as f32, 0.0),
+                egui::vec2(width_pt, rect.height()),
+            );
+            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+            ui.painter().image(*id, sub, uv, egui::Color32::WHITE);
+        }
+    }
+    if let Some((_, m)) = &app.compare {
+        for (k, method) in [m.left, m.right].into_iter().enumerate() {
+            ui.painter().text(
+                rect.min + egui::vec2(width_pt * k as f32 + 8.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                method.label(),
+                egui::FontId::proportional(16.0),
+                egui::Color32::WHITE,
+            );
+        }
+    }
+    let delta = response.drag_delta();
+    let alt = ui.input(|i| i.modifiers.alt);
+    let shift = ui.input(|i| i.modifiers.shift);
+    let height = rect.height();
+    if response.dragged_by(PointerButton::Primary) {
+        if alt {
+            turn_head(&mut app.head.target, delta.x, delta.y);
+        } else if shift {
+            pan(&mut view.camera, delta.x, delta.y, height);
+        } else {
+            orbit(&mut view.camera, delta.x, delta.y);
+        }
+    }
+    if response.dragged_by(PointerButton::Secondary) || response.dragged_by(PointerButton::Middle) {
+        if alt {
+            move_head(&mut app.head.target, &view.camera, delta.x, delta.y, height);
+        } else {
+            pan(&mut view.camera, delta.x, delta.y, height);
+        }
+    }
+    if response.hovered() {
+        let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
+        let factor = (-scroll * 0.002).exp() / zoom;
+        if (factor - 1.0).abs() > 1e-6 {
+            view.camera.zoom(factor);
+        }
+    }
+}

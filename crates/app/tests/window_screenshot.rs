@@ -1,0 +1,160 @@
+//! The real window, end to end: `helixhair --play shake --screenshot` on an
+//! X server (Xvfb when no display is set), then the picture is checked for
+//! hair in the 3D view and for egui's panels around it.
+//!
+//! Without an X server or a graphics adapter the test skips on a user's
+//! machine, but fails where `HELIXHAIR_REQUIRE_GPU=1` (CI sets it and
+//! installs Xvfb and lavapipe), so CI cannot pass by skipping.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Kills the Xvfb this test started when dropped.
+struct Xvfb(Child);
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn required() -> bool {
+    std::env::var("HELIXHAIR_REQUIRE_GPU").as_deref() == Ok("1")
+}
+
+fn skip_or_fail(why: &str) {
+    if required() {
+        panic!("HELIXHAIR_REQUIRE_GPU=1 but {why}");
+    }
+    eprintln!("window_screenshot: skipped, {why}");
+}
+
+/// A display to use: the session's, or a fresh Xvfb.
+fn display() -> Option<(String, Option<Xvfb>)> {
+    if let Ok(d) = std::env::var("DISPLAY")
+        && !d.is_empty()
+    {
+        return Some((d, None));
+    }
+    let number = 90 + std::process::id() % 100;
+    let child = Command::new("Xvfb")
+        .args([
+            &format!(":{number}"),
+            "-screen",
+            "0",
+            "1280x800x24",
+            "-nolisten",
+            "tcp",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .ok()?;
+    let xvfb = Xvfb(child);
+    let socket = PathBuf::from(format!("/tmp/.X11-unix/X{number}"));
+    let start = Instant::now();
+    while !socket.exists() && start.elapsed() < Duration::from_secs(10) {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    socket.exists().then(|| (format!(":{number}"), Some(xvfb)))
+}
+
+/// Fraction of pixels in the box (fractions of the image) that `test` accepts.
+fn fraction(
+    image: &image::RgbaImage,
+    x: (f32, f32),
+    y: (f32, f32),
+    test: impl Fn([u8; 4]) -> bool,
+) -> f64 {
+    let (w, h) = (image.width() as f32, image.height() as f32);
+    let (x0, x1) = ((x.0 * w) as u32, (x.1 * w) as u32);
+    let (y0, y1) = ((y.0 * h) as u32, (y.1 * h) as u32);
+    let mut hits = 0usize;
+    let mut all = 0usize;
+    for py in y0..y1 {
+        for px in x0..x1 {
+            all += 1;
+            hits += usize::from(test(image.get_pixel(px, py).0));
+        }
+    }
+    hits as f64 / all.max(1) as f64
+}
+
+/// Hair's colour: a dark, warm brown (red over blue, not bright).
+pub fn is_hair(p: [u8; 4]) -> bool {
+    let [r, g, b, _] = p.map(i32::from);
+    r > b + 12 && r >= g && r < 150 && r > 12
+}
+
+/// egui's dark panel fill and its light text: grey.
+fn is_panel(p: [u8; 4]) -> bool {
+    let [r, g, b, _] = p.map(i32::from);
+    (r - g).abs() <= 2 && (g - b).abs() <= 2 && r < 70
+}
+
+#[test]
+fn the_window_shows_hair_and_panels_during_a_head_shake() {
+    let Some((display, _xvfb)) = display() else {
+        skip_or_fail("no X display and no Xvfb to start");
+        return;
+    };
+    let out = std::env::temp_dir().join(format!("helixhair-window-{}.png", std::process::id()));
+    let runtime = std::env::temp_dir().join(format!("helixhair-xdg-{}", std::process::id()));
+    std::fs::create_dir_all(&runtime).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_helixhair"))
+        .args([
+            "--play",
+            "shake",
+            "--frames",
+            "60",
+            "--guides",
+            "24",
+            "--screenshot",
+        ])
+        .arg(&out)
+        .env("DISPLAY", &display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+        )
+        .output()
+        .expect("helixhair starts");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    if !output.status.success() {
+        if stderr.contains("cannot open") {
+            skip_or_fail(&format!("the window did not open: {stderr}"));
+            return;
+        }
+        panic!("helixhair failed:\n{stdout}\n{stderr}");
+    }
+    assert!(stdout.contains("frame time"), "{stdout}");
+    let image = image::open(Path::new(&out)).expect("a PNG").to_rgba8();
+    assert!(
+        image.width() >= 800 && image.height() >= 500,
+        "{}x{}",
+        image.width(),
+        image.height()
+    );
+    // The view is in the middle; the panels left and right of it.
+    let hair = fraction(&image, (0.35, 0.65), (0.15, 0.85), is_hair);
+    let left_panel = fraction(&image, (0.01, 0.2), (0.1, 0.9), is_panel);
+    let right_panel = fraction(&image, (0.8, 0.99), (0.1, 0.9), is_panel);
+    assert!(hair > 0.03, "only {hair:.3} of the view is hair-coloured");
+    assert!(
+        left_panel > 0.5 && right_panel > 0.5,
+        "panels: {left_panel:.2}, {right_panel:.2}"
+    );
+    // The view is not panel-grey: the 3D picture is really shown.
+    let view_grey = fraction(&image, (0.35, 0.65), (0.15, 0.85), is_panel);
+    assert!(
+        view_grey < 0.5,
+        "the view looks like a panel ({view_grey:.2})"
+    );
+    let _ = std::fs::remove_file(&out);
+    let _ = std::fs::remove_dir_all(&runtime);
+}
