@@ -6,9 +6,10 @@
 //! machine, but fails where `HELIXHAIR_REQUIRE_GPU=1` (CI sets it and
 //! installs Xvfb and lavapipe), so CI cannot pass by skipping.
 
-use std::path::{Path, PathBuf};
+use std::io::{BufRead as _, BufReader};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Kills the Xvfb this test started when dropped.
 struct Xvfb(Child);
@@ -38,27 +39,33 @@ fn display() -> Option<(String, Option<Xvfb>)> {
     {
         return Some((d, None));
     }
-    let number = 90 + std::process::id() % 100;
-    let child = Command::new("Xvfb")
+    // -displayfd: Xvfb picks a free display number and writes it to us
+    // once it accepts connections.
+    let mut child = Command::new("Xvfb")
         .args([
-            &format!(":{number}"),
+            "-displayfd",
+            "1",
             "-screen",
             "0",
             "1280x800x24",
             "-nolisten",
             "tcp",
         ])
-        .stdout(Stdio::null())
+        .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
         .ok()?;
+    let stdout = child.stdout.take()?;
     let xvfb = Xvfb(child);
-    let socket = PathBuf::from(format!("/tmp/.X11-unix/X{number}"));
-    let start = Instant::now();
-    while !socket.exists() && start.elapsed() < Duration::from_secs(10) {
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    socket.exists().then(|| (format!(":{number}"), Some(xvfb)))
+    let (sender, receiver) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = BufReader::new(stdout).read_line(&mut line);
+        let _ = sender.send(line);
+    });
+    let line = receiver.recv_timeout(Duration::from_secs(20)).ok()?;
+    let number: u32 = line.trim().parse().ok()?;
+    Some((format!(":{number}"), Some(xvfb)))
 }
 
 /// Fraction of pixels in the box (fractions of the image) that `test` accepts.

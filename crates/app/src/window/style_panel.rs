@@ -13,7 +13,7 @@ use helixhair_physics::{Method, NaturalShape, StrandParams};
 
 use crate::style::Style;
 
-/// Draws the simulation settings; returns true when the solver changed.
+/// Draws the simulation settings.
 pub fn sim_settings(ui: &mut Ui, style: &mut Style) {
     let sim = &mut style.sim;
     egui::ComboBox::from_label("solver")
