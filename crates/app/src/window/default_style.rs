@@ -35,9 +35,28 @@ pub fn scalp_roots(head: &HeadMesh, count: usize) -> Vec<Root> {
         .into_iter()
         .map(|s| {
             let normal = s.normal.as_dvec3().normalize_or(DVec3::Y);
-            Root::new(s.position_m.as_dvec3(), swept_back(normal))
+            let position = s.position_m.as_dvec3();
+            let direction = swept_back(normal);
+            Root {
+                reference: outward_side(position, normal, direction),
+                ..Root::new(position, direction)
+            }
         })
         .collect()
+}
+
+/// The reference that sets a root's material frame: along the skin,
+/// across the growth direction, away from the head's midline. A helix of
+/// radius R and rise c per radian winds about the axis c n₀ + R n₁, so the
+/// curls then flow back and out to the sides instead of over the face
+/// (with the default reference, towards the face, they fall forward).
+fn outward_side(position: DVec3, normal: DVec3, direction: DVec3) -> DVec3 {
+    let side = normal.cross(direction).normalize_or(DVec3::X);
+    if side.x * position.x < 0.0 {
+        -side
+    } else {
+        side
+    }
 }
 
 /// The growth direction of a root with skin normal `normal` (unit).
