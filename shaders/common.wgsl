@@ -129,6 +129,13 @@ fn light_transmittance(world: vec3<f32>) -> f32 {
     return exp(-hair_opacity(world));
 }
 
+// Display curve: linear light to [0, 1) with a soft shoulder
+// (1 - exp(-exposure c)), so bright highlights roll off instead of
+// clipping. The target's sRGB encoding comes after.
+fn tone_map(c: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(1.0) - exp(-1.3 * c);
+}
+
 // A hash of a float in [0, 1) to [0, 1).
 fn hash1(x: f32) -> f32 {
     return fract(sin(x * 12.9898 + 78.233) * 43758.5453);

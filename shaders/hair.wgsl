@@ -38,8 +38,26 @@ fn strand_highlight(tangent: vec3<f32>, half_vector: vec3<f32>, exponent: f32) -
     return pow(sin_th, exponent) * smoothstep(-1.0, 0.0, th);
 }
 
+struct HairFragment {
+    @location(0) colour: vec4<f32>,
+    @builtin(sample_mask) mask: u32,
+}
+
+// Stochastic coverage: `alpha` of the pixel's four samples, chosen at
+// random per strand and pixel. Alpha to coverage would pick the same
+// samples for every strand of equal alpha, so overlapping thin strands
+// could never add up to an opaque head of hair; random samples do (two
+// strands of alpha 1/2 cover 3/4 on average, as two real ones would).
+fn coverage_mask(alpha: f32, seed: f32, pixel: vec2<f32>) -> u32 {
+    let noise = hash1(seed * 91.7 + pixel.x * 0.618 + pixel.y * 1.414);
+    let samples = u32(clamp(alpha * 4.0 + noise, 0.0, 4.0));
+    let rotate = u32(hash1(noise * 13.1 + seed) * 4.0) & 3u;
+    let bits = (1u << samples) - 1u;
+    return ((bits << rotate) | (bits >> (4u - rotate))) & 15u;
+}
+
 @fragment
-fn fs_hair(in: HairOut) -> @location(0) vec4<f32> {
+fn fs_hair(in: HairOut) -> HairFragment {
     let t = normalize(in.tangent);
     let to_eye = normalize(view.eye.xyz - in.world);
     let to_light = lighting.light_direction.xyz;
@@ -57,8 +75,8 @@ fn fs_hair(in: HairOut) -> @location(0) vec4<f32> {
     let t_r = normalize(t + n * (lighting.specular.x + 0.04 * jitter));
     let t_trt = normalize(t + n * (lighting.specular.y + 0.08 * jitter));
     let sparkle = 0.6 + 0.8 * hash1(seed * 7.31 + floor(along * 24.0));
-    let r = 0.28 * strand_highlight(t_r, h, lighting.specular.z);
-    let trt = 0.55 * sparkle * strand_highlight(t_trt, h, lighting.specular.w);
+    let r = 0.14 * strand_highlight(t_r, h, lighting.specular.z);
+    let trt = 0.45 * sparkle * strand_highlight(t_trt, h, lighting.specular.w);
     let tt = 0.6 * pow(max(dot(-to_light, to_eye), 0.0), 6.0);
 
     let shadow = light_transmittance(in.world);
@@ -68,5 +86,8 @@ fn fs_hair(in: HairOut) -> @location(0) vec4<f32> {
     let ambient = albedo * lighting.ambient.rgb * lighting.ambient.w * buried * (0.4 + 0.6 * shadow);
 
     let alpha = in.coverage * (1.0 - 0.6 * smoothstep(0.8, 1.0, along));
-    return vec4<f32>(direct + ambient, alpha);
+    var out: HairFragment;
+    out.colour = vec4<f32>(tone_map(direct + ambient), 1.0);
+    out.mask = coverage_mask(alpha, seed, in.clip.xy);
+    return out;
 }

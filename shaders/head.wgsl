@@ -41,5 +41,5 @@ fn fs_head(in: HeadOut) -> @location(0) vec4<f32> {
     let direct = (albedo * wrap + vec3<f32>(highlight)) * light * shadow;
     let sky = mix(0.55, 1.0, n.y * 0.5 + 0.5);
     let ambient = albedo * lighting.ambient.rgb * lighting.ambient.w * sky;
-    return vec4<f32>(direct + ambient, 1.0);
+    return vec4<f32>(tone_map(direct + ambient), 1.0);
 }

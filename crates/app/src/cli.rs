@@ -45,6 +45,9 @@ pub enum Command {
     /// Simulate a style headless on a still head and report timings, energies
     /// and final strand shapes.
     Sim(SimArgs),
+    /// Simulate a style, then draw it offscreen into a PNG (or one PNG per
+    /// frame) on any graphics adapter, lavapipe included.
+    Render(crate::render_cmd::RenderArgs),
 }
 
 /// Arguments of `helixhair sim`.
@@ -97,6 +100,7 @@ pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow:
             Ok(())
         }
         Some(Command::Sim(args)) => run_sim(args, stdout, stderr),
+        Some(Command::Render(args)) => crate::render_cmd::run_render(args, stdout),
     }
 }
 

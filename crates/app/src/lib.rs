@@ -19,13 +19,20 @@
 #![warn(missing_docs)]
 
 pub mod atomic_write;
+pub mod camera_arg;
 pub mod cli;
+pub mod drawn_hair;
 pub mod field_path;
+pub mod groom;
+pub mod guide_curves;
 pub mod headless;
+pub mod render_cmd;
 pub mod sim_report;
 pub mod source_map;
 pub mod style;
 pub mod style_error;
+pub mod style_groom;
+pub mod style_groom_validate;
 pub mod style_validate;
 
 pub use field_path::FieldPath;
@@ -34,5 +41,9 @@ pub use sim_report::SimReport;
 pub use style::{Root, STYLE_VERSION, StrandGroup, Style};
 pub use style_error::{StyleError, StyleErrorKind, StyleIssue};
 
+#[cfg(test)]
+mod groom_tests;
+#[cfg(test)]
+mod style_groom_tests;
 #[cfg(test)]
 mod style_tests;

@@ -4,7 +4,7 @@
 //! | --- | --- | --- | --- |
 //! | shadow depth | light depth (`Depth32Float`) | `shadow_depth`: ribbons, no colour | view (light) |
 //! | shadow opacity | four layers (`Rgba16Float`, additive) | `shadow_opacity` | view (light), lighting + light depth |
-//! | main (4× MSAA) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (alpha to coverage) | view (camera), lighting + light depth, opacity layers |
+//! | main (4× MSAA) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (stochastic sample mask) | view (camera), lighting + light depth, opacity layers |
 //!
 //! Group 0 is always a [`View`](super::gpu_data::View), group 1 the
 //! [`Lighting`](super::gpu_data::Lighting) with the light's depth texture,
@@ -21,8 +21,8 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Format of the four opacity layers.
 pub const OPACITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Samples per pixel of the main pass (antialiasing, and alpha to coverage
-/// for strands thinner than a pixel).
+/// Samples per pixel of the main pass (antialiasing, and partial coverage
+/// of strands thinner than a pixel through the sample mask).
 pub const MSAA_SAMPLES: u32 = 4;
 
 /// The bind group layouts of groups 0, 1 and 2.
@@ -122,7 +122,6 @@ struct PipelineSpec<'a> {
     colour: Option<(wgpu::TextureFormat, Option<wgpu::BlendState>)>,
     depth: Option<(bool, wgpu::CompareFunction)>,
     samples: u32,
-    alpha_to_coverage: bool,
 }
 
 fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
@@ -158,7 +157,7 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
         multisample: wgpu::MultisampleState {
             count: spec.samples,
             mask: !0,
-            alpha_to_coverage_enabled: spec.alpha_to_coverage,
+            alpha_to_coverage_enabled: false,
         },
         fragment: spec.fragment_entry.map(|entry| wgpu::FragmentState {
             module: &module,
@@ -183,7 +182,7 @@ impl Pipelines {
             dst_factor: wgpu::BlendFactor::One,
             operation: wgpu::BlendOperation::Add,
         };
-        let main = |file, vertex_entry, fragment_entry, buffer, depth, alpha_to_coverage| {
+        let main = |file, vertex_entry, fragment_entry, buffer, depth| {
             pipeline(
                 device,
                 PipelineSpec {
@@ -195,7 +194,6 @@ impl Pipelines {
                     colour: Some((COLOUR_FORMAT, None)),
                     depth: Some(depth),
                     samples: MSAA_SAMPLES,
-                    alpha_to_coverage,
                 },
             )
         };
@@ -212,7 +210,6 @@ impl Pipelines {
                     colour: None,
                     depth: Some(less),
                     samples: 1,
-                    alpha_to_coverage: false,
                 },
             ),
             shadow_opacity: pipeline(
@@ -232,7 +229,6 @@ impl Pipelines {
                     )),
                     depth: None,
                     samples: 1,
-                    alpha_to_coverage: false,
                 },
             ),
             backdrop: main(
@@ -241,7 +237,6 @@ impl Pipelines {
                 "fs_backdrop",
                 None,
                 (false, wgpu::CompareFunction::Always),
-                false,
             ),
             head: main(
                 shaders::HEAD,
@@ -249,7 +244,6 @@ impl Pipelines {
                 "fs_head",
                 Some(vertex_layout::<MeshVertex>(&MeshVertex::ATTRIBUTES)),
                 less,
-                false,
             ),
             hair: main(
                 shaders::HAIR,
@@ -257,7 +251,6 @@ impl Pipelines {
                 "fs_hair",
                 Some(vertex_layout::<StrandVertex>(&StrandVertex::ATTRIBUTES)),
                 less,
-                true,
             ),
             layouts,
         }
