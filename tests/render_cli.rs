@@ -70,12 +70,13 @@ fn a_render_shows_hair_on_top_of_the_head_and_the_face_below() {
     assert!(stdout.contains("drew 1500 strands"), "{stdout}");
     let image = rgba(&out);
     assert_eq!(image.dimensions(), (128, 128));
-    // The front camera looks at y = -3 cm from 0.75 m with a 30° lens: the
-    // crown (y = 10 cm) is about 30 pixels above the middle. The band just
-    // below it is scalp: most of its pixels must be hair.
-    let band: Vec<_> = (44..84)
-        .flat_map(|x| (32..40).map(move |y| (x, y)))
+    // The scalp band a few centimetres below the crown must be mostly hair.
+    let (left, top) = pixel_of(glam::Vec3::new(-0.03, 0.085, 0.03));
+    let (right, bottom) = pixel_of(glam::Vec3::new(0.03, 0.06, 0.03));
+    let band: Vec<_> = (left..=right)
+        .flat_map(|x| (top..=bottom).map(move |y| (x, y)))
         .collect();
+    assert!(band.len() >= 20, "band {left}..{right} x {top}..{bottom}");
     let hair = band
         .iter()
         .filter(|&&(x, y)| is_hair(image.get_pixel(x, y)))
@@ -86,13 +87,25 @@ fn a_render_shows_hair_on_top_of_the_head_and_the_face_below() {
         "only {:.0}% of the crown band is hair",
         100.0 * share
     );
-    // The middle of the face (nose, y ≈ -2 cm) is skin: light and warm.
-    let [r, g, b, _] = image.get_pixel(64, 66).0;
+    // The middle of the face (below the nose) is skin: light and warm.
+    let (x, y) = pixel_of(glam::Vec3::new(0.0, -0.04, 0.1));
+    let [r, g, b, _] = image.get_pixel(x, y).0;
     assert!(
         r > 120 && r > b + 10 && g > 80,
-        "face pixel {:?}",
+        "face pixel {:?} at {x}, {y}",
         (r, g, b)
     );
+}
+
+/// Where a point lands in the 128 × 128 front view, in pixels.
+fn pixel_of(p: glam::Vec3) -> (u32, u32) {
+    let camera: helixhair_app::camera_arg::CameraArg = "front".parse().expect("a named view");
+    let clip = camera.camera().clip_from_world(1.0) * p.extend(1.0);
+    let (x, y) = (clip.x / clip.w, clip.y / clip.w);
+    (
+        ((x * 0.5 + 0.5) * 128.0) as u32,
+        ((0.5 - y * 0.5) * 128.0) as u32,
+    )
 }
 
 #[test]

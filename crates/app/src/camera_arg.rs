@@ -23,7 +23,7 @@ pub const NAMED_VIEWS: [(&str, CameraArg); 4] = [
         CameraArg {
             yaw_deg: 0.0,
             pitch_deg: 5.0,
-            distance_m: 0.75,
+            distance_m: 0.8,
         },
     ),
     (
@@ -31,7 +31,7 @@ pub const NAMED_VIEWS: [(&str, CameraArg); 4] = [
         CameraArg {
             yaw_deg: 90.0,
             pitch_deg: 5.0,
-            distance_m: 0.75,
+            distance_m: 0.8,
         },
     ),
     (
@@ -39,7 +39,7 @@ pub const NAMED_VIEWS: [(&str, CameraArg); 4] = [
         CameraArg {
             yaw_deg: 180.0,
             pitch_deg: 10.0,
-            distance_m: 0.75,
+            distance_m: 0.8,
         },
     ),
     (
@@ -47,7 +47,7 @@ pub const NAMED_VIEWS: [(&str, CameraArg); 4] = [
         CameraArg {
             yaw_deg: 35.0,
             pitch_deg: 12.0,
-            distance_m: 0.75,
+            distance_m: 0.8,
         },
     ),
 ];
