@@ -32,7 +32,7 @@ impl RenderSettings {
             shadow_map_px: 1024,
             min_ribbon_px: 1.0,
             shadow_layer_m: 0.004,
-            strand_opacity: 0.25,
+            strand_opacity: 0.6,
         }
     }
 
