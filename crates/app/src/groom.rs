@@ -3,8 +3,11 @@
 //! A group's `scalp` placement becomes roots spread evenly (Poisson disk)
 //! over its part of the scalp, each with a frame from the scalp: it grows
 //! at `lift_deg` from the surface, leaning along the comb direction
-//! projected onto the scalp, with the surface normal as its reference (so a
-//! curl starts in the plane of the normal and the growth direction). The
+//! projected onto the scalp, with the inward surface normal as its
+//! reference: a curl starts in the plane of the normal and the growth
+//! direction, bending towards the scalp, so hair hugs the head instead of
+//! springing off it (with the outward normal, wavy and curly grooms stood
+//! up from the crown). The
 //! simulation then sees plain roots ([`Groom::grown`]); what is drawn from
 //! the simulated guides is [`crate::drawn_hair`]'s business.
 
@@ -85,7 +88,7 @@ pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh) -> Vec<Root> {
         Root {
             position_m: s.position_m.as_dvec3(),
             direction: combed_direction(normal, placement.comb, placement.lift_deg),
-            reference: normal,
+            reference: -normal,
         }
     })
     .collect()

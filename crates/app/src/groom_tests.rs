@@ -54,7 +54,7 @@ fn scalp_roots_lie_in_their_region_and_grow_outwards() {
             "{}",
             root.position_m
         );
-        let out = root.direction.dot(root.reference);
+        let out = -root.direction.dot(root.reference);
         assert!((out - 20f64.to_radians().sin()).abs() < 1e-6, "lift: {out}");
         assert!(root.direction.z < 0.05, "combed back: {}", root.direction);
     }
