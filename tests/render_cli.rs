@@ -109,7 +109,7 @@ fn pixel_of(p: glam::Vec3) -> (u32, u32) {
 }
 
 #[test]
-fn a_sequence_writes_one_numbered_picture_per_frame() {
+fn a_sequence_writes_the_start_and_one_numbered_picture_per_frame() {
     let dir = scratch_dir("render-sequence");
     let out = dir.join("seq.png");
     let output = run_helixhair(&[
@@ -130,7 +130,7 @@ fn a_sequence_writes_one_numbered_picture_per_frame() {
         return;
     }
     assert!(output.status.success(), "{}", describe(&output));
-    for k in 1..=3 {
+    for k in 0..=3 {
         let frame = dir.join(format!("seq_{k:04}.png"));
         assert_eq!(rgba(&frame).dimensions(), (48, 32), "{}", frame.display());
     }
@@ -155,6 +155,23 @@ fn a_broken_head_is_reported_by_file_and_line() {
         "{stderr}"
     );
     assert!(!Path::new("never-written.png").exists());
+}
+
+#[test]
+fn a_region_without_scalp_is_reported_at_its_line() {
+    let style = "tests/render_fixtures/no_scalp_region.ron";
+    let output = run_helixhair(&["render", "--style", style, "--out", "never-written.png"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let line = helixhair_e2e::marker_line(style);
+    assert!(
+        stderr.starts_with(&format!("error: {style}:{line}:")),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("field `groups[0].scalp.region`: places no roots"),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -151,13 +151,7 @@ pub fn drawn_hair(groom: &Groom, guides: &StrandBuffers) -> HairStrands {
     let mut strands = StrandBuffers::default();
     let mut colours = Vec::new();
     let mut first = 0;
-    for (i, (group, grown)) in groom
-        .style
-        .groups
-        .iter()
-        .zip(&groom.grown.groups)
-        .enumerate()
-    {
+    for (i, (group, grown)) in groom.groups().enumerate() {
         let end = (first + grown.roots.len()).min(guides.strand_count());
         let mut own = StrandBuffers::default();
         for g in first..end {

@@ -16,7 +16,7 @@ use helixhair_render::HeadMesh;
 use helixhair_render::head_shell::HeadShell;
 use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
-use crate::style::{Root, Style};
+use crate::style::{Root, StrandGroup, Style};
 use crate::style_groom::ScalpPlacement;
 
 /// A style grown on a head: what the simulation and the drawing share.
@@ -42,6 +42,12 @@ impl Groom {
             style,
             head,
         }
+    }
+
+    /// Each group as written, with the same group grown (its roots all
+    /// listed).
+    pub fn groups(&self) -> impl Iterator<Item = (&StrandGroup, &StrandGroup)> {
+        self.style.groups.iter().zip(&self.grown.groups)
     }
 }
 

@@ -22,10 +22,13 @@ use helixhair_render::{
 use crate::atomic_write::write_atomically;
 use crate::camera_arg::CameraArg;
 use crate::drawn_hair::drawn_hair;
+use crate::field_path::FieldPath;
 use crate::groom::Groom;
 use crate::guide_curves::guide_curves;
 use crate::headless::{HeadlessSim, SimOverrides};
+use crate::source_map::SourceMap;
 use crate::style::Style;
+use crate::style_error::{StyleError, StyleErrorKind};
 
 /// Largest picture side, pixels.
 pub const MAX_SIDE_PX: u32 = 8192;
@@ -60,7 +63,8 @@ pub struct RenderArgs {
     /// before the extension.
     #[arg(long, value_name = "OUT")]
     pub out: PathBuf,
-    /// Write every frame (1 to K), for a video, with a progress bar.
+    /// Write a picture of the start and of every frame (0 to K), for a
+    /// video, with a progress bar.
     #[arg(long)]
     pub sequence: bool,
 }
@@ -104,12 +108,47 @@ pub fn write_png(path: &Path, image: &RgbaImage) -> anyhow::Result<()> {
     write_atomically(path, &bytes).with_context(|| format!("cannot write {}", path.display()))
 }
 
+/// Refuses a scalp placement that found no scalp to grow on (a `region`
+/// that misses the head's scalp), naming the style's file, line and field
+/// as a style error does.
+fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> anyhow::Result<()> {
+    let head = head.map_or_else(
+        || "the default head".to_owned(),
+        |p| p.display().to_string(),
+    );
+    for (i, (group, grown)) in groom.groups().enumerate() {
+        let Some(scalp) = &group.scalp else { continue };
+        if grown.roots.len() > group.roots.len() {
+            continue;
+        }
+        let at = FieldPath::root().field("groups").index(i).field("scalp");
+        let field = if scalp.region.is_some() {
+            at.field("region")
+        } else {
+            at
+        };
+        // The file was just read; if it has gone since, report without a line.
+        let src = std::fs::read_to_string(style_path).unwrap_or_default();
+        let (position, field) = SourceMap::new(&src).locate(&field);
+        return Err(StyleError::Located {
+            path: style_path.to_owned(),
+            position,
+            field,
+            kind: StyleErrorKind::InvalidValue,
+            message: format!("places no roots: it covers none of the scalp of {head}"),
+        }
+        .into());
+    }
+    Ok(())
+}
+
 /// Runs `helixhair render`.
 pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
     let style = Style::load(&args.style)?;
     let style_path = args.style.display().to_string();
     let head = load_head(args.head.as_deref())?;
     let groom = Groom::new(style, head);
+    check_placements(&groom, &args.style, args.head.as_deref())?;
     let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default())
         .with_context(|| format!("cannot simulate {style_path}"))?;
     let gpu = GpuContext::new_headless()?;
@@ -137,14 +176,17 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     let mut render_secs = Vec::new();
     let mut counts = FrameCounts::default();
     if args.sequence {
-        let bar = indicatif::ProgressBar::new(u64::from(args.frames));
-        for k in 1..=args.frames {
-            sim_secs += sim
-                .run(1)
-                .with_context(|| format!("simulating {style_path}"))?[0];
+        let bar = indicatif::ProgressBar::new(u64::from(args.frames) + 1);
+        for k in 0..=args.frames {
+            if k > 0 {
+                sim_secs += sim
+                    .run(1)
+                    .with_context(|| format!("simulating {style_path}"))?[0];
+            }
             let (image, c, secs) = frame(&sim)?;
             write_png(&numbered_path(&args.out, k), &image)?;
-            (counts, render_secs) = (c, [render_secs, vec![secs]].concat());
+            counts = c;
+            render_secs.push(secs);
             bar.inc(1);
         }
         bar.finish_and_clear();
@@ -159,11 +201,20 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
         write_png(&args.out, &image)?;
         (counts, render_secs) = (c, vec![secs]);
     }
-    let mean_ms = 1e3 * render_secs.iter().sum::<f64>() / render_secs.len().max(1) as f64;
+    // The first frame also compiles the shaders; later ones show the
+    // steady cost.
+    let timing = match render_secs[..] {
+        [first, ref later @ ..] if !later.is_empty() => format!(
+            "{:.0} ms per frame (first frame {:.0} ms)",
+            1e3 * later.iter().sum::<f64>() / later.len() as f64,
+            1e3 * first
+        ),
+        _ => format!("{:.0} ms", 1e3 * render_secs.iter().sum::<f64>()),
+    };
     writeln!(
         stdout,
         "style `{}` ({style_path}): {} simulated strands, {} frames in {sim_secs:.2} s\n  \
-         drew {} strands, {} points at {}x{} on {}: {mean_ms:.0} ms per frame\n  wrote {}",
+         drew {} strands, {} points at {}x{} on {}: {timing}\n  wrote {}",
         groom.style.name,
         sim.system().strands().len(),
         args.frames,
@@ -174,9 +225,9 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
         renderer.adapter_label(),
         if args.sequence {
             format!(
-                "{} frames as {}",
-                args.frames,
-                numbered_path(&args.out, 1).display()
+                "{} pictures as {} (the start, then every frame)",
+                render_secs.len(),
+                numbered_path(&args.out, 0).display()
             )
         } else {
             args.out.display().to_string()
