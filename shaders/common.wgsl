@@ -37,7 +37,9 @@ struct Lighting {
 
 @group(0) @binding(0) var<uniform> view: View;
 @group(1) @binding(0) var<uniform> lighting: Lighting;
-@group(1) @binding(1) var shadow_depth: texture_depth_2d;
+// Depth of the first hair the light meets, per texel (in a half-float
+// colour texture, not a depth texture: GL cannot load from depth textures).
+@group(1) @binding(1) var shadow_depth: texture_2d<f32>;
 @group(2) @binding(0) var opacity_map: texture_2d<f32>;
 @group(2) @binding(1) var opacity_sampler: sampler;
 
@@ -102,7 +104,7 @@ fn hair_opacity(world: vec3<f32>) -> f32 {
     }
     let size = vec2<i32>(textureDimensions(shadow_depth));
     let texel = clamp(vec2<i32>(p.xy * vec2<f32>(size)), vec2<i32>(0), size - 1);
-    let first = textureLoad(shadow_depth, texel, 0);
+    let first = textureLoad(shadow_depth, texel, 0).x;
     let depth_m = (p.z - first) * lighting.shadow.z;
     if depth_m <= 0.0 {
         return 0.0;

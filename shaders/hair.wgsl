@@ -56,8 +56,8 @@ fn coverage_mask(alpha: f32, seed: f32, pixel: vec2<f32>) -> u32 {
     return ((bits << rotate) | (bits >> (4u - rotate))) & 15u;
 }
 
-@fragment
-fn fs_hair(in: HairOut) -> HairFragment {
+// The shaded colour of a hair fragment (before coverage).
+fn shade_hair(in: HairOut) -> vec3<f32> {
     let t = normalize(in.tangent);
     let to_eye = normalize(view.eye.xyz - in.world);
     let to_light = lighting.light_direction.xyz;
@@ -85,9 +85,26 @@ fn fs_hair(in: HairOut) -> HairFragment {
     let buried = mix(0.3, 1.0, smoothstep(0.0, 0.45, along));
     let ambient = albedo * lighting.ambient.rgb * lighting.ambient.w * buried * (0.4 + 0.6 * shadow);
 
-    let alpha = in.coverage * (1.0 - 0.6 * smoothstep(0.8, 1.0, along));
+    return tone_map(direct + ambient);
+}
+
+// How much of its pixel a fragment covers: the ribbon's true width, and
+// thinning over the last fifth towards the tip.
+fn hair_alpha(in: HairOut) -> f32 {
+    return in.coverage * (1.0 - 0.6 * smoothstep(0.8, 1.0, in.params.x));
+}
+
+@fragment
+fn fs_hair(in: HairOut) -> HairFragment {
     var out: HairFragment;
-    out.colour = vec4<f32>(tone_map(direct + ambient), 1.0);
-    out.mask = coverage_mask(alpha, seed, in.clip.xy);
+    out.colour = vec4<f32>(shade_hair(in), 1.0);
+    out.mask = coverage_mask(hair_alpha(in), in.params.z, in.clip.xy);
     return out;
+}
+
+// For backends that cannot write the sample mask (GL): alpha to coverage,
+// whose fixed sample patterns make overlapping thin strands add up less.
+@fragment
+fn fs_hair_alpha(in: HairOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(shade_hair(in), hair_alpha(in));
 }

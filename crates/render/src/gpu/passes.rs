@@ -2,7 +2,7 @@
 //!
 //! | pass | target | pipeline | bind groups |
 //! | --- | --- | --- | --- |
-//! | shadow depth | light depth (`Depth32Float`) | `shadow_depth`: ribbons, no colour | view (light) |
+//! | shadow depth | first-hair depth (`Rgba16Float`) + depth buffer | `shadow_depth`: ribbons writing their depth | view (light) |
 //! | shadow opacity | four layers (`Rgba16Float`, additive) | `shadow_opacity` | view (light), lighting + light depth |
 //! | main (4× MSAA) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (stochastic sample mask) | view (camera), lighting + light depth, opacity layers |
 //!
@@ -19,6 +19,11 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Colour format of the picture (shaders write linear light; the format
 /// encodes sRGB).
 pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Format of the light's first-hair depth, read back by later passes. Half
+/// floats resolve depth to about 5e-4 of the light's depth range (a few
+/// tenths of a millimetre over a head), well under the first opacity
+/// layer; R32Float would be finer but GL cannot render to it.
+pub const FIRST_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of the four opacity layers.
 pub const OPACITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Samples per pixel of the main pass (antialiasing, and partial coverage
@@ -93,7 +98,7 @@ impl Layouts {
                 "lighting",
                 &[
                     uniform_entry(0),
-                    texture_entry(1, wgpu::TextureSampleType::Depth),
+                    texture_entry(1, wgpu::TextureSampleType::Float { filterable: false }),
                 ],
             ),
             opacity: layout(
@@ -122,6 +127,7 @@ struct PipelineSpec<'a> {
     colour: Option<(wgpu::TextureFormat, Option<wgpu::BlendState>)>,
     depth: Option<(bool, wgpu::CompareFunction)>,
     samples: u32,
+    alpha_to_coverage: bool,
 }
 
 fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
@@ -157,7 +163,7 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
         multisample: wgpu::MultisampleState {
             count: spec.samples,
             mask: !0,
-            alpha_to_coverage_enabled: false,
+            alpha_to_coverage_enabled: spec.alpha_to_coverage,
         },
         fragment: spec.fragment_entry.map(|entry| wgpu::FragmentState {
             module: &module,
@@ -171,8 +177,10 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
 }
 
 impl Pipelines {
-    /// Compiles every shader and builds every pipeline.
-    pub fn new(device: &wgpu::Device) -> Self {
+    /// Compiles every shader and builds every pipeline. Without
+    /// `sample_mask` (GL cannot write it) hair coverage falls back to alpha
+    /// to coverage.
+    pub fn new(device: &wgpu::Device, sample_mask: bool) -> Self {
         let layouts = Layouts::new(device);
         let view = Some(&layouts.view);
         let lighting = Some(&layouts.lighting);
@@ -182,7 +190,7 @@ impl Pipelines {
             dst_factor: wgpu::BlendFactor::One,
             operation: wgpu::BlendOperation::Add,
         };
-        let main = |file, vertex_entry, fragment_entry, buffer, depth| {
+        let main = |file, vertex_entry, fragment_entry, buffer, depth, alpha_to_coverage| {
             pipeline(
                 device,
                 PipelineSpec {
@@ -194,6 +202,7 @@ impl Pipelines {
                     colour: Some((COLOUR_FORMAT, None)),
                     depth: Some(depth),
                     samples: MSAA_SAMPLES,
+                    alpha_to_coverage,
                 },
             )
         };
@@ -204,12 +213,13 @@ impl Pipelines {
                 PipelineSpec {
                     file: shaders::HAIR_SHADOW,
                     vertex_entry: "vs_shadow",
-                    fragment_entry: None,
+                    fragment_entry: Some("fs_first_depth"),
                     groups: &[view],
                     buffer: Some(vertex_layout::<StrandVertex>(&StrandVertex::ATTRIBUTES)),
-                    colour: None,
+                    colour: Some((FIRST_DEPTH_FORMAT, None)),
                     depth: Some(less),
                     samples: 1,
+                    alpha_to_coverage: false,
                 },
             ),
             shadow_opacity: pipeline(
@@ -229,6 +239,7 @@ impl Pipelines {
                     )),
                     depth: None,
                     samples: 1,
+                    alpha_to_coverage: false,
                 },
             ),
             backdrop: main(
@@ -237,6 +248,7 @@ impl Pipelines {
                 "fs_backdrop",
                 None,
                 (false, wgpu::CompareFunction::Always),
+                false,
             ),
             head: main(
                 shaders::HEAD,
@@ -244,13 +256,19 @@ impl Pipelines {
                 "fs_head",
                 Some(vertex_layout::<MeshVertex>(&MeshVertex::ATTRIBUTES)),
                 less,
+                false,
             ),
             hair: main(
                 shaders::HAIR,
                 "vs_hair",
-                "fs_hair",
+                if sample_mask {
+                    "fs_hair"
+                } else {
+                    "fs_hair_alpha"
+                },
                 Some(vertex_layout::<StrandVertex>(&StrandVertex::ATTRIBUTES)),
                 less,
+                !sample_mask,
             ),
             layouts,
         }
