@@ -15,6 +15,17 @@
 //!    checking the state stays finite.
 //! 4. [`SimReport`] ([`sim_report`]) gathers timings, energies and strand
 //!    shapes, for a summary and the JSON file of `docs/sim-json.md`.
+//!
+//! # From a style file to a picture (`helixhair render`)
+//!
+//! 1. [`groom::Groom`] grows the style's scalp placements ([`style_groom`])
+//!    into roots on the head (the default head or an OBJ).
+//! 2. [`HeadlessSim`] simulates the grown style for the asked frames.
+//! 3. [`guide_curves`] samples every simulated strand along its helical
+//!    elements; [`drawn_hair`] interpolates the drawn strands from them,
+//!    colours them and drapes them over the head.
+//! 4. [`helixhair_render::OffscreenRenderer`] draws the picture, and
+//!    [`render_cmd`] writes it as PNG ([`render_cmd::run_render`]).
 
 #![warn(missing_docs)]
 
@@ -36,6 +47,7 @@ pub mod style_groom_validate;
 pub mod style_validate;
 
 pub use field_path::FieldPath;
+pub use groom::Groom;
 pub use headless::{HeadlessSim, SimError, SimOverrides};
 pub use sim_report::SimReport;
 pub use style::{Root, STYLE_VERSION, StrandGroup, Style};
