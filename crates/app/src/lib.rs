@@ -30,9 +30,12 @@
 #![warn(missing_docs)]
 
 pub mod atomic_write;
+pub mod auto_choice;
+pub mod bench;
 pub mod camera_arg;
 pub mod cli;
 pub mod drawn_hair;
+pub mod error_model;
 pub mod field_path;
 pub mod groom;
 pub mod guide_curves;
