@@ -37,7 +37,9 @@ struct Lighting {
 
 @group(0) @binding(0) var<uniform> view: View;
 @group(1) @binding(0) var<uniform> lighting: Lighting;
-@group(1) @binding(1) var shadow_depth: texture_depth_2d;
+// Depth of the first hair the light meets, per texel (in a half-float
+// colour texture, not a depth texture: GL cannot load from depth textures).
+@group(1) @binding(1) var shadow_depth: texture_2d<f32>;
 @group(2) @binding(0) var opacity_map: texture_2d<f32>;
 @group(2) @binding(1) var opacity_sampler: sampler;
 
@@ -102,7 +104,7 @@ fn hair_opacity(world: vec3<f32>) -> f32 {
     }
     let size = vec2<i32>(textureDimensions(shadow_depth));
     let texel = clamp(vec2<i32>(p.xy * vec2<f32>(size)), vec2<i32>(0), size - 1);
-    let first = textureLoad(shadow_depth, texel, 0);
+    let first = textureLoad(shadow_depth, texel, 0).x;
     let depth_m = (p.z - first) * lighting.shadow.z;
     if depth_m <= 0.0 {
         return 0.0;
@@ -127,6 +129,13 @@ fn hair_opacity(world: vec3<f32>) -> f32 {
 // Fraction of the light that reaches `world` through the hair.
 fn light_transmittance(world: vec3<f32>) -> f32 {
     return exp(-hair_opacity(world));
+}
+
+// Display curve: linear light to [0, 1) with a soft shoulder
+// (1 - exp(-exposure c)), so bright highlights roll off instead of
+// clipping. The target's sRGB encoding comes after.
+fn tone_map(c: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(1.0) - exp(-1.3 * c);
 }
 
 // A hash of a float in [0, 1) to [0, 1).

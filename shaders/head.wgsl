@@ -32,7 +32,7 @@ fn fs_head(in: HeadOut) -> @location(0) vec4<f32> {
     let to_light = lighting.light_direction.xyz;
     let to_eye = normalize(view.eye.xyz - in.world);
     let skin = vec3<f32>(0.62, 0.42, 0.33);
-    let albedo = mix(skin, lighting.scalp.rgb * 0.6, in.scalp);
+    let albedo = mix(skin, lighting.scalp.rgb * 0.8, in.scalp);
     let wrap = max((dot(n, to_light) + 0.3) / 1.3, 0.0);
     let h = normalize(to_light + to_eye);
     let highlight = 0.08 * pow(max(dot(n, h), 0.0), 24.0) * (1.0 - in.scalp);
@@ -41,5 +41,5 @@ fn fs_head(in: HeadOut) -> @location(0) vec4<f32> {
     let direct = (albedo * wrap + vec3<f32>(highlight)) * light * shadow;
     let sky = mix(0.55, 1.0, n.y * 0.5 + 0.5);
     let ambient = albedo * lighting.ambient.rgb * lighting.ambient.w * sky;
-    return vec4<f32>(direct + ambient, 1.0);
+    return vec4<f32>(tone_map(direct + ambient), 1.0);
 }

@@ -50,6 +50,9 @@ pub enum Command {
     /// Measure speed against accuracy: cost per step, error against cost,
     /// stability maps and vibration modes, as CSV files and SVG charts.
     Bench(BenchArgs),
+    /// Simulate a style, then draw it offscreen into a PNG (or one PNG per
+    /// frame) on any graphics adapter, lavapipe included.
+    Render(crate::render_cmd::RenderArgs),
 }
 
 /// Arguments of `helixhair sim`.
@@ -106,6 +109,7 @@ pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow:
         None => run_window(&cli.window),
         Some(Command::Sim(args)) => run_sim(args, stdout, stderr),
         Some(Command::Bench(args)) => run_bench(args, stdout),
+        Some(Command::Render(args)) => crate::render_cmd::run_render(args, stdout),
     }
 }
 

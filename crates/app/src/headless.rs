@@ -17,9 +17,12 @@ use std::time::Instant;
 use helixhair_physics::{GuardEvent, HairSystem, Method, ParamError, RigidMotion};
 use thiserror::Error;
 
+use helixhair_render::head_generate::default_head;
+
 use crate::auto_choice::{Choice, choose};
 use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
+use crate::groom::{grow_scalp_roots, needs_head};
 use crate::style::Style;
 use crate::style_error::StyleIssue;
 use crate::style_validate::{check_accuracy_target, param_issue};
@@ -94,7 +97,16 @@ pub struct HeadlessSim {
 impl HeadlessSim {
     /// Builds the hair system of `style`, with `overrides` applied to its
     /// settings (and checked).
+    /// A style that places roots on the scalp has them grown on the
+    /// default head first ([`crate::groom`]).
     pub fn new(style: &Style, overrides: SimOverrides) -> Result<Self, SimError> {
+        let grown;
+        let style = if needs_head(style) {
+            grown = grow_scalp_roots(style, &default_head());
+            &grown
+        } else {
+            style
+        };
         let mut settings = style.sim.clone();
         if let Some(method) = overrides.method {
             settings.method = method;

@@ -16,28 +16,51 @@
 //!    checking the state stays finite.
 //! 4. [`SimReport`] ([`sim_report`]) gathers timings, energies and strand
 //!    shapes, for a summary and the JSON file of `docs/sim-json.md`.
+//!
+//! # From a style file to a picture (`helixhair render`)
+//!
+//! 1. [`groom::Groom`] grows the style's scalp placements ([`style_groom`])
+//!    into roots on the head (the default head or an OBJ).
+//! 2. [`HeadlessSim`] simulates the grown style for the asked frames.
+//! 3. [`guide_curves`] samples every simulated strand along its helical
+//!    elements; [`drawn_hair`] interpolates the drawn strands from them,
+//!    colours them and drapes them over the head.
+//! 4. [`helixhair_render::OffscreenRenderer`] draws the picture, and
+//!    [`render_cmd`] writes it as PNG ([`render_cmd::run_render`]).
 
 #![warn(missing_docs)]
 
 pub mod atomic_write;
 pub mod auto_choice;
 pub mod bench;
+pub mod camera_arg;
 pub mod cli;
+pub mod drawn_hair;
 pub mod error_model;
 pub mod field_path;
+pub mod groom;
+pub mod guide_curves;
 pub mod headless;
+pub mod render_cmd;
 pub mod sim_report;
 pub mod source_map;
 pub mod style;
 pub mod style_error;
+pub mod style_groom;
+pub mod style_groom_validate;
 pub mod style_validate;
 pub mod window;
 
 pub use field_path::FieldPath;
+pub use groom::Groom;
 pub use headless::{HeadlessSim, SimError, SimOverrides};
 pub use sim_report::SimReport;
 pub use style::{Root, STYLE_VERSION, StrandGroup, Style};
 pub use style_error::{StyleError, StyleErrorKind, StyleIssue};
 
+#[cfg(test)]
+mod groom_tests;
+#[cfg(test)]
+mod style_groom_tests;
 #[cfg(test)]
 mod style_tests;

@@ -23,6 +23,7 @@ use crate::atomic_write::write_atomically;
 use crate::field_path::FieldPath;
 use crate::source_map::{SourceMap, TextPosition};
 use crate::style_error::{StyleError, StyleErrorKind, StyleIssue};
+use crate::style_groom::{RenderStrands, ScalpPlacement};
 use crate::style_validate::check_version;
 
 /// The style format version this build reads and writes. Files with any
@@ -65,8 +66,25 @@ pub struct StrandGroup {
     /// default.
     #[serde(default)]
     pub params: StrandParams,
-    /// One root per strand; at least one.
+    /// One root per strand, listed; at least one unless `scalp` places
+    /// roots instead (both together: the listed ones first).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub roots: Vec<Root>,
+    /// Roots spread evenly on the head's scalp, combed in a direction.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::style_groom::inline_option"
+    )]
+    pub scalp: Option<ScalpPlacement>,
+    /// The strands drawn for this group: count, interpolation from the
+    /// guides, colour. Without it, the guides themselves are drawn.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::style_groom::inline_option"
+    )]
+    pub render: Option<RenderStrands>,
 }
 
 /// Where a strand grows from, in head coordinates (metres, y up, z towards
@@ -170,7 +188,8 @@ impl Style {
         })
     }
 
-    /// Total number of strands (roots) over all groups.
+    /// Total number of listed roots over all groups (scalp placements not
+    /// counted: they need a head, see [`crate::groom`]).
     pub fn strand_count(&self) -> usize {
         self.groups.iter().map(|g| g.roots.len()).sum()
     }

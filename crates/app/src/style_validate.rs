@@ -11,6 +11,7 @@ use helixhair_physics::ParamError;
 use crate::field_path::FieldPath;
 use crate::style::{Root, STYLE_VERSION, Style};
 use crate::style_error::{StyleErrorKind, StyleIssue};
+use crate::style_groom_validate::{validate_render, validate_scalp};
 
 /// Largest distance of a root coordinate from the head's origin, metres:
 /// a head is a tenth of that, so anything beyond is a typo.
@@ -44,11 +45,17 @@ impl Style {
                 .validate()
                 .map_err(|e| param_issue(&at.field("params"), &e))?;
             let roots = at.field("roots");
-            if group.roots.is_empty() {
+            if group.roots.is_empty() && group.scalp.is_none() {
                 return Err(invalid(
                     roots,
-                    "must list at least one root (one per strand)",
+                    "must list at least one root (one per strand), or give a `scalp` placement",
                 ));
+            }
+            if let Some(scalp) = &group.scalp {
+                validate_scalp(scalp, &at.field("scalp"))?;
+            }
+            if let Some(render) = &group.render {
+                validate_render(render, &at.field("render"))?;
             }
             for (j, root) in group.roots.iter().enumerate() {
                 validate_root(root, &roots.index(j))?;
@@ -88,7 +95,7 @@ fn validate_root(root: &Root, at: &FieldPath) -> Result<(), StyleIssue> {
 }
 
 /// Every component finite and, with `limit`, inside `[-limit, limit]`.
-fn check_finite(v: DVec3, at: &FieldPath, limit: Option<f64>) -> Result<(), StyleIssue> {
+pub(crate) fn check_finite(v: DVec3, at: &FieldPath, limit: Option<f64>) -> Result<(), StyleIssue> {
     for (k, x) in v.to_array().into_iter().enumerate() {
         if !x.is_finite() {
             return Err(invalid(
@@ -120,7 +127,7 @@ fn issue(field: FieldPath, kind: StyleErrorKind, message: String) -> StyleIssue 
     }
 }
 
-fn invalid(field: FieldPath, message: impl Into<String>) -> StyleIssue {
+pub(crate) fn invalid(field: FieldPath, message: impl Into<String>) -> StyleIssue {
     issue(field, StyleErrorKind::InvalidValue, message.into())
 }
 

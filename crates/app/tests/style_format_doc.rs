@@ -135,3 +135,40 @@ fn every_field_and_variant_is_documented() {
         );
     }
 }
+
+#[test]
+fn every_groom_field_and_method_is_documented() {
+    use helixhair_app::style_groom::{
+        RenderStrands, ScalpPlacement, ScalpRegion, StrandInterpolation,
+    };
+    let doc = doc();
+    let region = ScalpRegion {
+        towards: glam::DVec3::Z,
+        from_deg: 0.0,
+        to_deg: 180.0,
+    };
+    let scalp = ScalpPlacement {
+        count: 1,
+        comb: glam::DVec3::Z,
+        lift_deg: 0.0,
+        seed: 1,
+        region: Some(region.clone()),
+    };
+    let mut names = field_names(&scalp);
+    names.extend(field_names(&region));
+    names.extend(field_names(&RenderStrands::default()));
+    names.extend(["scalp", "render"].map(String::from));
+    for name in names {
+        assert!(
+            doc.contains(&format!("| `{name}` |")),
+            "`{name}` has no row in docs/style-format.md"
+        );
+    }
+    for method in [StrandInterpolation::Nearest, StrandInterpolation::Blend3] {
+        let name = ron_text(&method);
+        assert!(
+            doc.contains(&format!("| `{name}` |")),
+            "{name} is not documented"
+        );
+    }
+}

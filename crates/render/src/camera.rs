@@ -35,14 +35,14 @@ pub struct OrbitCamera {
 
 impl Default for OrbitCamera {
     /// A three-quarter portrait of a head at the origin: 35° to the side,
-    /// slightly above, 0.75 m away with a 30° lens, which frames a head with
+    /// slightly above, 0.8 m away with a 30° lens, which frames a head with
     /// shoulder-length hair.
     fn default() -> Self {
         Self {
-            target_m: Vec3::new(0.0, -0.03, 0.0),
+            target_m: Vec3::new(0.0, -0.05, 0.0),
             yaw_rad: 35f32.to_radians(),
             pitch_rad: 12f32.to_radians(),
-            distance_m: 0.75,
+            distance_m: 0.8,
             fov_y_rad: 30f32.to_radians(),
         }
     }
@@ -122,6 +122,6 @@ mod tests {
         let d = (camera.eye_m() - camera.target_m).length();
         assert!((d - camera.distance_m).abs() < 1e-5);
         camera.zoom(0.5);
-        assert!((camera.distance_m - 0.375).abs() < 1e-6);
+        assert!((camera.distance_m - 0.4).abs() < 1e-6);
     }
 }

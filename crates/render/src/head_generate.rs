@@ -45,21 +45,25 @@ fn bump(d: Vec3, centre: Vec3, width_rad: f32, height_m: f32) -> f32 {
 pub fn head_point_m(d: Vec3) -> Vec3 {
     let below = (-d.y).max(0.0);
     // Half-widths, metres: the jaw narrows the lower half.
-    let radius_x = 0.074 * (1.0 - 0.32 * below.powi(2));
-    let radius_y = if d.y > 0.0 { 0.100 } else { 0.125 };
+    let radius_x = 0.074 * (1.0 - 0.30 * below.powi(2));
+    let radius_y = if d.y > 0.0 { 0.100 } else { 0.120 };
     let radius_z = if d.z > 0.0 {
-        0.092 * (1.0 - 0.22 * below.powi(2))
+        0.090 * (1.0 - 0.30 * below.powi(2))
     } else {
-        0.102 * (1.0 - 0.45 * below.powi(2))
+        0.100 * (1.0 - 0.50 * below.powi(2))
     };
     let mirrored = Vec3::new(d.x.abs(), d.y, d.z);
-    let relief = bump(d, Vec3::new(0.0, -0.12, 1.0), 0.16, 0.020) // nose
-        + bump(d, Vec3::new(0.0, -0.32, 1.0), 0.12, 0.006) // lips
+    let relief = bump(d, Vec3::new(0.0, -0.04, 1.0), 0.10, 0.007) // nose bridge
+        + bump(d, Vec3::new(0.0, -0.20, 1.0), 0.12, 0.020) // nose tip
+        + bump(d, Vec3::new(0.0, -0.42, 1.0), 0.20, 0.008) // lips
+        + bump(d, Vec3::new(0.0, -0.78, 0.62), 0.16, 0.010) // chin
         + bump(d, Vec3::new(0.0, 0.16, 1.0), 0.35, 0.004) // brow
-        + bump(mirrored, Vec3::new(0.55, -0.25, 0.8), 0.25, 0.006) // cheeks
+        + bump(mirrored, Vec3::new(0.55, -0.25, 0.8), 0.25, 0.005) // cheeks
         + bump(mirrored, Vec3::new(1.0, -0.02, -0.08), 0.14, 0.012) // ears
-        - bump(mirrored, Vec3::new(0.36, 0.02, 0.93), 0.13, 0.009); // eye sockets
-    Vec3::new(d.x * radius_x, d.y * radius_y, d.z * radius_z) + relief * d
+        - bump(mirrored, Vec3::new(0.36, 0.03, 0.93), 0.16, 0.005); // eye sockets
+    // The jaw and chin sit forward of the skull's centre, the nape too.
+    let forward_m = 0.045 * below.powf(1.5);
+    Vec3::new(d.x * radius_x, d.y * radius_y, d.z * radius_z + forward_m) + relief * d
 }
 
 /// Whether the head surface in direction `d` grows hair: above a hairline
@@ -130,15 +134,17 @@ pub fn default_head() -> HeadMesh {
             }
         }
     }
-    // The neck: a slightly tapered tube from inside the jaw down.
+    // The neck: a tube from inside the jaw down, flaring at the bottom
+    // into the start of the shoulders (wide in x, shallow in z).
     let neck_first = head.mesh.positions.len() as u32;
     for ring in 0..=NECK_RINGS {
         let t = ring as f32 / NECK_RINGS as f32;
-        let y_m = -0.06 - 0.20 * t;
-        let radius_m = 0.050 + 0.006 * t;
+        let y_m = -0.05 - 0.19 * t;
+        let flare = t.powi(4);
+        let (radius_x_m, radius_z_m) = (0.052 + 0.10 * flare, 0.047 + 0.025 * flare);
         for segment in 0..HEAD_SEGMENTS {
             let (sin, cos) = (TAU * segment as f32 / HEAD_SEGMENTS as f32).sin_cos();
-            let p = Vec3::new(radius_m * sin, y_m, -0.02 + radius_m * 0.9 * cos);
+            let p = Vec3::new(radius_x_m * sin, y_m, -0.005 + radius_z_m * cos);
             head.mesh.positions.push(p);
         }
     }

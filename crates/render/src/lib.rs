@@ -12,7 +12,8 @@
 //!   copies apart across the strand's screen-space direction, tapering from
 //!   root to tip. Strands thinner than a pixel are drawn a pixel wide with
 //!   partial coverage, which 4× MSAA turns into antialiased, order-free
-//!   transparency (alpha to coverage).
+//!   transparency (a random subset of the samples per strand and pixel,
+//!   so overlapping thin strands add up).
 //! - **Fibre shading**: Kajiya–Kay diffuse plus Marschner-style R, TRT and
 //!   TT lobes from shifted tangents (`shaders/hair.wgsl`).
 //! - **Self-shadowing**: a deep opacity map from the key light
@@ -34,6 +35,7 @@
 pub mod camera;
 pub mod gpu;
 pub mod head_generate;
+pub mod head_shell;
 pub mod interpolate;
 pub mod mesh;
 pub mod obj;

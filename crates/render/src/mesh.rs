@@ -80,16 +80,26 @@ pub struct HeadMesh {
 }
 
 impl HeadMesh {
-    /// Per-vertex scalp weight: 1 for vertices of scalp triangles, else 0.
-    /// The head shader darkens the scalp with it so thin hair reads fuller.
+    /// Per-vertex scalp weight: the fraction of a vertex's triangles that
+    /// are scalp (1 inside the scalp, 0 away from it, in between along its
+    /// edge). The head shader tints the scalp with it so thin hair reads
+    /// fuller, and the fractions soften the edge of the tint.
     pub fn scalp_vertex_weights(&self) -> Vec<f32> {
-        let mut weights = vec![0.0; self.mesh.positions.len()];
+        let n = self.mesh.positions.len();
+        let (mut scalp, mut all) = (vec![0.0f32; n], vec![0.0f32; n]);
+        for &i in &self.mesh.indices {
+            all[i as usize] += 1.0;
+        }
         for &t in &self.scalp_triangles {
             for k in 0..3 {
-                weights[self.mesh.indices[3 * t as usize + k] as usize] = 1.0;
+                scalp[self.mesh.indices[3 * t as usize + k] as usize] += 1.0;
             }
         }
-        weights
+        scalp
+            .iter()
+            .zip(&all)
+            .map(|(s, a)| if *a > 0.0 { s / a } else { 0.0 })
+            .collect()
     }
 
     /// Total scalp area, square metres.
@@ -125,12 +135,12 @@ mod tests {
     }
 
     #[test]
-    fn scalp_weights_mark_the_vertices_of_scalp_triangles() {
+    fn scalp_weights_are_the_share_of_scalp_triangles() {
         let head = HeadMesh {
             mesh: quad(),
             scalp_triangles: vec![1],
         };
-        assert_eq!(head.scalp_vertex_weights(), [1.0, 0.0, 1.0, 1.0]);
+        assert_eq!(head.scalp_vertex_weights(), [0.5, 0.0, 0.5, 1.0]);
         assert!((head.scalp_area_m2() - 0.5).abs() < 1e-6);
     }
 }

@@ -50,9 +50,9 @@ impl Default for Light {
         Self {
             direction: Vec3::new(0.55, 0.75, 0.65).normalize(),
             colour: Vec3::new(1.0, 0.96, 0.9),
-            intensity: 2.6,
+            intensity: 1.7,
             ambient_colour: Vec3::new(0.6, 0.68, 0.8),
-            ambient_strength: 0.35,
+            ambient_strength: 0.3,
         }
     }
 }

@@ -171,3 +171,45 @@ fn shading_varies_along_a_strand() {
         "luma along the strand only spans {lo}..{hi}: {samples:?}"
     );
 }
+
+/// A sheet of vertical strands at depth `z_m`, from `x0_m` to `x1_m`,
+/// shifted by `shift_m`.
+fn sheet(strands: &mut StrandBuffers, x0_m: f32, x1_m: f32, z_m: f32, shift_m: Vec3) {
+    for i in 0..=80 {
+        let x = x0_m + (x1_m - x0_m) * i as f32 / 80.0;
+        strands.push_strand((0..=10).map(|k| Vec3::new(x, 0.1 - 0.02 * k as f32, z_m) + shift_m));
+    }
+}
+
+#[test]
+fn hair_between_the_light_and_a_strand_shadows_it() {
+    let head = default_head();
+    // Sheet B hangs in front of the face; sheet A is the same sheet moved
+    // 3 cm towards the light. Seen from the front, A does not cover B's
+    // left edge, but it lies between that edge and the light.
+    let towards_light = Light::default().direction;
+    let hair = |with_a: bool| {
+        let mut strands = StrandBuffers::default();
+        sheet(&mut strands, -0.06, 0.0, 0.15, Vec3::ZERO);
+        if with_a {
+            sheet(&mut strands, -0.06, 0.0, 0.15, towards_light * 0.03);
+        }
+        let n = strands.strand_count();
+        HairStrands {
+            strands,
+            colours: vec![Vec3::new(0.6, 0.5, 0.4); n],
+            root_width_m: 1e-3,
+            tip_width_m: 1e-3,
+        }
+    };
+    let Some(lit) = render(&hair(false), &head, "sheet_alone") else {
+        return;
+    };
+    let Some(shadowed) = render(&hair(true), &head, "sheet_shadowed") else {
+        return;
+    };
+    let (x, y) = pixel_of(Vec3::new(-0.056, 0.02, 0.15));
+    let (l, s) = (luma(lit.pixel(x, y)), luma(shadowed.pixel(x, y)));
+    // Threshold: at least 15% darker in the shadow of a dense sheet.
+    assert!(s < 0.85 * l, "luma {s} in shadow vs {l} lit");
+}

@@ -13,7 +13,7 @@ use helixhair_physics::Method;
 use serde::Serialize;
 
 use super::BenchContext;
-use super::chart::{Axis, LineChart, Series, draw_line_chart, series_per_method};
+use super::chart::{Axis, LineChart, REFERENCE_COLOUR, Series, draw_line_chart, series_per_method};
 use super::pareto::pareto_front;
 use super::scenes::{CurlClass, RunSetting, Scene, run_scene, tip_rms_error};
 use super::table::write_csv;
@@ -229,7 +229,7 @@ fn draw_scene_chart(
         points: front.into_iter().map(point).collect(),
         line: true,
         markers: false,
-        colour: 6,
+        colour: REFERENCE_COLOUR,
     });
     let blown = rows.iter().filter(|r| !r.finite).count();
     draw_line_chart(

@@ -11,13 +11,16 @@ use std::path::Path;
 use anyhow::anyhow;
 use helixhair_physics::Method;
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 use plotters::prelude::*;
 
 /// Chart size in pixels: wide enough for a legend beside the data.
 pub const CHART_SIZE_PX: (u32, u32) = (900, 560);
 
 /// Colours of successive series, picked to stay apart for common colour
-/// blindness (the Okabe–Ito palette).
+/// blindness (the Okabe–Ito palette, with purple for its yellow, which is
+/// hard to see on white). Index [`REFERENCE_COLOUR`] (black) is kept for
+/// reference lines: the Pareto front, the analytic value.
 pub const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 114, 178),
     RGBColor(213, 94, 0),
@@ -26,8 +29,11 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
     RGBColor(0, 0, 0),
-    RGBColor(240, 228, 66),
+    RGBColor(117, 77, 156),
 ];
+
+/// Palette index of reference lines; [`series_per_method`] skips it.
+pub const REFERENCE_COLOUR: usize = 6;
 
 /// One axis: its label and whether it is logarithmic.
 #[derive(Clone, Debug)]
@@ -66,8 +72,9 @@ pub fn series_per_method<R>(
     methods
         .iter()
         .enumerate()
-        .map(|(colour, m)| {
+        .map(|(i, m)| {
             let label = m.label();
+            let colour = if i >= REFERENCE_COLOUR { i + 1 } else { i };
             Series {
                 points: rows
                     .iter()
@@ -133,6 +140,14 @@ pub fn draw_line_chart_on(
     let all = || plotted.iter().flatten();
     let x_range = padded_range(all().map(|p| p.0));
     let y_range = padded_range(all().map(|p| p.1));
+    let x_spec = TickedAxis {
+        ticks: ticks(&x_range, chart.x.log),
+        range: x_range,
+    };
+    let y_spec = TickedAxis {
+        ticks: ticks(&y_range, chart.y.log),
+        range: y_range,
+    };
     let label = |axis: &Axis, v: f64| short_number(if axis.log { 10f64.powf(v) } else { v });
     let x_label = |v: &f64| label(&chart.x, *v);
     let y_label = |v: &f64| label(&chart.y, *v);
@@ -141,7 +156,7 @@ pub fn draw_line_chart_on(
         .margin(12)
         .x_label_area_size(44)
         .y_label_area_size(72)
-        .build_cartesian_2d(x_range, y_range)
+        .build_cartesian_2d(x_spec, y_spec)
         .map_err(plot_error)?;
     ctx.configure_mesh()
         .x_desc(axis_title(&chart.x))
@@ -205,6 +220,66 @@ pub fn padded_range(values: impl Iterator<Item = f64>) -> Range<f64> {
     lo - pad..hi + pad
 }
 
+/// A linear axis with tick marks where [`ticks`] puts them (plotters' own
+/// linear axis picks round values of the log, not of the value).
+#[derive(Clone, Debug)]
+struct TickedAxis {
+    range: Range<f64>,
+    ticks: Vec<f64>,
+}
+
+impl Ranged for TickedAxis {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        let t = (value - self.range.start) / (self.range.end - self.range.start);
+        limit.0 + (t * f64::from(limit.1 - limit.0)).round() as i32
+    }
+
+    fn key_points<Hint: KeyPointHint>(&self, _hint: Hint) -> Vec<f64> {
+        self.ticks.clone()
+    }
+
+    fn range(&self) -> Range<f64> {
+        self.range.clone()
+    }
+}
+
+/// Tick positions over `range` (log₁₀ values on a log axis): 1, 2, 5 times
+/// powers of ten on a log axis (every integer multiple when that gives
+/// fewer than three), and a 1-2-5 step giving at most eight on a linear one.
+pub fn ticks(range: &Range<f64>, log: bool) -> Vec<f64> {
+    let (lo, hi) = (range.start, range.end);
+    if log {
+        let decades = lo.floor() as i32..=hi.ceil() as i32;
+        let pick = |mantissas: &[f64]| -> Vec<f64> {
+            decades
+                .clone()
+                .flat_map(|k| mantissas.iter().map(move |m| (m * 10f64.powi(k)).log10()))
+                .filter(|v| (lo..=hi).contains(v))
+                .collect()
+        };
+        let coarse = pick(&[1.0, 2.0, 5.0]);
+        if coarse.len() >= 3 {
+            coarse
+        } else {
+            pick(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
+        }
+    } else {
+        let span = (hi - lo).max(1e-12);
+        let base = 10f64.powf((span / 8.0).log10().floor());
+        let step = [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|m| m * base)
+            .find(|s| span / s <= 8.0)
+            .unwrap_or(10.0 * base);
+        let first = (lo / step).ceil() as i64;
+        let last = (hi / step).floor() as i64;
+        (first..=last).map(|i| i as f64 * step).collect()
+    }
+}
+
 /// A tick label: plain for ordinary magnitudes, scientific otherwise.
 pub fn short_number(v: f64) -> String {
     let a = v.abs();
@@ -226,6 +301,16 @@ pub fn plot_error<E: std::fmt::Display>(e: E) -> anyhow::Error {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_ticks_fall_on_one_two_five() {
+        let values: Vec<f64> = ticks(&(0.0..2.5), true)
+            .iter()
+            .map(|v| (10f64.powf(*v) * 1e6).round() / 1e6)
+            .collect();
+        assert_eq!(values, vec![1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0]);
+        assert_eq!(ticks(&(0.0..1.0), false).len(), 6);
+    }
 
     #[test]
     fn ranges_pad_by_a_fraction() {

@@ -27,7 +27,7 @@ use helixhair_physics::{Method, RigidMotion, RootPose, Strand, StrandModel, Stra
 use serde::Serialize;
 
 use super::BenchContext;
-use super::chart::{Axis, LineChart, Series, draw_line_chart, series_per_method};
+use super::chart::{Axis, LineChart, REFERENCE_COLOUR, Series, draw_line_chart, series_per_method};
 use super::cost::SOLVERS;
 use super::table::write_csv;
 
@@ -200,7 +200,7 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
             points: elements.iter().map(|&n| (n as f64, 1.0)).collect(),
             line: true,
             markers: false,
-            colour: 6,
+            colour: REFERENCE_COLOUR,
         });
         let chart = LineChart {
             title: title.into(),

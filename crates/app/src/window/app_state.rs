@@ -12,6 +12,7 @@
 //! 3. records times, energies, the runs' difference and guard messages.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use helixhair_physics::Method;
@@ -60,7 +61,7 @@ pub struct AppState {
     /// The head's motion.
     pub head: HeadDriver,
     /// The head mesh, head coordinates.
-    pub head_mesh: HeadMesh,
+    pub head_mesh: Arc<HeadMesh>,
     /// Live numbers.
     pub readouts: Readouts,
     /// Physics paused.
@@ -80,8 +81,8 @@ pub struct AppState {
 impl AppState {
     /// Starts on `style` (valid), from file `path` if it came from one.
     pub fn new(style: Style, path: Option<&Path>) -> Result<Self, String> {
-        let head_mesh = default_head();
-        let mut sim = LiveSim::new(&style, None)?;
+        let head_mesh = Arc::new(default_head());
+        let mut sim = LiveSim::new(&style, head_mesh.clone(), None)?;
         let mut message = None;
         match HeadCollider::from_head(&head_mesh) {
             Ok(c) => sim.set_collider(Some(c)),

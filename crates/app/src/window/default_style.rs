@@ -89,6 +89,8 @@ pub fn default_style(guides: usize) -> Style {
             name: "all".into(),
             params: curly,
             roots: scalp_roots(&default_head(), guides.max(1)),
+            scalp: None,
+            render: None,
         }],
     }
 }

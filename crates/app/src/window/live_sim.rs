@@ -15,12 +15,15 @@
 //! at zero each time, so the head trajectory is read at the app's time
 //! ([`LiveSim::now_secs`]) through a shifted view of it.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 use helixhair_physics::{
     Energies, GuardEvent, HairSystem, HeadTrajectory, Method, RigidMotion, StageTimes,
 };
-use helixhair_render::StrandBuffers;
+use helixhair_render::{HeadMesh, StrandBuffers};
 
+use crate::groom::{grow_scalp_roots, needs_head};
 use crate::style::Style;
 
 use super::collision::HeadCollider;
@@ -31,7 +34,9 @@ use super::resample::resample_per_element;
 #[derive(Clone, Debug)]
 pub struct LiveSim {
     system: HairSystem,
+    head: Arc<HeadMesh>,
     built: Style,
+    built_grown: Style,
     method_override: Option<Method>,
     clock_offset_secs: f64,
     collider: Option<HeadCollider>,
@@ -52,11 +57,20 @@ impl HeadTrajectory for Shifted<'_> {
 impl LiveSim {
     /// Builds the system of `style`, solved by `method_override` instead
     /// of the style's solver when given (the compare view's second run).
-    pub fn new(style: &Style, method_override: Option<Method>) -> Result<Self, String> {
-        let system = build(style, method_override)?;
+    /// Groups placed on the scalp (`scalp` in the style) grow their roots on
+    /// `head`.
+    pub fn new(
+        style: &Style,
+        head: Arc<HeadMesh>,
+        method_override: Option<Method>,
+    ) -> Result<Self, String> {
+        let grown = grow(style, &head);
+        let system = build(&grown, method_override)?;
         Ok(Self {
             system,
+            head,
             built: style.clone(),
+            built_grown: grown,
             method_override,
             clock_offset_secs: 0.0,
             collider: None,
@@ -107,16 +121,18 @@ impl LiveSim {
                 .set_method(self.method_override.unwrap_or(style.sim.method));
             return Ok(true);
         }
-        let mut system = build(style, self.method_override)?;
-        let same_roots = style.groups.len() == self.built.groups.len()
-            && style
+        let grown = grow(style, &self.head);
+        let mut system = build(&grown, self.method_override)?;
+        let old = &self.built_grown;
+        let same_roots = grown.groups.len() == old.groups.len()
+            && grown
                 .groups
                 .iter()
-                .zip(&self.built.groups)
+                .zip(&old.groups)
                 .all(|(a, b)| a.roots.len() == b.roots.len());
         if same_roots {
             let mut index = 0;
-            for (new_group, old_group) in style.groups.iter().zip(&self.built.groups) {
+            for (new_group, old_group) in grown.groups.iter().zip(&old.groups) {
                 let old_lengths = old_group.params.element_lengths();
                 let new_lengths = new_group.params.element_lengths();
                 for _ in &new_group.roots {
@@ -140,6 +156,7 @@ impl LiveSim {
             c.attach(&mut self.system);
         }
         self.built = style.clone();
+        self.built_grown = grown;
         Ok(true)
     }
 
@@ -208,6 +225,16 @@ pub fn tip_difference_m(a: &[DVec3], b: &[DVec3]) -> (f64, f64) {
     (rms, d.iter().copied().fold(0.0, f64::max))
 }
 
+/// `style` with scalp placements grown into roots on `head` (the style
+/// itself when it has none).
+fn grow(style: &Style, head: &HeadMesh) -> Style {
+    if needs_head(style) {
+        grow_scalp_roots(style, head)
+    } else {
+        style.clone()
+    }
+}
+
 fn build(style: &Style, method_override: Option<Method>) -> Result<HairSystem, String> {
     let mut settings = style.sim.clone();
     if let Some(method) = method_override {
@@ -225,6 +252,7 @@ fn build(style: &Style, method_override: Option<Method>) -> Result<HairSystem, S
 #[cfg(test)]
 mod tests {
     use helixhair_physics::NaturalShape;
+    use helixhair_render::head_generate::default_head;
 
     use super::super::default_style::default_style;
     use super::super::head_motion::HeadDriver;
@@ -240,7 +268,7 @@ mod tests {
     #[test]
     fn edits_keep_the_state_and_the_clock() {
         let mut style = default_style(12);
-        let mut sim = LiveSim::new(&style, None).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None).unwrap();
         run(&mut sim, 10);
         let before = sim.strand_buffers();
         let t = sim.now_secs();
@@ -269,7 +297,7 @@ mod tests {
     fn a_new_curl_is_reached_without_a_reset() {
         let mut style = default_style(4);
         style.groups[0].params.natural_shape = NaturalShape::Straight;
-        let mut sim = LiveSim::new(&style, None).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None).unwrap();
         style.groups[0].params.natural_shape = NaturalShape::Helix {
             radius_m: 0.01,
             step_m: 0.02,

@@ -45,6 +45,7 @@ pub struct WindowGpu {
     scenes: [Option<(OffscreenRenderer, egui::TextureId)>; 2],
     /// Adapter name and backend.
     pub adapter_label: String,
+    backend: wgpu::Backend,
 }
 
 impl WindowGpu {
@@ -101,6 +102,7 @@ impl WindowGpu {
             egui,
             scenes: [None, None],
             adapter_label,
+            backend: info.backend,
         })
     }
 
@@ -127,6 +129,7 @@ impl WindowGpu {
                 device: self.device.clone(),
                 queue: self.queue.clone(),
                 adapter_label: self.adapter_label.clone(),
+                backend: self.backend,
             };
             let settings = RenderSettings {
                 shadow_map_px: WINDOW_SHADOW_MAP_PX,

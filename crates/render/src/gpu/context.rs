@@ -24,6 +24,17 @@ pub enum GpuError {
         /// What it said.
         error: wgpu::RequestDeviceError,
     },
+    /// The adapter cannot build the renderer's pipelines.
+    #[error(
+        "the graphics adapter `{adapter}` cannot run the renderer's shaders ({error}); \
+         try another backend, e.g. WGPU_BACKEND=vulkan"
+    )]
+    Unsupported {
+        /// The adapter's name.
+        adapter: String,
+        /// What wgpu reported.
+        error: String,
+    },
     /// Reading the rendered image back failed.
     #[error("reading the image back from the GPU failed: {0}")]
     Readback(String),
@@ -48,6 +59,8 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     /// Adapter name and backend, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)`.
     pub adapter_label: String,
+    /// The backend the adapter runs on.
+    pub backend: wgpu::Backend,
 }
 
 impl GpuContext {
@@ -75,6 +88,7 @@ impl GpuContext {
             device,
             queue,
             adapter_label,
+            backend: info.backend,
         })
     }
 }

@@ -58,7 +58,18 @@ impl OffscreenRenderer {
                 max_px,
             });
         }
-        let pipelines = Pipelines::new(&gpu.device);
+        // An adapter that cannot run a shader (a backend without a feature
+        // it uses) is an error to report, not a panic.
+        let internal = gpu.device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let validation = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let pipelines = Pipelines::new(&gpu.device, gpu.backend != wgpu::Backend::Gl);
+        let errors = [validation, internal].map(|scope| pollster::block_on(scope.pop()));
+        if let Some(error) = errors.into_iter().flatten().next() {
+            return Err(GpuError::Unsupported {
+                adapter: gpu.adapter_label.clone(),
+                error: error.to_string(),
+            });
+        }
         let targets = Targets::new(&gpu.device, &settings);
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("opacity"),
@@ -203,14 +214,31 @@ impl OffscreenRenderer {
 
         let t = &self.targets;
         let p = &self.pipelines;
-        let mut pass = begin(encoder, "shadow depth", None, Some(&t.light_depth));
+        // Cleared to the far plane: no hair.
+        let far = wgpu::Color {
+            r: 1.0,
+            g: 0.0,
+            b: 0.0,
+            a: 0.0,
+        };
+        let mut pass = begin(
+            encoder,
+            "shadow depth",
+            Some((&t.light_depth, None, far)),
+            Some(&t.light_depth_buffer),
+        );
         if let Some(hair) = &hair {
             pass.set_pipeline(&p.shadow_depth);
             pass.set_bind_group(0, &bindings.light, &[]);
             hair.draw(&mut pass);
         }
         drop(pass);
-        let mut pass = begin(encoder, "shadow opacity", Some((&t.opacity, None)), None);
+        let mut pass = begin(
+            encoder,
+            "shadow opacity",
+            Some((&t.opacity, None, wgpu::Color::TRANSPARENT)),
+            None,
+        );
         if let Some(hair) = &hair {
             pass.set_pipeline(&p.shadow_opacity);
             pass.set_bind_group(0, &bindings.light, &[]);
@@ -222,7 +250,7 @@ impl OffscreenRenderer {
         let mut pass = begin(
             encoder,
             "main",
-            Some((&t.msaa_colour, Some(&picture))),
+            Some((&t.msaa_colour, Some(&picture), wgpu::Color::BLACK)),
             Some(&t.msaa_depth),
         );
         pass.set_bind_group(0, &bindings.camera, &[]);
@@ -240,28 +268,36 @@ impl OffscreenRenderer {
     }
 }
 
-/// Starts a pass that clears its targets: colour (with an optional
-/// resolve target, in which case the multisampled colour is discarded)
-/// and depth.
+/// A colour target: the view, an optional resolve target (the
+/// multisampled colour is then discarded), and the clear colour.
+type ColourTarget<'a> = (
+    &'a wgpu::TextureView,
+    Option<&'a wgpu::TextureView>,
+    wgpu::Color,
+);
+
+/// Starts a pass that clears its targets: colour and depth (to 1).
 fn begin<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
-    colour: Option<(&wgpu::TextureView, Option<&wgpu::TextureView>)>,
+    colour: Option<ColourTarget<'_>>,
     depth: Option<&wgpu::TextureView>,
 ) -> wgpu::RenderPass<'e> {
-    let colour = colour.map(|(view, resolve_target)| wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target,
-        ops: wgpu::Operations {
-            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-            store: if resolve_target.is_some() {
-                wgpu::StoreOp::Discard
-            } else {
-                wgpu::StoreOp::Store
+    let colour = colour.map(
+        |(view, resolve_target, clear)| wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(clear),
+                store: if resolve_target.is_some() {
+                    wgpu::StoreOp::Discard
+                } else {
+                    wgpu::StoreOp::Store
+                },
             },
         },
-    });
+    );
     let colours = [colour];
     let colour_count = usize::from(colours[0].is_some());
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

@@ -2,9 +2,9 @@
 //!
 //! | pass | target | pipeline | bind groups |
 //! | --- | --- | --- | --- |
-//! | shadow depth | light depth (`Depth32Float`) | `shadow_depth`: ribbons, no colour | view (light) |
+//! | shadow depth | first-hair depth (`Rgba16Float`) + depth buffer | `shadow_depth`: ribbons writing their depth | view (light) |
 //! | shadow opacity | four layers (`Rgba16Float`, additive) | `shadow_opacity` | view (light), lighting + light depth |
-//! | main (4× MSAA) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (alpha to coverage) | view (camera), lighting + light depth, opacity layers |
+//! | main (4× MSAA) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (stochastic sample mask) | view (camera), lighting + light depth, opacity layers |
 //!
 //! Group 0 is always a [`View`](super::gpu_data::View), group 1 the
 //! [`Lighting`](super::gpu_data::Lighting) with the light's depth texture,
@@ -19,10 +19,15 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Colour format of the picture (shaders write linear light; the format
 /// encodes sRGB).
 pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Format of the light's first-hair depth, read back by later passes. Half
+/// floats resolve depth to about 5e-4 of the light's depth range (a few
+/// tenths of a millimetre over a head), well under the first opacity
+/// layer; R32Float would be finer but GL cannot render to it.
+pub const FIRST_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of the four opacity layers.
 pub const OPACITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Samples per pixel of the main pass (antialiasing, and alpha to coverage
-/// for strands thinner than a pixel).
+/// Samples per pixel of the main pass (antialiasing, and partial coverage
+/// of strands thinner than a pixel through the sample mask).
 pub const MSAA_SAMPLES: u32 = 4;
 
 /// The bind group layouts of groups 0, 1 and 2.
@@ -69,7 +74,8 @@ fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 fn texture_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        // The hair is shaded per point, in the vertex shader.
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
         ty: wgpu::BindingType::Texture {
             sample_type,
             view_dimension: wgpu::TextureViewDimension::D2,
@@ -93,7 +99,7 @@ impl Layouts {
                 "lighting",
                 &[
                     uniform_entry(0),
-                    texture_entry(1, wgpu::TextureSampleType::Depth),
+                    texture_entry(1, wgpu::TextureSampleType::Float { filterable: false }),
                 ],
             ),
             opacity: layout(
@@ -102,7 +108,7 @@ impl Layouts {
                     texture_entry(0, wgpu::TextureSampleType::Float { filterable: true }),
                     wgpu::BindGroupLayoutEntry {
                         binding: 1,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                         count: None,
                     },
@@ -172,8 +178,10 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
 }
 
 impl Pipelines {
-    /// Compiles every shader and builds every pipeline.
-    pub fn new(device: &wgpu::Device) -> Self {
+    /// Compiles every shader and builds every pipeline. Without
+    /// `sample_mask` (GL cannot write it) hair coverage falls back to alpha
+    /// to coverage.
+    pub fn new(device: &wgpu::Device, sample_mask: bool) -> Self {
         let layouts = Layouts::new(device);
         let view = Some(&layouts.view);
         let lighting = Some(&layouts.lighting);
@@ -206,10 +214,10 @@ impl Pipelines {
                 PipelineSpec {
                     file: shaders::HAIR_SHADOW,
                     vertex_entry: "vs_shadow",
-                    fragment_entry: None,
+                    fragment_entry: Some("fs_first_depth"),
                     groups: &[view],
                     buffer: Some(vertex_layout::<StrandVertex>(&StrandVertex::ATTRIBUTES)),
-                    colour: None,
+                    colour: Some((FIRST_DEPTH_FORMAT, None)),
                     depth: Some(less),
                     samples: 1,
                     alpha_to_coverage: false,
@@ -254,10 +262,14 @@ impl Pipelines {
             hair: main(
                 shaders::HAIR,
                 "vs_hair",
-                "fs_hair",
+                if sample_mask {
+                    "fs_hair"
+                } else {
+                    "fs_hair_alpha"
+                },
                 Some(vertex_layout::<StrandVertex>(&StrandVertex::ATTRIBUTES)),
                 less,
-                true,
+                !sample_mask,
             ),
             layouts,
         }

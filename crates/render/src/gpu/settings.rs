@@ -11,7 +11,7 @@ pub struct RenderSettings {
     /// over a head at a few tenths of a millimetre per texel.
     pub shadow_map_px: u32,
     /// Narrowest ribbon drawn, pixels; thinner strands are drawn this wide
-    /// with partial coverage (alpha to coverage), so they neither vanish
+    /// with partial coverage (a random subset of the MSAA samples), so they neither vanish
     /// nor alias.
     pub min_ribbon_px: f32,
     /// Thickness of the first opacity layer, metres (the others end 2, 4
@@ -32,7 +32,7 @@ impl RenderSettings {
             shadow_map_px: 1024,
             min_ribbon_px: 1.0,
             shadow_layer_m: 0.004,
-            strand_opacity: 0.25,
+            strand_opacity: 0.6,
         }
     }
 

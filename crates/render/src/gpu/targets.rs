@@ -1,6 +1,8 @@
 //! The textures a frame draws into, made once per picture size.
 
-use super::passes::{COLOUR_FORMAT, DEPTH_FORMAT, MSAA_SAMPLES, OPACITY_FORMAT};
+use super::passes::{
+    COLOUR_FORMAT, DEPTH_FORMAT, FIRST_DEPTH_FORMAT, MSAA_SAMPLES, OPACITY_FORMAT,
+};
 use super::readback::padded_bytes_per_row;
 use super::settings::RenderSettings;
 
@@ -13,8 +15,10 @@ pub struct Targets {
     pub msaa_depth: wgpu::TextureView,
     /// The resolved picture (also sampled by windows, as `Rgba8Unorm`).
     pub picture: wgpu::Texture,
-    /// The light's depth map (first hair per texel).
+    /// The light's first-hair depth per texel (a colour texture).
     pub light_depth: wgpu::TextureView,
+    /// The depth buffer of the light's depth pass.
+    pub light_depth_buffer: wgpu::TextureView,
     /// The four opacity layers.
     pub opacity: wgpu::TextureView,
     /// Where the picture is copied for reading.
@@ -86,9 +90,18 @@ impl Targets {
                 device,
                 "light depth",
                 shadow,
-                DEPTH_FORMAT,
+                FIRST_DEPTH_FORMAT,
                 1,
                 sampled,
+                &[],
+            )),
+            light_depth_buffer: view(texture(
+                device,
+                "light depth buffer",
+                shadow,
+                DEPTH_FORMAT,
+                1,
+                U::RENDER_ATTACHMENT,
                 &[],
             )),
             opacity: view(texture(

@@ -1,0 +1,114 @@
+//! A style on a head: roots grown from scalp placements.
+//!
+//! A group's `scalp` placement becomes roots spread evenly (Poisson disk)
+//! over its part of the scalp, each with a frame from the scalp: it grows
+//! at `lift_deg` from the surface, leaning along the comb direction
+//! projected onto the scalp, with the inward surface normal as its
+//! reference: a curl starts in the plane of the normal and the growth
+//! direction, bending towards the scalp, so hair hugs the head instead of
+//! springing off it (with the outward normal, wavy and curly grooms stood
+//! up from the crown). The
+//! simulation then sees plain roots ([`Groom::grown`]); what is drawn from
+//! the simulated guides is [`crate::drawn_hair`]'s business.
+
+use glam::{DVec3, Vec3};
+use helixhair_render::HeadMesh;
+use helixhair_render::head_shell::HeadShell;
+use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
+
+use crate::style::{Root, StrandGroup, Style};
+use crate::style_groom::ScalpPlacement;
+
+/// A style grown on a head: what the simulation and the drawing share.
+#[derive(Clone, Debug)]
+pub struct Groom {
+    /// The style as written (its groups' `scalp` and `render` sections).
+    pub style: Style,
+    /// The style the simulation runs: every group's roots listed (its own,
+    /// then those of its scalp placement), no scalp placement left.
+    pub grown: Style,
+    /// The head.
+    pub head: HeadMesh,
+    /// The head's shell, which keeps drawn hair out of it.
+    pub shell: HeadShell,
+}
+
+impl Groom {
+    /// Grows `style` on `head`.
+    pub fn new(style: Style, head: HeadMesh) -> Self {
+        Self {
+            grown: grow_scalp_roots(&style, &head),
+            shell: HeadShell::new(&head.mesh),
+            style,
+            head,
+        }
+    }
+
+    /// Each group as written, with the same group grown (its roots all
+    /// listed).
+    pub fn groups(&self) -> impl Iterator<Item = (&StrandGroup, &StrandGroup)> {
+        self.style.groups.iter().zip(&self.grown.groups)
+    }
+}
+
+/// Whether any group places roots on the scalp (and so needs a head).
+pub fn needs_head(style: &Style) -> bool {
+    style.groups.iter().any(|g| g.scalp.is_some())
+}
+
+/// The growth direction at a root with surface normal `normal`: `lift_deg`
+/// up from the surface, towards `comb` projected onto the surface.
+pub fn combed_direction(normal: DVec3, comb: DVec3, lift_deg: f64) -> DVec3 {
+    let along = comb - normal * comb.dot(normal);
+    let along = along
+        .try_normalize()
+        .unwrap_or_else(|| normal.any_orthonormal_vector());
+    let lift = lift_deg.to_radians();
+    along * lift.cos() + normal * lift.sin()
+}
+
+/// `head` with its scalp cut down to `placement`'s region (all of it
+/// without one).
+pub fn placement_scalp(placement: &ScalpPlacement, head: &HeadMesh) -> HeadMesh {
+    let Some(region) = &placement.region else {
+        return head.clone();
+    };
+    let mut cut = head.clone();
+    cut.scalp_triangles.retain(|&t| {
+        let centre = head.mesh.triangle(t as usize).iter().sum::<Vec3>() / 3.0;
+        region.contains(centre.as_dvec3())
+    });
+    cut
+}
+
+/// The roots `placement` puts on `head`'s scalp.
+pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh) -> Vec<Root> {
+    poisson_disk_on_scalp(
+        &placement_scalp(placement, head),
+        placement.count as usize,
+        placement.seed,
+    )
+    .into_iter()
+    .map(|s| {
+        let normal = s.normal.as_dvec3();
+        Root {
+            position_m: s.position_m.as_dvec3(),
+            direction: combed_direction(normal, placement.comb, placement.lift_deg),
+            reference: -normal,
+        }
+    })
+    .collect()
+}
+
+/// `style` with every group's scalp placement turned into roots (after the
+/// group's listed roots, the placement itself removed). Groups without
+/// placement are unchanged.
+pub fn grow_scalp_roots(style: &Style, head: &HeadMesh) -> Style {
+    let mut grown = style.clone();
+    for group in &mut grown.groups {
+        if let Some(placement) = group.scalp.take() {
+            group.roots.extend(scalp_roots(&placement, head));
+        }
+    }
+    grown
+}

@@ -1,0 +1,97 @@
+//! Simulated strands as smooth polylines for drawing.
+//!
+//! The physics reports one point per element boundary, but each element is
+//! a piece of helix: a curly strand of 15 elements makes several turns, and
+//! its boundary points alone would draw a zigzag. Here every element is
+//! sampled along its own closed-form centreline, p_Q + R_Q h(σ, q_Q)
+//! ([`helixhair_physics::helix`]), finely enough that consecutive points
+//! turn by at most [`MAX_TURN_RAD`].
+
+use glam::{DVec3, Vec3};
+use helixhair_physics::HairSystem;
+use helixhair_physics::helix::centreline_and_jacobian;
+use helixhair_render::StrandBuffers;
+
+/// Largest angle the tangent turns between two drawn points, radians.
+pub const MAX_TURN_RAD: f64 = 0.45;
+
+/// Most points drawn per element.
+pub const MAX_POINTS_PER_ELEMENT: usize = 16;
+
+/// The centreline of strand `index`, root first, metres, world
+/// coordinates.
+pub fn guide_curve(system: &HairSystem, index: usize) -> Vec<DVec3> {
+    let strand = &system.strands()[index];
+    let motion = system.head().carry(strand.root());
+    let kin = strand.kinematics(&motion);
+    let lengths_m = &strand.model().lengths_m;
+    let mut points = Vec::new();
+    for (element, &q) in strand.q().iter().enumerate() {
+        let length_m = lengths_m[element];
+        let start = motion.position_m + kin.points_m[element];
+        let frame = kin.frames[element];
+        let turns = (length_m * q.length() / MAX_TURN_RAD).ceil() as usize;
+        let samples = turns.clamp(1, MAX_POINTS_PER_ELEMENT);
+        points.extend((0..samples).map(|j| {
+            let sigma = length_m * j as f64 / samples as f64;
+            start + frame * centreline_and_jacobian(sigma, q).0
+        }));
+    }
+    points.push(motion.position_m + kin.points_m[strand.q().len()]);
+    points
+}
+
+/// The centrelines of every strand of `system`, in `f32` for drawing.
+pub fn guide_curves(system: &HairSystem) -> StrandBuffers {
+    let mut buffers = StrandBuffers::default();
+    for i in 0..system.strands().len() {
+        buffers.push_strand(
+            guide_curve(system, i)
+                .into_iter()
+                .map(|p: DVec3| p.as_vec3()),
+        );
+    }
+    buffers
+}
+
+/// Converts a point to `f32`.
+pub fn to_f32(p: DVec3) -> Vec3 {
+    p.as_vec3()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::headless::{HeadlessSim, SimOverrides};
+    use crate::style::Style;
+
+    #[test]
+    fn curves_pass_through_the_element_boundaries_and_sample_curls_finely() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/styles/curly.ron");
+        let style = Style::load(Path::new(path)).expect("loads");
+        let mut sim = HeadlessSim::new(&style, SimOverrides::default()).expect("builds");
+        sim.run(3).expect("finite");
+        let system = sim.system();
+        let curve = guide_curve(system, 0);
+        let boundaries = system.boundary_points_world(0);
+        assert!(curve.len() > 2 * boundaries.len(), "{} points", curve.len());
+        // Consecutive chords turn by about the curvature times the spacing:
+        // at most MAX_TURN_RAD, with 20% for chords across element joins.
+        let turns = curve
+            .windows(3)
+            .map(|w| (w[1] - w[0]).angle_between(w[2] - w[1]));
+        let max_turn = turns.fold(0.0, f64::max);
+        assert!(max_turn < 1.2 * MAX_TURN_RAD, "turn {max_turn} rad");
+        for b in &boundaries {
+            let nearest = curve
+                .iter()
+                .map(|p| p.distance(*b))
+                .fold(f64::MAX, f64::min);
+            assert!(nearest < 1e-9, "boundary {b} is {nearest} m from the curve");
+        }
+        assert_eq!(curve.first(), boundaries.first());
+        assert_eq!(guide_curves(system).strand_count(), system.strands().len());
+    }
+}

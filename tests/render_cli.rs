@@ -1,0 +1,188 @@
+//! End-to-end tests of `helixhair render`: it writes PNGs that show hair on
+//! the head, writes numbered frames with `--sequence`, and reports bad
+//! input by file and line.
+//!
+//! Pictures are small (96 to 128 pixels) and checked with stated
+//! thresholds, not against one machine's pixels. Where no graphics adapter
+//! exists the picture tests skip, unless `HELIXHAIR_REQUIRE_GPU=1` (CI)
+//! makes that a failure.
+
+use std::path::Path;
+use std::process::Output;
+
+use helixhair_e2e::{describe, run_helixhair, scratch_dir};
+
+const STYLE: &str = "tests/render_fixtures/small_groom.ron";
+
+/// Whether `output` is the binary saying it found no graphics adapter, in
+/// which case the test skips (or fails where a GPU is required).
+fn skipped_for_lack_of_a_gpu(output: &Output, test: &str) -> bool {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    if output.status.success() || !stderr.contains("no graphics adapter found") {
+        return false;
+    }
+    assert_ne!(
+        std::env::var("HELIXHAIR_REQUIRE_GPU").as_deref(),
+        Ok("1"),
+        "{test}: HELIXHAIR_REQUIRE_GPU=1 but {stderr}"
+    );
+    eprintln!("{test}: skipped, {stderr}");
+    true
+}
+
+fn rgba(path: &Path) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgba8()
+}
+
+/// Dark, warm pixels: the fixture's brown hair (the backdrop is neutral
+/// grey, the skin light).
+fn is_hair(p: &image::Rgba<u8>) -> bool {
+    let [r, g, b, _] = p.0;
+    (r as i32) < 150 && r as i32 > b as i32 + 8 && (g as i32) < 120
+}
+
+#[test]
+fn a_render_shows_hair_on_top_of_the_head_and_the_face_below() {
+    let dir = scratch_dir("render-front");
+    let out = dir.join("front.png");
+    let output = run_helixhair(&[
+        "render",
+        "--style",
+        STYLE,
+        "--frames",
+        "10",
+        "--camera",
+        "front",
+        "--width",
+        "128",
+        "--height",
+        "128",
+        "--out",
+        out.to_str().expect("UTF-8 path"),
+    ]);
+    if skipped_for_lack_of_a_gpu(&output, "render-front") {
+        return;
+    }
+    assert!(output.status.success(), "{}", describe(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("drew 1500 strands"), "{stdout}");
+    let image = rgba(&out);
+    assert_eq!(image.dimensions(), (128, 128));
+    // The scalp band a few centimetres below the crown must be mostly hair.
+    let (left, top) = pixel_of(glam::Vec3::new(-0.03, 0.085, 0.03));
+    let (right, bottom) = pixel_of(glam::Vec3::new(0.03, 0.06, 0.03));
+    let band: Vec<_> = (left..=right)
+        .flat_map(|x| (top..=bottom).map(move |y| (x, y)))
+        .collect();
+    assert!(band.len() >= 20, "band {left}..{right} x {top}..{bottom}");
+    let hair = band
+        .iter()
+        .filter(|&&(x, y)| is_hair(image.get_pixel(x, y)))
+        .count();
+    let share = hair as f64 / band.len() as f64;
+    assert!(
+        share > 0.5,
+        "only {:.0}% of the crown band is hair",
+        100.0 * share
+    );
+    // The middle of the face (below the nose) is skin: light and warm.
+    let (x, y) = pixel_of(glam::Vec3::new(0.0, -0.04, 0.1));
+    let [r, g, b, _] = image.get_pixel(x, y).0;
+    assert!(
+        r > 120 && r > b + 10 && g > 80,
+        "face pixel {:?} at {x}, {y}",
+        (r, g, b)
+    );
+}
+
+/// Where a point lands in the 128 × 128 front view, in pixels.
+fn pixel_of(p: glam::Vec3) -> (u32, u32) {
+    let camera: helixhair_app::camera_arg::CameraArg = "front".parse().expect("a named view");
+    let clip = camera.camera().clip_from_world(1.0) * p.extend(1.0);
+    let (x, y) = (clip.x / clip.w, clip.y / clip.w);
+    (
+        ((x * 0.5 + 0.5) * 128.0) as u32,
+        ((0.5 - y * 0.5) * 128.0) as u32,
+    )
+}
+
+#[test]
+fn a_sequence_writes_the_start_and_one_numbered_picture_per_frame() {
+    let dir = scratch_dir("render-sequence");
+    let out = dir.join("seq.png");
+    let output = run_helixhair(&[
+        "render",
+        "--style",
+        STYLE,
+        "--frames",
+        "3",
+        "--sequence",
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--out",
+        out.to_str().expect("UTF-8 path"),
+    ]);
+    if skipped_for_lack_of_a_gpu(&output, "render-sequence") {
+        return;
+    }
+    assert!(output.status.success(), "{}", describe(&output));
+    for k in 0..=3 {
+        let frame = dir.join(format!("seq_{k:04}.png"));
+        assert_eq!(rgba(&frame).dimensions(), (48, 32), "{}", frame.display());
+    }
+    assert!(!dir.join("seq_0004.png").exists());
+}
+
+#[test]
+fn a_broken_head_is_reported_by_file_and_line() {
+    let output = run_helixhair(&[
+        "render",
+        "--style",
+        STYLE,
+        "--head",
+        "tests/render_fixtures/broken_head.obj",
+        "--out",
+        "never-written.png",
+    ]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.starts_with("error: tests/render_fixtures/broken_head.obj:4: position parse error"),
+        "{stderr}"
+    );
+    assert!(!Path::new("never-written.png").exists());
+}
+
+#[test]
+fn a_region_without_scalp_is_reported_at_its_line() {
+    let style = "tests/render_fixtures/no_scalp_region.ron";
+    let output = run_helixhair(&["render", "--style", style, "--out", "never-written.png"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let line = helixhair_e2e::marker_line(style);
+    assert!(
+        stderr.starts_with(&format!("error: {style}:{line}:")),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("field `groups[0].scalp.region`: places no roots"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_bad_camera_says_what_is_expected() {
+    let output = run_helixhair(&[
+        "render", "--style", STYLE, "--camera", "above", "--out", "x.png",
+    ]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("`above`: expected front, side, back, three-quarter"),
+        "{stderr}"
+    );
+}
