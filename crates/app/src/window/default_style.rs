@@ -102,6 +102,7 @@ pub fn regrow_roots(style: &mut Style, head: &HeadMesh, count: usize) {
     let roots = scalp_roots(head, count.max(groups));
     for g in &mut style.groups {
         g.roots.clear();
+        g.scalp = None;
     }
     for (i, root) in roots.into_iter().enumerate() {
         if let Some(g) = style.groups.get_mut(i % groups) {

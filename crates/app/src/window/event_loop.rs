@@ -51,7 +51,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     let mut handler = Handler {
         args: args.clone(),
         look: HairLook::new(&app.head_mesh, args.render_strands),
-        view: ViewState::new(app.doc.style().strand_count()),
+        view: ViewState::new(app.sim.system().strands().len()),
         app,
         open: None,
         error: None,

@@ -216,8 +216,14 @@ fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     let groups = app.doc.style().groups.len();
     for g in 0..groups {
         let name = app.doc.style().groups[g].name.clone();
-        let roots = app.doc.style().groups[g].roots.len();
-        egui::CollapsingHeader::new(format!("group `{name}` ({roots} strands)"))
+        let group = &app.doc.style().groups[g];
+        let placed = if group.scalp.is_some() {
+            " + grown on the scalp"
+        } else {
+            ""
+        };
+        let roots = group.roots.len();
+        egui::CollapsingHeader::new(format!("group `{name}` ({roots} strands{placed})"))
             .default_open(g == 0)
             .show(ui, |ui| {
                 ui.horizontal_wrapped(|ui| {
