@@ -486,3 +486,52 @@ fn every_report_field_is_documented_and_the_doc_example_matches() {
         "the doc's example has exactly the report's fields"
     );
 }
+
+#[test]
+fn bench_quick_writes_every_study_as_csv_and_svg() {
+    let out = scratch_dir("bench-quick");
+    let out_arg = out.to_string_lossy().into_owned();
+    let output = run_helixhair(&["bench", "--quick", "--out", &out_arg]);
+    assert!(output.status.success(), "{}", describe(&output));
+    for file in [
+        "cost.csv",
+        "cost.svg",
+        "accuracy.csv",
+        "accuracy_swing.svg",
+        "accuracy_bounce-curly.svg",
+        "accuracy_shake.svg",
+        "error_model.ron",
+        "iterations.csv",
+        "iterations.svg",
+        "stability.csv",
+        "stability.svg",
+        "curly_dt.csv",
+        "modes.csv",
+        "modes_frequency.svg",
+        "modes_damping.svg",
+    ] {
+        let text =
+            std::fs::read_to_string(out.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert!(text.lines().count() > 2, "{file} is nearly empty");
+        if file.ends_with(".svg") {
+            assert!(text.contains("<svg") && text.contains("</svg>"), "{file}");
+        }
+    }
+    // The quick modes study still measures Dense against the analytic
+    // first mode: at N = 10, the Ritz ratio 1.0019. Tolerance 3e-3: the
+    // step's own damping, about ωh/2 = π/1000 at 1000 steps per period,
+    // enters the undamped frequency through 1/√(1 − ζ²) with ζ ≈ 0.43,
+    // which multiplies it by ζ/(1 − ζ²)^{3/2} ≈ 0.6: about 2e-3.
+    let modes = std::fs::read_to_string(out.join("modes.csv")).expect("modes.csv");
+    let dense_10 = modes
+        .lines()
+        .find(|l| l.starts_with("dense,10,"))
+        .expect("a dense N = 10 row");
+    let cols: Vec<f64> = dense_10
+        .split(',')
+        .skip(2)
+        .map(|c| c.parse().expect("a number"))
+        .collect();
+    let ratio = cols[0] / cols[2];
+    assert!((ratio - 1.0019).abs() < 3e-3, "f/f_analytic = {ratio}");
+}

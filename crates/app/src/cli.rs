@@ -12,6 +12,7 @@ use helixhair_physics::Method;
 use helixhair_physics::settings::MAX_ITERATIONS;
 
 use crate::atomic_write::write_atomically;
+use crate::bench::{BenchArgs, run_bench};
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;
@@ -45,6 +46,9 @@ pub enum Command {
     /// Simulate a style headless on a still head and report timings, energies
     /// and final strand shapes.
     Sim(SimArgs),
+    /// Measure speed against accuracy: cost per step, error against cost,
+    /// stability maps and vibration modes, as CSV files and SVG charts.
+    Bench(BenchArgs),
 }
 
 /// Arguments of `helixhair sim`.
@@ -60,6 +64,12 @@ pub struct SimArgs {
     /// Frame time step in seconds, instead of the style's (1e-6 to 0.1).
     #[arg(long, value_name = "SECS", allow_negative_numbers = true)]
     pub dt: Option<f64>,
+    /// Accuracy target, instead of the style's `accuracy_target`: the
+    /// tip-position RMS error allowed as a fraction of strand length (1e-4
+    /// to 1); each group's solver and element count are then chosen from
+    /// the measured error model (docs/RESULTS.md).
+    #[arg(long, value_name = "FRACTION")]
+    pub accuracy: Option<f64>,
     /// Number of frames to simulate.
     #[arg(long, value_name = "K", default_value_t = DEFAULT_STEPS,
           value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_STEPS)))]
@@ -97,6 +107,7 @@ pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow:
             Ok(())
         }
         Some(Command::Sim(args)) => run_sim(args, stdout, stderr),
+        Some(Command::Bench(args)) => run_bench(args, stdout),
     }
 }
 
@@ -107,6 +118,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     let overrides = SimOverrides {
         method: args.method,
         dt_secs: args.dt,
+        accuracy_target: args.accuracy,
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;

@@ -5,18 +5,24 @@
 //! style are therefore also world positions). Every frame is timed with a
 //! wall clock around [`HairSystem::step_frame`], and the state is checked
 //! for NaN and infinities after each one, so a blow-up is reported at the
-//! frame where it happened.
+//! frame where it happened. The physics crate's guard normally prevents
+//! one; what it did is kept ([`HeadlessSim::guard_events`]) for the report.
+//!
+//! With an accuracy target (style field or `--accuracy`), each group's
+//! element count and solver come from [`crate::auto_choice`].
 
 use std::ops::Range;
 use std::time::Instant;
 
-use helixhair_physics::{HairSystem, Method, ParamError, RigidMotion};
+use helixhair_physics::{GuardEvent, HairSystem, Method, ParamError, RigidMotion};
 use thiserror::Error;
 
+use crate::auto_choice::{Choice, choose};
+use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
 use crate::style::Style;
 use crate::style_error::StyleIssue;
-use crate::style_validate::param_issue;
+use crate::style_validate::{check_accuracy_target, param_issue};
 
 /// Command-line overrides of the style's settings.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -25,7 +31,13 @@ pub struct SimOverrides {
     pub method: Option<Method>,
     /// Frame time step in seconds instead of the style's `sim.dt_secs`.
     pub dt_secs: Option<f64>,
+    /// Accuracy target instead of the style's `accuracy_target`: choose
+    /// solver and element counts (see [`crate::auto_choice`]).
+    pub accuracy_target: Option<f64>,
 }
+
+/// Guard events kept for the report; later ones are only counted.
+pub const MAX_KEPT_GUARD_EVENTS: usize = 100;
 
 /// Why a headless simulation could not be set up or finished. Each message
 /// is complete on its own, so no variant reports a separate `source`.
@@ -50,6 +62,9 @@ pub enum SimError {
         /// The offending field.
         issue: StyleIssue,
     },
+    /// The built-in error model could not be read (a build problem).
+    #[error("{0}")]
+    ErrorModel(String),
     /// The state held NaN or infinities after a frame.
     #[error(
         "the simulation blew up: the strand state is not finite after step {step} of {steps} \
@@ -72,6 +87,8 @@ pub struct HeadlessSim {
     group_names: Vec<String>,
     group_of_strand: Vec<usize>,
     head: RigidMotion,
+    choices: Vec<Choice>,
+    guard_events: Vec<GuardEvent>,
 }
 
 impl HeadlessSim {
@@ -94,19 +111,71 @@ impl HeadlessSim {
                 });
             }
         }
+        let accuracy_target = overrides.accuracy_target.or(style.accuracy_target);
+        if let Some(target) = overrides.accuracy_target
+            && let Err(error) = check_accuracy_target(target)
+        {
+            return Err(SimError::Override {
+                option: "--accuracy",
+                value: target.to_string(),
+                error,
+            });
+        }
+        let model = match accuracy_target {
+            Some(_) => {
+                Some(ErrorModel::built_in().map_err(|e| SimError::ErrorModel(format!("{e:#}")))?)
+            }
+            None => None,
+        };
         let style_issue = |issue| SimError::Style {
             style: style.name.clone(),
             issue,
         };
         let sim_path = FieldPath::root().field("sim");
+        if let (Some(model), Some(target)) = (&model, accuracy_target) {
+            // One step for the whole system: the finest any group needs.
+            let needed = style
+                .groups
+                .iter()
+                .filter_map(|g| {
+                    choose(
+                        model,
+                        &g.params,
+                        settings.dt_secs,
+                        settings.substeps,
+                        target,
+                    )
+                })
+                .map(|c| c.substeps)
+                .max();
+            settings.substeps = settings.substeps.max(needed.unwrap_or(1));
+        }
         let mut system =
             HairSystem::new(settings).map_err(|e| style_issue(param_issue(&sim_path, &e)))?;
         let mut group_of_strand = Vec::with_capacity(style.strand_count());
+        let mut choices = Vec::new();
         for (i, group) in style.groups.iter().enumerate() {
             let params_path = FieldPath::root().field("groups").index(i).field("params");
+            let mut params = group.params.clone();
+            let choice = match (&model, accuracy_target) {
+                (Some(model), Some(target)) => {
+                    let settings = system.settings();
+                    choose(model, &params, settings.dt_secs, settings.substeps, target)
+                }
+                _ => None,
+            };
+            if let Some(choice) = &choice {
+                params.elements = choice.elements;
+            }
             let range: Range<usize> = system
-                .add_group(&group.params, &group.root_poses())
+                .add_group(&params, &group.root_poses())
                 .map_err(|e| style_issue(param_issue(&params_path, &e)))?;
+            if let Some(choice) = choice {
+                for strand in &mut system.strands_mut()[range.clone()] {
+                    strand.set_method(choice.method);
+                }
+                choices.push(choice);
+            }
             group_of_strand.extend(range.map(|_| i));
         }
         Ok(Self {
@@ -114,6 +183,8 @@ impl HeadlessSim {
             group_names: style.groups.iter().map(|g| g.name.clone()).collect(),
             group_of_strand,
             head: RigidMotion::default(),
+            choices,
+            guard_events: Vec::new(),
         })
     }
 
@@ -127,6 +198,11 @@ impl HeadlessSim {
         &mut self.system
     }
 
+    /// The group names, in style order.
+    pub fn group_names(&self) -> &[String] {
+        &self.group_names
+    }
+
     /// The name of the group strand `index` belongs to.
     pub fn group_name(&self, index: usize) -> &str {
         self.group_of_strand
@@ -135,11 +211,27 @@ impl HeadlessSim {
             .map_or("", String::as_str)
     }
 
+    /// The automatic choice per group, when an accuracy target was given
+    /// (one entry per group, in order; empty otherwise).
+    pub fn choices(&self) -> &[Choice] {
+        &self.choices
+    }
+
+    /// The first [`MAX_KEPT_GUARD_EVENTS`] guard events of the run.
+    pub fn guard_events(&self) -> &[GuardEvent] {
+        &self.guard_events
+    }
+
     /// Advances one frame; returns its wall time in seconds.
     pub fn step(&mut self) -> f64 {
         let start = Instant::now();
         self.system.step_frame(&self.head);
-        start.elapsed().as_secs_f64()
+        let secs = start.elapsed().as_secs_f64();
+        let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
+        let events = self.system.last_guard_events();
+        self.guard_events
+            .extend_from_slice(&events[..events.len().min(room)]);
+        secs
     }
 
     /// Advances `steps` frames, checking the state after each; returns the
@@ -199,6 +291,7 @@ mod tests {
         let overrides = SimOverrides {
             method: Some(Method::Dense),
             dt_secs: Some(0.004),
+            accuracy_target: None,
         };
         let mut sim = HeadlessSim::new(&style(), overrides).expect("builds");
         assert_eq!(sim.system().settings().method, Method::Dense);
@@ -214,6 +307,7 @@ mod tests {
             let overrides = SimOverrides {
                 method: None,
                 dt_secs: Some(dt),
+                accuracy_target: None,
             };
             let error = HeadlessSim::new(&style(), overrides).expect_err("refused");
             assert!(

@@ -19,7 +19,10 @@
 #![warn(missing_docs)]
 
 pub mod atomic_write;
+pub mod auto_choice;
+pub mod bench;
 pub mod cli;
+pub mod error_model;
 pub mod field_path;
 pub mod headless;
 pub mod sim_report;

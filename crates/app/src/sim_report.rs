@@ -10,6 +10,8 @@ use std::fmt::Write as _;
 use helixhair_physics::{Energies, StageTimes};
 use serde::Serialize;
 
+use crate::auto_choice::Choice;
+
 use crate::headless::HeadlessSim;
 
 /// Value of the `format` field.
@@ -52,6 +54,29 @@ pub struct SimReport {
     pub last_step_stages: StageTimesReport,
     /// Final shape of every strand, in the order of the style's roots.
     pub strands: Vec<StrandReport>,
+    /// The automatic choice per group (empty without an accuracy target).
+    pub choices: Vec<ChoiceReport>,
+    /// What the physics guard did during the run.
+    pub guard: GuardReport,
+}
+
+/// The solver and element count chosen for one group.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ChoiceReport {
+    /// The group's name.
+    pub group: String,
+    /// The choice.
+    #[serde(flatten)]
+    pub choice: Choice,
+}
+
+/// The guard's interventions over a run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GuardReport {
+    /// How many times it stepped in.
+    pub event_count: usize,
+    /// The first events (at most `MAX_KEPT_GUARD_EVENTS`), as sentences.
+    pub events: Vec<String>,
 }
 
 /// Energies in joules, summed over strands.
@@ -204,6 +229,23 @@ impl SimReport {
             wall_time: WallTimeReport::new(per_step_secs),
             last_step_stages: system.last_stage_times().into(),
             strands,
+            choices: sim
+                .choices()
+                .iter()
+                .enumerate()
+                .map(|(i, choice)| ChoiceReport {
+                    group: sim.group_names().get(i).cloned().unwrap_or_default(),
+                    choice: choice.clone(),
+                })
+                .collect(),
+            guard: GuardReport {
+                event_count: system.guard_event_count(),
+                events: sim
+                    .guard_events()
+                    .iter()
+                    .map(|e| format!("{e} (group {})", sim.group_name(e.strand)))
+                    .collect(),
+            },
         }
     }
 
@@ -234,6 +276,32 @@ impl SimReport {
             "  final energies: kinetic {:.4e} J, elastic {:.4e} J, gravity {:.4e} J, total {:.4e} J",
             e.kinetic_j, e.elastic_j, e.gravity_j, e.total_j
         );
+        for c in &self.choices {
+            let ch = &c.choice;
+            let _ = writeln!(
+                out,
+                "  group `{}`: chose {} with {} elements, {} substep(s) (measured error {:.2e} of length on the {} scene{})",
+                c.group,
+                ch.method.label(),
+                ch.elements,
+                ch.substeps,
+                ch.predicted_error,
+                ch.class,
+                if ch.target_met {
+                    ""
+                } else {
+                    "; the target is out of reach, this is the most accurate"
+                }
+            );
+        }
+        if self.guard.event_count > 0 {
+            let _ = writeln!(
+                out,
+                "  warning: the stability guard stepped in {} time(s); first: {}",
+                self.guard.event_count,
+                self.guard.events.first().map_or("", String::as_str)
+            );
+        }
         out
     }
 }

@@ -44,6 +44,13 @@ pub struct Style {
     /// Solver, time step, gravity; every field has a default.
     #[serde(default)]
     pub sim: SimSettings,
+    /// Accuracy target for the automatic choice of solver and element
+    /// count (`crate::auto_choice`): the tip-position RMS error allowed, as
+    /// a fraction of each strand's length, in [1e-4, 1]. When set, each
+    /// group's `elements` and the solver are chosen, not read. Default:
+    /// absent (use the style's own).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy_target: Option<f64>,
     /// The strand groups; at least one.
     pub groups: Vec<StrandGroup>,
 }

@@ -27,6 +27,9 @@ impl Style {
         check_version(self.version)?;
         let sim = FieldPath::root().field("sim");
         self.sim.validate().map_err(|e| param_issue(&sim, &e))?;
+        if let Some(target) = self.accuracy_target {
+            check_accuracy_target(target).map_err(|e| param_issue(&FieldPath::root(), &e))?;
+        }
         let groups = FieldPath::root().field("groups");
         if self.groups.is_empty() {
             return Err(invalid(groups, "must list at least one strand group"));
@@ -126,5 +129,19 @@ pub(crate) fn param_issue(prefix: &FieldPath, error: &ParamError) -> StyleIssue 
     invalid(
         prefix.join(&FieldPath::parse(&error.field)),
         format!("{}; found {}", error.reason, error.value),
+    )
+}
+
+/// Allowed accuracy targets (fraction of strand length): below 1e-4 no
+/// measured setting reaches it; above 1 it means nothing.
+pub const ACCURACY_TARGET_RANGE: (f64, f64) = (1e-4, 1.0);
+
+/// Checks an accuracy target (style field or `--accuracy`).
+pub fn check_accuracy_target(target: f64) -> Result<(), ParamError> {
+    helixhair_physics::params::check_range(
+        "accuracy_target",
+        target,
+        ACCURACY_TARGET_RANGE.0,
+        ACCURACY_TARGET_RANGE.1,
     )
 }

@@ -119,3 +119,28 @@ fn hair_parameters_lie_in_the_measured_ranges() {
         }
     }
 }
+
+#[test]
+fn the_guard_stays_silent_on_every_example_style_under_a_head_shake() {
+    // The examples run at the default internal friction now that the guard
+    // exists; they must not need it with their own solver and step.
+    let shake = helixhair_physics::Oscillation {
+        axis: glam::DVec3::Y,
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    };
+    for name in ["straight", "wavy", "curly", "coily"] {
+        let style = load(name);
+        let mut sim = helixhair_app::HeadlessSim::new(&style, Default::default()).expect("builds");
+        let system = sim.system_mut();
+        for _ in 0..120 {
+            system.step_frame(&shake);
+        }
+        assert!(system.is_finite(), "{name}");
+        assert_eq!(
+            system.guard_event_count(),
+            0,
+            "{name}: the guard stepped in"
+        );
+    }
+}

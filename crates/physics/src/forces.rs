@@ -14,6 +14,7 @@
 
 use glam::DVec3;
 
+use crate::collision::ContactInputs;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::reconstruct::Kinematics;
@@ -28,8 +29,10 @@ pub struct ForceInputs<'a> {
     /// Air velocity, m/s.
     pub air_velocity_m_per_s: DVec3,
     /// Extra force per unit length at each sample (N/m), or empty: the hook
-    /// for contact and user forces.
+    /// for user forces.
     pub external_n_per_m: &'a [DVec3],
+    /// The head collider, if any (see [`crate::collision`]).
+    pub contact: Option<ContactInputs<'a>>,
 }
 
 /// Force per unit length on sample `i` (N/m).
@@ -46,6 +49,10 @@ pub fn sample_force(
         - model.air_drag * (carried - inputs.air_velocity_m_per_s);
     if let Some(extra) = inputs.external_n_per_m.get(i) {
         f += *extra;
+    }
+    if let Some(contact) = &inputs.contact {
+        let world = inputs.root.position_m + s.position_m;
+        f += contact.force(world, s.velocity_m_per_s, model.mass_per_length);
     }
     f
 }

@@ -12,8 +12,10 @@ use std::sync::Arc;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::energy::Energies;
 use crate::error::ParamError;
+use crate::guard::{Guard, GuardAction, GuardEvent, GuardState, speed_bound_m_per_s};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -30,6 +32,11 @@ pub struct HairSystem {
     head: RigidMotion,
     parallel: bool,
     last_times: StageTimes,
+    guard: Option<Guard>,
+    last_events: Vec<GuardEvent>,
+    event_count: usize,
+    collider: Option<Arc<SignedDistanceField>>,
+    contact: ContactSettings,
 }
 
 impl HairSystem {
@@ -43,6 +50,11 @@ impl HairSystem {
             head: RigidMotion::default(),
             parallel: true,
             last_times: StageTimes::default(),
+            guard: Some(Guard::default()),
+            last_events: Vec::new(),
+            event_count: 0,
+            collider: None,
+            contact: ContactSettings::default(),
         })
     }
 
@@ -73,6 +85,7 @@ impl HairSystem {
         self.settings.method = method;
         for s in &mut self.strands {
             s.set_method(method);
+            s.set_guard_state(GuardState::default());
         }
     }
 
@@ -111,36 +124,86 @@ impl HairSystem {
         self.last_times
     }
 
+    /// Sets the head's collider (head coordinates; it moves with the head),
+    /// or removes it with `None`.
+    pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
+        self.collider = collider;
+    }
+
+    /// The head's collider, if any.
+    pub fn collider(&self) -> Option<&Arc<SignedDistanceField>> {
+        self.collider.as_ref()
+    }
+
+    /// Sets how hair meets the collider.
+    pub fn set_contact_settings(&mut self, settings: ContactSettings) {
+        self.contact = settings;
+    }
+
+    /// Sets the guard (`None`: no checks, as the stability study runs).
+    /// Default: [`Guard::default`].
+    pub fn set_guard(&mut self, guard: Option<Guard>) {
+        self.guard = guard;
+    }
+
+    /// The guard, if on.
+    pub fn guard(&self) -> Option<&Guard> {
+        self.guard.as_ref()
+    }
+
+    /// What the guard did in the last frame, by strand index.
+    pub fn last_guard_events(&self) -> &[GuardEvent] {
+        &self.last_events
+    }
+
+    /// How many times the guard stepped in since the system was built.
+    pub fn guard_event_count(&self) -> usize {
+        self.event_count
+    }
+
     /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
     /// along `head`. Root motion is sampled at the start of each substep.
+    /// With the guard on, a strand that fails its checks is stepped again.
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        let frame = FrameInputs {
+            head,
+            start_secs: self.time_secs,
+            dt_secs: self.settings.dt_secs,
+            substeps: self.settings.substeps,
+            gravity: self.settings.gravity_m_per_s2,
+            air: self.settings.air_velocity_m_per_s,
+            collider: self.collider.as_deref(),
+            contact: self.contact,
+        };
+        let guard = self.guard;
+        let step_one = |(index, s): (usize, &mut Strand)| guarded_frame(s, index, &frame, guard);
+        let add = |mut a: FrameOutcome, b: FrameOutcome| {
+            a.times.accumulate(&b.times);
+            a.events.extend(b.events);
+            a
+        };
+        let outcome = if self.parallel {
+            self.strands
+                .par_iter_mut()
+                .enumerate()
+                .map(step_one)
+                .reduce(FrameOutcome::default, add)
+        } else {
+            self.strands
+                .iter_mut()
+                .enumerate()
+                .map(step_one)
+                .fold(FrameOutcome::default(), add)
+        };
+        // Advance the clock exactly as the strands sampled it.
         let h = self.settings.substep_secs();
-        let gravity = self.settings.gravity_m_per_s2;
-        let air = self.settings.air_velocity_m_per_s;
-        let mut frame_times = StageTimes::default();
         for _ in 0..self.settings.substeps {
-            let motion = head.motion_at(self.time_secs);
-            let step_one = |s: &mut Strand| s.step(&motion.carry(s.root()), gravity, air, h);
-            let add = |mut a: StageTimes, b: StageTimes| {
-                a.accumulate(&b);
-                a
-            };
-            let times = if self.parallel {
-                self.strands
-                    .par_iter_mut()
-                    .map(step_one)
-                    .reduce(StageTimes::default, add)
-            } else {
-                self.strands
-                    .iter_mut()
-                    .map(step_one)
-                    .fold(StageTimes::default(), add)
-            };
-            frame_times.accumulate(&times);
             self.time_secs += h;
         }
         self.head = head.motion_at(self.time_secs);
-        self.last_times = frame_times;
+        self.last_times = outcome.times;
+        self.event_count += outcome.events.len();
+        self.last_events = outcome.events;
     }
 
     /// World-space boundary points (N + 1, root first) of strand `index`.
@@ -163,5 +226,123 @@ impl HairSystem {
     /// Whether every strand's state is finite.
     pub fn is_finite(&self) -> bool {
         self.strands.iter().all(Strand::is_finite)
+    }
+}
+
+/// What every strand's frame shares.
+struct FrameInputs<'a> {
+    head: &'a dyn HeadTrajectory,
+    start_secs: f64,
+    dt_secs: f64,
+    substeps: u32,
+    gravity: DVec3,
+    air: DVec3,
+    collider: Option<&'a SignedDistanceField>,
+    contact: ContactSettings,
+}
+
+/// Stage times and guard events of one frame (of one strand, or summed).
+#[derive(Default)]
+struct FrameOutcome {
+    times: StageTimes,
+    events: Vec<GuardEvent>,
+}
+
+/// Steps strand `s` through one frame in `substeps` steps.
+fn plain_frame(s: &mut Strand, frame: &FrameInputs<'_>, substeps: u32) -> StageTimes {
+    let h = frame.dt_secs / f64::from(substeps);
+    let mut t = frame.start_secs;
+    let mut times = StageTimes::default();
+    for _ in 0..substeps {
+        let motion = frame.head.motion_at(t);
+        let contact = frame.collider.map(|collider| ContactInputs {
+            collider,
+            head: &motion,
+            settings: frame.contact,
+            h_secs: h,
+        });
+        let root = motion.carry(s.root());
+        times.accumulate(&s.step_with_contact(&root, frame.gravity, frame.air, h, contact));
+        t += h;
+    }
+    times
+}
+
+/// Steps strand `s` (index `index`) through one frame; with a guard, checks
+/// the result and recovers as [`crate::guard`] describes.
+fn guarded_frame(
+    s: &mut Strand,
+    index: usize,
+    frame: &FrameInputs<'_>,
+    guard: Option<Guard>,
+) -> FrameOutcome {
+    let Some(guard) = guard else {
+        return FrameOutcome {
+            times: plain_frame(s, frame, frame.substeps),
+            events: Vec::new(),
+        };
+    };
+    let mut state = s.guard_state();
+    if state.hold_frames > 0 {
+        state.hold_frames -= 1;
+    } else {
+        state.substeps = 0;
+        if let Some(own_method) = state.own_method.take() {
+            s.set_method(own_method);
+        }
+    }
+    let own = frame.substeps.max(state.substeps);
+    let start_speed = speed_bound_m_per_s(s.model(), s.v());
+    s.checkpoint();
+    let mut times = plain_frame(s, frame, own);
+    let Some(cause) = guard.check(s.model(), s.q(), s.v(), start_speed) else {
+        s.set_guard_state(state);
+        return FrameOutcome {
+            times,
+            events: Vec::new(),
+        };
+    };
+    let approximate = !matches!(s.method(), Method::Dense | Method::Exact);
+    let mut substeps = if approximate {
+        state.own_method.get_or_insert(s.method());
+        s.set_method(Method::Exact);
+        own
+    } else {
+        own.saturating_mul(2)
+    };
+    let action = loop {
+        if substeps > guard.max_substeps.max(frame.substeps) {
+            s.restore_checkpoint(true);
+            state.substeps = 0;
+            state.hold_frames = guard.hold_frames;
+            break GuardAction::Reset;
+        }
+        s.restore_checkpoint(false);
+        times.accumulate(&plain_frame(s, frame, substeps));
+        // A retry is judged by the absolute bounds only: it runs a solver
+        // that solves the full step matrix at a finer step, so fast growth
+        // from it (a strand falling from rest) is physics, not a blow-up.
+        if guard
+            .check(s.model(), s.q(), s.v(), f64::INFINITY)
+            .is_none()
+        {
+            state.substeps = substeps;
+            state.hold_frames = guard.hold_frames;
+            break GuardAction::Retried {
+                method: s.method(),
+                substeps,
+            };
+        }
+        substeps = substeps.saturating_mul(2);
+    };
+    s.set_guard_state(state);
+    FrameOutcome {
+        times,
+        events: vec![GuardEvent {
+            strand: index,
+            time_secs: frame.start_secs,
+            cause,
+            action,
+        }],
     }
 }

@@ -22,9 +22,11 @@
 #![warn(missing_docs)]
 
 pub mod batch;
+pub mod collision;
 pub mod energy;
 pub mod error;
 pub mod forces;
+pub mod guard;
 pub mod hair_system;
 pub mod helix;
 pub mod jet;
@@ -42,9 +44,10 @@ pub mod strand;
 
 pub use energy::Energies;
 pub use error::ParamError;
+pub use guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState};
 pub use hair_system::HairSystem;
 pub use model::StrandModel;
-pub use motion::{HeadTrajectory, Oscillation, RigidMotion, RootPose};
+pub use motion::{Bounce, HeadTrajectory, Oscillation, RigidMotion, RootPose};
 pub use natural_shape::NaturalShape;
 pub use params::{ElementLayout, StrandParams};
 pub use settings::{Method, SimSettings};

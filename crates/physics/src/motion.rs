@@ -147,3 +147,32 @@ impl HeadTrajectory for Oscillation {
         }
     }
 }
+
+/// A head moving back and forth along a fixed direction without turning:
+/// offset(t) = amplitude · sin(2π f t) · direction. Vertical, it is a bounce
+/// (a walk, a jump); sideways, a sway.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Bounce {
+    /// Direction of travel in world coordinates (normalised on use).
+    pub direction: DVec3,
+    /// Peak offset in metres.
+    pub amplitude_m: f64,
+    /// Frequency in hertz.
+    pub frequency_hz: f64,
+}
+
+impl HeadTrajectory for Bounce {
+    fn motion_at(&self, t_secs: f64) -> RigidMotion {
+        let d = self.direction.normalize();
+        let w = std::f64::consts::TAU * self.frequency_hz;
+        let (sin, cos) = (w * t_secs).sin_cos();
+        RigidMotion {
+            position_m: d * (self.amplitude_m * sin),
+            world_from_body: DMat3::IDENTITY,
+            velocity_m_per_s: d * (self.amplitude_m * w * cos),
+            angular_velocity_rad_per_s: DVec3::ZERO,
+            acceleration_m_per_s2: d * (-self.amplitude_m * w * w * sin),
+            angular_acceleration_rad_per_s2: DVec3::ZERO,
+        }
+    }
+}

@@ -91,7 +91,7 @@ impl Default for StrandParams {
 pub const MAX_ELEMENTS: usize = 200;
 
 /// Checks that `value` is finite and inside `[min, max]`, naming `field`.
-pub(crate) fn check_range(field: &str, value: f64, min: f64, max: f64) -> Result<(), ParamError> {
+pub fn check_range(field: &str, value: f64, min: f64, max: f64) -> Result<(), ParamError> {
     if !value.is_finite() {
         return Err(ParamError::new(field, value, "must be a finite number"));
     }

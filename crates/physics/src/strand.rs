@@ -4,8 +4,10 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
+use crate::collision::ContactInputs;
 use crate::energy::{Energies, energies};
 use crate::forces::ForceInputs;
+use crate::guard::GuardState;
 use crate::model::StrandModel;
 use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
@@ -21,6 +23,9 @@ pub struct Strand {
     v: Vec<DVec3>,
     external_n_per_m: Vec<DVec3>,
     workspace: StepWorkspace,
+    checkpoint_q: Vec<DVec3>,
+    checkpoint_v: Vec<DVec3>,
+    guard_state: GuardState,
 }
 
 impl Strand {
@@ -32,6 +37,9 @@ impl Strand {
             v: vec![DVec3::ZERO; n],
             external_n_per_m: Vec::new(),
             workspace: StepWorkspace::new(method),
+            checkpoint_q: model.natural.clone(),
+            checkpoint_v: vec![DVec3::ZERO; n],
+            guard_state: GuardState::default(),
             model,
             root,
         }
@@ -94,6 +102,19 @@ impl Strand {
         air_velocity: DVec3,
         h_secs: f64,
     ) -> StageTimes {
+        self.step_with_contact(root, gravity, air_velocity, h_secs, None)
+    }
+
+    /// One step of `h_secs` with the root moving as `root`, pushed out of
+    /// the head by `contact` if given.
+    pub fn step_with_contact(
+        &mut self,
+        root: &RigidMotion,
+        gravity: DVec3,
+        air_velocity: DVec3,
+        h_secs: f64,
+        contact: Option<ContactInputs<'_>>,
+    ) -> StageTimes {
         let inputs = StepInputs {
             h_secs,
             forces: ForceInputs {
@@ -101,6 +122,7 @@ impl Strand {
                 gravity_m_per_s2: gravity,
                 air_velocity_m_per_s: air_velocity,
                 external_n_per_m: &self.external_n_per_m,
+                contact,
             },
         };
         step_strand(
@@ -129,6 +151,33 @@ impl Strand {
     pub fn energies(&self, root: &RigidMotion, gravity: DVec3) -> Energies {
         let kin = self.kinematics(root);
         energies(&self.model, &self.q, &kin, root.position_m, gravity)
+    }
+
+    /// The strand's standing with the guard.
+    pub fn guard_state(&self) -> GuardState {
+        self.guard_state
+    }
+
+    /// Sets the strand's standing with the guard.
+    pub fn set_guard_state(&mut self, state: GuardState) {
+        self.guard_state = state;
+    }
+
+    /// Remembers the current state (no allocation after the first call).
+    pub fn checkpoint(&mut self) {
+        self.checkpoint_q.clone_from(&self.q);
+        self.checkpoint_v.clone_from(&self.v);
+    }
+
+    /// Returns to the state of the last [`Strand::checkpoint`]; with
+    /// `at_rest`, with zero strain rates (at rest relative to the root).
+    pub fn restore_checkpoint(&mut self, at_rest: bool) {
+        self.q.clone_from(&self.checkpoint_q);
+        if at_rest {
+            self.v.fill(DVec3::ZERO);
+        } else {
+            self.v.clone_from(&self.checkpoint_v);
+        }
     }
 
     /// Whether every strain and rate is finite.

@@ -225,6 +225,7 @@ fn gravity_force_is_minus_the_gradient_of_its_potential() {
         gravity_m_per_s2: gravity,
         air_velocity_m_per_s: DVec3::ZERO,
         external_n_per_m: &[],
+        contact: None,
     };
     let mut forces = vec![DVec3::ZERO; m.elements()];
     generalized_forces(&m, &kin, &inputs, &mut forces);
@@ -293,4 +294,21 @@ fn four_gauss_points_suffice_for_the_mass_matrix() {
             "turn {turn_rad} rad: default vs 8 points differ by {rel}"
         );
     }
+}
+
+#[test]
+fn bounce_velocity_and_acceleration_are_the_derivatives_of_its_position() {
+    let head = helixhair_physics::Bounce {
+        direction: DVec3::new(0.0, 2.0, 0.5),
+        amplitude_m: 0.03,
+        frequency_hz: 2.2,
+    };
+    let (t0, dt) = (0.41, 1e-4);
+    let at = |t: f64| head.motion_at(t).position_m;
+    let m = head.motion_at(t0);
+    let fd_v = (at(t0 + dt) - at(t0 - dt)) / (2.0 * dt);
+    let fd_a = (at(t0 + dt) - 2.0 * at(t0) + at(t0 - dt)) / (dt * dt);
+    assert!((m.velocity_m_per_s - fd_v).abs().max_element() < VELOCITY_TOL * 1e2);
+    assert!((m.acceleration_m_per_s2 - fd_a).abs().max_element() < ACCELERATION_TOL);
+    assert_eq!(m.world_from_body, DMat3::IDENTITY);
 }

@@ -1,0 +1,55 @@
+//! Timing one strand's steps: medians of repeated batches.
+//!
+//! The machine is shared and noisy, so a single timing means little: each
+//! measurement runs a warm-up, then [`BATCHES`] batches sized to take about
+//! [`BATCH_SECS`] each, and reports the median batch with the fastest and
+//! slowest. Methods are compared as ratios of medians from one run.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use helixhair_physics::{RigidMotion, Strand};
+use serde::Serialize;
+
+use crate::sim_report::median;
+
+/// Batches per measurement (odd, so the median is one batch).
+pub const BATCHES: usize = 15;
+/// Target length of one batch in seconds: long against the clock's
+/// resolution, short enough that 15 batches of every case fit in a minute.
+pub const BATCH_SECS: f64 = 4e-3;
+
+/// Seconds per step: median, fastest and slowest batch.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct StepTiming {
+    /// Median over batches, seconds per step.
+    pub median_secs: f64,
+    /// Fastest batch, seconds per step.
+    pub min_secs: f64,
+    /// Slowest batch, seconds per step.
+    pub max_secs: f64,
+}
+
+/// Times `strand.step` under a still root and gravity with step `h_secs`.
+pub fn time_steps(strand: &mut Strand, h_secs: f64, batches: usize) -> StepTiming {
+    let root = RigidMotion::default();
+    let gravity = DVec3::new(0.0, -9.81, 0.0);
+    let mut step = |count: usize| {
+        let start = Instant::now();
+        for _ in 0..count {
+            strand.step(&root, gravity, DVec3::ZERO, h_secs);
+        }
+        start.elapsed().as_secs_f64()
+    };
+    let one = step(2) / 2.0;
+    let per_batch = ((BATCH_SECS / one.max(1e-9)) as usize).clamp(1, 100_000);
+    step(per_batch);
+    let secs: Vec<f64> = (0..batches.max(1))
+        .map(|_| step(per_batch) / per_batch as f64)
+        .collect();
+    StepTiming {
+        median_secs: median(&secs),
+        min_secs: secs.iter().copied().fold(f64::INFINITY, f64::min),
+        max_secs: secs.iter().copied().fold(0.0, f64::max),
+    }
+}

@@ -1,0 +1,185 @@
+//! The guard (`helixhair_physics::guard`) against the failures pinned in
+//! `failure_modes.rs`: each failure is caught, recovered from and
+//! reported, and a healthy run is left alone.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use helixhair_physics::guard::speed_bound_m_per_s;
+use helixhair_physics::{
+    Guard, GuardAction, GuardCause, HairSystem, Method, NaturalShape, Oscillation, RootPose,
+    SimSettings, StrandParams,
+};
+
+/// The hanging curl on which Block-diagonal blows up at 60 Hz from N = 8.
+fn hanging_curl(n: usize) -> StrandParams {
+    let mut p = params(0.2, n);
+    p.natural_shape = NaturalShape::Helix {
+        radius_m: 0.02,
+        step_m: 0.05,
+    };
+    p.internal_friction = 2e-10;
+    p.air_drag = 1e-5;
+    p
+}
+
+fn system(method: Method, p: &StrandParams, guard: Option<Guard>) -> HairSystem {
+    let settings = SimSettings {
+        method,
+        ..SimSettings::default()
+    };
+    let mut system = HairSystem::new(settings).expect("valid settings");
+    system.set_guard(guard);
+    system
+        .add_group(p, &[horizontal_root()])
+        .expect("valid params");
+    system
+}
+
+/// Runs `frames` frames; returns whether every frame ended finite, and
+/// every guard event.
+fn run(
+    system: &mut HairSystem,
+    head: &dyn helixhair_physics::HeadTrajectory,
+    frames: usize,
+) -> (bool, Vec<helixhair_physics::GuardEvent>) {
+    let mut events = Vec::new();
+    let mut finite = true;
+    for _ in 0..frames {
+        system.step_frame(head);
+        finite &= system.is_finite();
+        events.extend_from_slice(system.last_guard_events());
+    }
+    (finite, events)
+}
+
+#[test]
+fn the_speed_bound_bounds_every_point_relative_to_the_root() {
+    // Σ ℓ_Q |q̇_Q| (L − s_Q) ≥ |ṙ(s)| relative to the root frame, for any
+    // state: check it on random curled states with random rates.
+    let mut rng = Rng::new(7);
+    let p = hanging_curl(8);
+    let m = model(&p, 4);
+    let root = at_rest(glam::DMat3::IDENTITY);
+    for _ in 0..50 {
+        let q = random_strains(&mut rng, 8, 60.0);
+        let v = random_strains(&mut rng, 8, 30.0);
+        let bound = speed_bound_m_per_s(&m, &v);
+        let kin = kinematics(&m, &q, &v, &root);
+        let fastest = kin
+            .samples
+            .iter()
+            .map(|s| s.velocity_m_per_s.length())
+            .fold(0.0, f64::max);
+        assert!(fastest <= bound * (1.0 + 1e-12), "{fastest} > {bound}");
+    }
+}
+
+#[test]
+fn a_block_diagonal_blow_up_on_a_hanging_curl_is_handed_to_exact() {
+    let p = hanging_curl(10);
+    let root = at_rest(glam::DMat3::IDENTITY);
+    let mut raw = system(Method::BlockDiagonal, &p, None);
+    assert!(
+        !run(&mut raw, &root, 120).0,
+        "the raw solver should blow up"
+    );
+    let guard = Guard::default();
+    let mut guarded = system(Method::BlockDiagonal, &p, Some(guard));
+    let mut events = Vec::new();
+    for _ in 0..240 {
+        guarded.step_frame(&root);
+        let s = &guarded.strands()[0];
+        assert!(s.is_finite(), "the guarded run went non-finite");
+        assert!(speed_bound_m_per_s(s.model(), s.v()) <= guard.speed_limit_m_per_s);
+        events.extend_from_slice(guarded.last_guard_events());
+    }
+    assert!(!events.is_empty(), "the guard never stepped in");
+    assert!(
+        matches!(
+            events[0].action,
+            GuardAction::Retried {
+                method: Method::Exact,
+                substeps: 1
+            }
+        ),
+        "the first retry should hand the strand to Exact: {}",
+        events[0]
+    );
+    assert!(events.iter().all(|e| e.strand == 0
+        && matches!(
+            e.action,
+            GuardAction::Reset
+                | GuardAction::Retried {
+                    method: Method::Exact,
+                    ..
+                }
+        )));
+    assert_eq!(guarded.guard_event_count(), events.len());
+}
+
+#[test]
+fn a_frame_no_retry_can_pass_resets_the_strand_at_rest() {
+    // A guard whose speed limit is 1 mm/s cannot be satisfied by a strand
+    // falling from rest: every retry fails and the strand is reset.
+    let p = hanging_curl(6);
+    let root = at_rest(glam::DMat3::IDENTITY);
+    let strict = Guard {
+        speed_limit_m_per_s: 1e-3,
+        max_substeps: 4,
+        ..Guard::default()
+    };
+    let mut guarded = system(Method::Exact, &p, Some(strict));
+    let (finite, events) = run(&mut guarded, &root, 3);
+    assert!(finite);
+    assert_eq!(events.len(), 3, "every frame should trip the guard");
+    assert!(events.iter().all(|e| e.action == GuardAction::Reset));
+    // Reset to the start-of-frame shape (the natural one), at rest.
+    let s = &guarded.strands()[0];
+    assert_eq!(s.q(), s.model().natural.as_slice());
+    assert!(s.v().iter().all(|v| *v == DVec3::ZERO));
+}
+
+#[test]
+fn a_frictionless_head_shake_is_caught_before_it_shows() {
+    let head = Oscillation {
+        axis: DVec3::Y,
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    };
+    let dir = DVec3::new(1.0, 0.5, 0.0);
+    let mut p = params(0.2, 10);
+    p.natural_shape = helix_shape();
+    let settings = SimSettings {
+        method: Method::BlockDiagonal,
+        ..SimSettings::default()
+    };
+    let mut system = HairSystem::new(settings).expect("valid settings");
+    system
+        .add_group(&p, &[RootPose::from_direction(dir * 0.1, dir, DVec3::Y)])
+        .expect("valid params");
+    let (finite, events) = run(&mut system, &head, 60);
+    assert!(finite);
+    assert!(!events.is_empty(), "the guard never stepped in");
+    assert!(
+        events
+            .iter()
+            .all(|e| matches!(e.cause, GuardCause::NotFinite | GuardCause::TooFast { .. }))
+    );
+}
+
+#[test]
+fn a_healthy_run_is_left_alone_and_matches_the_unguarded_one() {
+    // Dense on the hanging curl at 60 Hz is finite and slow: the guard
+    // must not step in, and must not change a single bit.
+    let p = hanging_curl(10);
+    let root = at_rest(glam::DMat3::IDENTITY);
+    let mut raw = system(Method::Dense, &p, None);
+    let mut guarded = system(Method::Dense, &p, Some(Guard::default()));
+    let (_, raw_events) = run(&mut raw, &root, 120);
+    let (finite, events) = run(&mut guarded, &root, 120);
+    assert!(finite && raw_events.is_empty() && events.is_empty());
+    assert_eq!(raw.strands()[0].q(), guarded.strands()[0].q());
+    assert_eq!(raw.strands()[0].v(), guarded.strands()[0].v());
+}
