@@ -21,6 +21,7 @@
 
 #![warn(missing_docs)]
 
+pub mod batch;
 pub mod collision;
 pub mod energy;
 pub mod error;

@@ -1,0 +1,36 @@
+//! Block-diagonal step of a batch (the seed paper's method, "subtree"
+//! reading; see [`crate::solve::block_diagonal`]): one root-to-tip sweep
+//! ([`super::forward`]), then one tip-to-root sweep that accumulates the
+//! suffix sums and, element by element, solves the 3×3 block
+//! (s M_QQ + D) Δv = rhs and integrates. Two passes over the strand, no
+//! third: each element's block needs only the sums past it.
+
+use super::forward::forward;
+use super::lanes::Real;
+use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
+use super::vec::V3;
+
+/// One Block-diagonal step of every lane's strand; `scratch` has N entries.
+#[inline(always)]
+pub fn step_block_diagonal<T: Real>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &mut [V3<T>],
+    v: &mut [V3<T>],
+    scratch: &mut [ElementData<T>],
+) {
+    forward::<T, false>(model, env, root, q, v, scratch);
+    let s = T::splat(mass_scale(model, env));
+    let mut beyond = Beyond::zero();
+    for e in (0..q.len()).rev() {
+        let el = &scratch[e];
+        let terms = element_terms(el, &beyond);
+        let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);
+        let step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
+        let delta_v = step_matrix.inverse() * rhs;
+        integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
+        beyond.add(el);
+    }
+}

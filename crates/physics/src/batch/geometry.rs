@@ -1,0 +1,266 @@
+//! Element geometry in f32 for the fast path: the helix coefficients A, B, C
+//! and what one element contributes at an arc length σ, with time
+//! derivatives written out instead of carried on jets.
+//!
+//! The f64 reference ([`crate::helix`], [`crate::reconstruct`]) runs the
+//! whole sweep on jets, so every frame is a jet of three matrices. Here the
+//! frame's time derivatives are carried as its angular velocity ω and
+//! acceleration α (world vectors, Ṙ = [ω]×R), as in articulated-body
+//! dynamics, and only the element-local quantities (φ = σk, the coefficient
+//! jets, the local centreline h) are differentiated by hand. With q̈ = 0:
+//!
+//! - y = φ·φ, ẏ = 2φ·φ̇, ÿ = 2φ̇·φ̇; a coefficient's jet is (f, f′ẏ, f″ẏ² + f′ÿ)
+//! - f = e₀ + B g₁ + C g₂ with g₁ = φ×e₀ and g₂ = φ×(φ×e₀) = φₓφ − y e₀; h = σf
+//! - across the element: ω′ = ω + R J_l φ̇, α′ = α + ω×(R J_l φ̇) + R (J_l φ̇)˙
+//!   with (J_l φ̇)˙ = Ḃ (φ×φ̇) + Ċ φ×(φ×φ̇) + C φ̇×(φ×φ̇)
+//!
+//! This needs no matrix jets and is about three times cheaper than the
+//! reference's arithmetic; the parity tests compare the two.
+//!
+//! The coefficients come from 9 terms of their series in y below y = 4 (f32
+//! round-off only: the first neglected term is 4⁹/19! ≈ 2e-12) and from sines
+//! and cosines above; a batch whose lanes are all below 4 (any hair but tight
+//! coils) skips the closed form.
+
+use super::lanes::Real;
+use super::vec::{M3, V3};
+
+/// Below this y = x² the coefficients come from their series.
+const SERIES_LIMIT_Y: f32 = 4.0;
+/// Series terms kept in f32.
+const TERMS: usize = 9;
+
+/// (−1)ⁿ/(2n + offset)! for n = 0..TERMS, computed in f64 then rounded.
+const fn series_coefficients(offset: u32) -> [f32; TERMS] {
+    let mut c = [0.0; TERMS];
+    let mut n = 0;
+    while n < TERMS {
+        let mut factorial = 1.0f64;
+        let mut j = 2;
+        while j <= 2 * n as u32 + offset {
+            factorial *= j as f64;
+            j += 1;
+        }
+        c[n] = ((if n % 2 == 0 { 1.0 } else { -1.0 }) / factorial) as f32;
+        n += 1;
+    }
+    c
+}
+
+const A_SERIES: [f32; TERMS] = series_coefficients(1);
+const B_SERIES: [f32; TERMS] = series_coefficients(2);
+const C_SERIES: [f32; TERMS] = series_coefficients(3);
+
+/// f(y), f′(y), f″(y) of a power series by Horner's rule.
+#[inline(always)]
+fn horner<T: Real>(c: &[f32; TERMS], y: T) -> [T; 3] {
+    let mut p = T::splat(c[TERMS - 1]);
+    let mut dp = T::splat(0.0);
+    let mut half_ddp = T::splat(0.0);
+    for &cn in c[..TERMS - 1].iter().rev() {
+        half_ddp = half_ddp * y + dp;
+        dp = dp * y + p;
+        p = p * y + T::splat(cn);
+    }
+    [p, dp, half_ddp + half_ddp]
+}
+
+/// A, B, C at y, each with two y-derivatives.
+#[derive(Clone, Copy, Debug)]
+pub struct Coefficients<T> {
+    /// sin x / x and derivatives.
+    pub a: [T; 3],
+    /// (1 − cos x)/x² and derivatives.
+    pub b: [T; 3],
+    /// (x − sin x)/x³ and derivatives.
+    pub c: [T; 3],
+}
+
+/// The closed forms, valid for y ≥ 4 (y is clamped there).
+#[inline(always)]
+fn closed<T: Real>(y: T) -> Coefficients<T> {
+    let y = y.max(T::splat(SERIES_LIMIT_Y));
+    let x = y.sqrt();
+    let (sin, cos) = x.sin_cos();
+    let one = T::splat(1.0);
+    let two_y = y + y;
+    let a = sin / x;
+    let b = (one - cos) / y;
+    let c = (x - sin) / (x * y);
+    let c1 = (b - T::splat(3.0) * c) / two_y;
+    let b1 = (a - T::splat(2.0) * b) / two_y;
+    let a1 = -c - y * c1;
+    let c2 = (b1 - T::splat(5.0) * c1) / two_y;
+    let b2 = (a1 - T::splat(4.0) * b1) / two_y;
+    let a2 = -T::splat(2.0) * c1 - y * c2;
+    Coefficients {
+        a: [a, a1, a2],
+        b: [b, b1, b2],
+        c: [c, c1, c2],
+    }
+}
+
+/// The coefficients at y = |φ|² ≥ 0, lane by lane. Without `with_a`, A is
+/// left zero (points inside an element need only B and C).
+#[inline(always)]
+pub fn coefficients<T: Real>(y: T, with_a: bool) -> Coefficients<T> {
+    let zero = T::splat(0.0);
+    let series = Coefficients {
+        a: if with_a {
+            horner(&A_SERIES, y)
+        } else {
+            [zero; 3]
+        },
+        b: horner(&B_SERIES, y),
+        c: horner(&C_SERIES, y),
+    };
+    if y.all_below(SERIES_LIMIT_Y) {
+        return series;
+    }
+    let far = closed(y);
+    let pick = |s: [T; 3], f: [T; 3]| {
+        [
+            y.select_below(SERIES_LIMIT_Y, s[0], f[0]),
+            y.select_below(SERIES_LIMIT_Y, s[1], f[1]),
+            y.select_below(SERIES_LIMIT_Y, s[2], f[2]),
+        ]
+    };
+    Coefficients {
+        a: pick(series.a, far.a),
+        b: pick(series.b, far.b),
+        c: pick(series.c, far.c),
+    }
+}
+
+/// An element's centreline at arc length σ, in its start frame.
+#[derive(Clone, Copy, Debug)]
+pub struct LocalPoint<T> {
+    /// h(σ, k), metres.
+    pub h: V3<T>,
+    /// ḣ with q̈ = 0, m/s.
+    pub h_dot: V3<T>,
+    /// ḧ with q̈ = 0, m/s².
+    pub h_ddot: V3<T>,
+    /// ∂h/∂k, metres².
+    pub jacobian: M3<T>,
+}
+
+/// What the frame does across a whole element (σ = ℓ), besides the point.
+#[derive(Clone, Copy, Debug)]
+pub struct LocalTurn<T> {
+    /// The rotation E = exp([φ]×) across the element.
+    pub rotation: M3<T>,
+    /// The left Jacobian J_l(φ).
+    pub left_jacobian: M3<T>,
+    /// J_l φ̇: the end frame's angular velocity relative to the start's.
+    pub spin: V3<T>,
+    /// (J_l φ̇)˙ with q̈ = 0.
+    pub spin_dot: V3<T>,
+}
+
+/// The parts of φ's jet that every point of the element shares.
+#[derive(Clone, Copy, Debug)]
+struct PhiJet<T> {
+    phi: V3<T>,
+    phi_dot: V3<T>,
+    y: T,
+    y_dot: T,
+    y_ddot: T,
+    co: Coefficients<T>,
+}
+
+#[inline(always)]
+fn phi_jet<T: Real>(sigma: f32, k: V3<T>, k_dot: V3<T>, with_a: bool) -> PhiJet<T> {
+    let s = T::splat(sigma);
+    let phi = k.scale(s);
+    let phi_dot = k_dot.scale(s);
+    let y = phi.dot(phi);
+    let pd = phi.dot(phi_dot);
+    let dd = phi_dot.dot(phi_dot);
+    PhiJet {
+        phi,
+        phi_dot,
+        y,
+        y_dot: pd + pd,
+        y_ddot: dd + dd,
+        co: coefficients(y, with_a),
+    }
+}
+
+/// (f, ḟ, f̈) of a coefficient with derivatives `f` along y's jet.
+#[inline(always)]
+fn coefficient_jet<T: Real>(f: [T; 3], j: &PhiJet<T>) -> [T; 3] {
+    [
+        f[0],
+        f[1] * j.y_dot,
+        f[2] * j.y_dot * j.y_dot + f[1] * j.y_ddot,
+    ]
+}
+
+#[inline(always)]
+fn point_from_jet<T: Real>(sigma: f32, j: &PhiJet<T>) -> LocalPoint<T> {
+    let zero = T::splat(0.0);
+    let one = T::splat(1.0);
+    let (phi, pd) = (j.phi, j.phi_dot);
+    let [b, bd, bdd] = coefficient_jet(j.co.b, j);
+    let [c, cd, cdd] = coefficient_jet(j.co.c, j);
+    let g1 = V3::new(zero, phi.z, -phi.y);
+    let g1d = V3::new(zero, pd.z, -pd.y);
+    let g2 = V3::new(phi.x * phi.x - j.y, phi.x * phi.y, phi.x * phi.z);
+    let g2d = pd.scale(phi.x) + phi.scale(pd.x) - V3::new(j.y_dot, zero, zero);
+    let g2dd = pd.scale(pd.x + pd.x) - V3::new(j.y_ddot, zero, zero);
+    let f = V3::new(one, zero, zero) + g1.scale(b) + g2.scale(c);
+    let fd = g1.scale(bd) + g1d.scale(b) + g2.scale(cd) + g2d.scale(c);
+    let fdd =
+        g1.scale(bdd) + g1d.scale(bd + bd) + g2.scale(cdd) + g2d.scale(cd + cd) + g2dd.scale(c);
+    // ∂f/∂φ, column j: φ_j u + C φₓ e_j + (C φ for j = 0) + (−B [e₀]×)_j,
+    // u = 2B′g₁ + 2C′g₂ − 2C e₀.
+    let two = T::splat(2.0);
+    let u = g1.scale(two * j.co.b[1]) + g2.scale(two * j.co.c[1]) - V3::new(two * c, zero, zero);
+    let cx = c * phi.x;
+    let s2 = T::splat(sigma * sigma);
+    let col0 = u.scale(phi.x) + V3::new(cx, zero, zero) + phi.scale(c);
+    let col1 = u.scale(phi.y) + V3::new(zero, cx, -b);
+    let col2 = u.scale(phi.z) + V3::new(zero, b, cx);
+    let s = T::splat(sigma);
+    LocalPoint {
+        h: f.scale(s),
+        h_dot: fd.scale(s),
+        h_ddot: fdd.scale(s),
+        jacobian: M3::from_cols(col0.scale(s2), col1.scale(s2), col2.scale(s2)),
+    }
+}
+
+/// The centreline of an element with strains k and rates k̇ at arc length σ.
+#[inline(always)]
+pub fn local_point<T: Real>(sigma: f32, k: V3<T>, k_dot: V3<T>) -> LocalPoint<T> {
+    point_from_jet(sigma, &phi_jet(sigma, k, k_dot, false))
+}
+
+/// The element's end point and turn, for an element of length `length_m`.
+#[inline(always)]
+pub fn local_end<T: Real>(length_m: f32, k: V3<T>, k_dot: V3<T>) -> (LocalPoint<T>, LocalTurn<T>) {
+    let j = phi_jet(length_m, k, k_dot, true);
+    let point = point_from_jet(length_m, &j);
+    let (phi, pd) = (j.phi, j.phi_dot);
+    let one = T::splat(1.0);
+    let [b, bd, _] = coefficient_jet(j.co.b, &j);
+    let [c, cd, _] = coefficient_jet(j.co.c, &j);
+    let a = j.co.a[0];
+    let skew = M3::skew(phi);
+    let phi_phi = M3::outer(phi, phi);
+    // [φ]×² = φφᵀ − y I.
+    let rotation =
+        (skew.scale(a) + phi_phi.scale(b)).add_diagonal(V3::splat([1.0; 3]).scale(one - b * j.y));
+    let left_jacobian =
+        (skew.scale(b) + phi_phi.scale(c)).add_diagonal(V3::splat([1.0; 3]).scale(one - c * j.y));
+    let m1 = phi.cross(pd);
+    let m2 = phi.cross(m1);
+    let turn = LocalTurn {
+        rotation,
+        left_jacobian,
+        spin: pd + m1.scale(b) + m2.scale(c),
+        spin_dot: m1.scale(bd) + m2.scale(cd) + pd.cross(m1).scale(c),
+    };
+    (point, turn)
+}

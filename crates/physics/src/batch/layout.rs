@@ -1,0 +1,172 @@
+//! The fast path's data: per-group constants in f32, the root motion of a
+//! batch, and the per-element scratch one step fills.
+//!
+//! Layout. A group of strands sharing a [`StrandModel`] is cut into batches
+//! of [`LANES`](super::LANES) strands. A batch's state is N strain triples
+//! and N rate triples, each a [`V3`] of [`Lanes`](super::Lanes): element e's
+//! κ₁ for the 8 strands of the batch are 8 consecutive floats, so every
+//! operation of the step loads and stores whole SIMD registers
+//! (structure of arrays inside a batch, array of batches outside). A short
+//! last batch is padded with copies of its last strand, whose results are
+//! computed and ignored. The per-element scratch is reused from step to
+//! step (one per worker thread), so a step allocates nothing.
+
+use glam::{DMat3, DVec3};
+
+use super::lanes::Real;
+use super::vec::{M3, V3};
+use crate::model::StrandModel;
+use crate::motion::RigidMotion;
+
+/// A group's per-element constants in f32 (see [`StrandModel`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BatchModel {
+    /// Element lengths ℓ_Q, metres.
+    pub lengths_m: Vec<f32>,
+    /// Stiffness diagonal K_Q, N·m³.
+    pub stiffness: Vec<[f32; 3]>,
+    /// Natural strains qⁿ_Q, m⁻¹.
+    pub natural: Vec<[f32; 3]>,
+    /// Friction diagonal γℓ_Q, N·m³·s.
+    pub friction: Vec<f32>,
+    /// ρS, kg/m.
+    pub mass_per_length: f32,
+    /// ν, N·s/m².
+    pub air_drag: f32,
+    /// Quadrature nodes in [0, 1].
+    pub nodes: Vec<f32>,
+    /// Quadrature weights, summing to 1.
+    pub weights: Vec<f32>,
+}
+
+fn f32x3(v: DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+impl BatchModel {
+    /// The f32 constants of `model`.
+    pub fn new(model: &StrandModel) -> Self {
+        Self {
+            lengths_m: model.lengths_m.iter().map(|&l| l as f32).collect(),
+            stiffness: model.stiffness.iter().map(|&k| f32x3(k)).collect(),
+            natural: model.natural.iter().map(|&k| f32x3(k)).collect(),
+            friction: model.friction.iter().map(|&g| g as f32).collect(),
+            mass_per_length: model.mass_per_length as f32,
+            air_drag: model.air_drag as f32,
+            nodes: model.quadrature.nodes.iter().map(|&x| x as f32).collect(),
+            weights: model.quadrature.weights.iter().map(|&w| w as f32).collect(),
+        }
+    }
+
+    /// Number of elements N.
+    pub fn elements(&self) -> usize {
+        self.lengths_m.len()
+    }
+}
+
+/// What one step needs besides the strand: the same for every strand.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepEnv {
+    /// Step length h, seconds.
+    pub h_secs: f32,
+    /// Gravity, m/s².
+    pub gravity_m_per_s2: [f32; 3],
+    /// Air velocity, m/s.
+    pub air_velocity_m_per_s: [f32; 3],
+}
+
+/// The motion of each lane's root frame at the start of a step.
+#[derive(Clone, Copy, Debug)]
+pub struct RootMotion<T> {
+    /// Root frame, columns (n₀, n₁, n₂) in world coordinates.
+    pub world_from_root: M3<T>,
+    /// Angular velocity, rad/s, world.
+    pub angular_velocity_rad_per_s: V3<T>,
+    /// Angular acceleration, rad/s², world.
+    pub angular_acceleration_rad_per_s2: V3<T>,
+    /// Velocity of the root point, m/s.
+    pub velocity_m_per_s: V3<T>,
+    /// Acceleration of the root point, m/s².
+    pub acceleration_m_per_s2: V3<T>,
+}
+
+fn gather_v3<T: Real>(motions: &[RigidMotion], f: impl Fn(&RigidMotion) -> DVec3) -> V3<T> {
+    let at = |i: usize| f(&motions[i.min(motions.len() - 1)]);
+    V3::new(
+        T::from_fn(|i| at(i).x as f32),
+        T::from_fn(|i| at(i).y as f32),
+        T::from_fn(|i| at(i).z as f32),
+    )
+}
+
+fn gather_m3<T: Real>(motions: &[RigidMotion], f: impl Fn(&RigidMotion) -> DMat3) -> M3<T> {
+    M3::from_cols(
+        gather_v3(motions, |m| f(m).x_axis),
+        gather_v3(motions, |m| f(m).y_axis),
+        gather_v3(motions, |m| f(m).z_axis),
+    )
+}
+
+impl<T: Real> RootMotion<T> {
+    /// Lane i from `motions[i]`; lanes past the end repeat the last motion.
+    /// `motions` must not be empty.
+    pub fn gather(motions: &[RigidMotion]) -> Self {
+        Self {
+            world_from_root: gather_m3(motions, |m| m.world_from_body),
+            angular_velocity_rad_per_s: gather_v3(motions, |m| m.angular_velocity_rad_per_s),
+            angular_acceleration_rad_per_s2: gather_v3(motions, |m| {
+                m.angular_acceleration_rad_per_s2
+            }),
+            velocity_m_per_s: gather_v3(motions, |m| m.velocity_m_per_s),
+            acceleration_m_per_s2: gather_v3(motions, |m| m.acceleration_m_per_s2),
+        }
+    }
+}
+
+/// What the root-to-tip sweep leaves for each element: its beyond
+/// Jacobians and its own sums (see [`crate::mass`] and [`crate::forces`]
+/// for the algebra).
+#[derive(Clone, Copy, Debug)]
+pub struct ElementData<T> {
+    /// A_Q, metres².
+    pub a: M3<T>,
+    /// B_Q, metres.
+    pub b: M3<T>,
+    /// D_Q = Σ_own wρS GᵀG, kg·m³.
+    pub own_mass_block: M3<T>,
+    /// Σ_own Gᵀ F w, N·m².
+    pub own_force: V3<T>,
+    /// Σ_own wρS, kg.
+    pub mass: T,
+    /// Σ_own wρS r, kg·m.
+    pub first_moment: V3<T>,
+    /// Σ_own wρS (|r|²𝟙 − rrᵀ), kg·m².
+    pub inertia: M3<T>,
+    /// Σ_own w F, N.
+    pub force_sum: V3<T>,
+    /// Σ_own w r × F, N·m.
+    pub torque_sum: V3<T>,
+    /// U_Q = Σ_own wρS G (Exact only), kg·m.
+    pub u: M3<T>,
+    /// V_Q = Σ_own wρS [r]×G (Exact only), kg·m².
+    pub v: M3<T>,
+}
+
+impl<T: Real> ElementData<T> {
+    /// All zero.
+    pub fn zero() -> Self {
+        Self {
+            a: M3::zero(),
+            b: M3::zero(),
+            own_mass_block: M3::zero(),
+            own_force: V3::zero(),
+            mass: T::splat(0.0),
+            first_moment: V3::zero(),
+            inertia: M3::zero(),
+            force_sum: V3::zero(),
+            torque_sum: V3::zero(),
+            u: M3::zero(),
+            v: M3::zero(),
+        }
+    }
+}

@@ -1,0 +1,47 @@
+//! The fast path: many strands stepped in f32, [`LANES`] at a time in SIMD
+//! lanes (4 on baseline x86-64, 8 where AVX is enabled at compile time), in
+//! parallel over batches.
+//!
+//! # How it works
+//!
+//! [`BatchSystem`] holds the same strands as a [`crate::HairSystem`] (same
+//! parameters, settings and head motion) but steps them with
+//! Block-diagonal or Exact only, in f32, and lays them out for speed:
+//!
+//! - **Lanes across strands** ([`lanes`]): [`LANES`] strands of a group form
+//!   a batch, and every number of the step is a [`Lanes`] of that many f32,
+//!   so each arithmetic operation of the step serves the whole batch. The code
+//!   is plain Rust over arrays; LLVM emits the SIMD (SSE on baseline x86-64,
+//!   AVX with `-C target-cpu=native`). Nothing depends on the target for
+//!   correctness.
+//! - **Structure of arrays** ([`layout`]): a batch's state is N strain and
+//!   N rate triples of lanes, contiguous; a step allocates nothing.
+//! - **Fused stages**: one root-to-tip sweep ([`forward`]: reconstruct,
+//!   forces and the element's own mass sums, with time derivatives carried
+//!   as angular velocity and acceleration instead of matrix jets,
+//!   [`geometry`]), then one tip-to-root sweep that forms each element's
+//!   block from suffix sums ([`suffix`]) and solves it
+//!   ([`block_diagonal`]), or runs the O(N) elimination ([`exact`]) and a
+//!   third, root-to-tip sweep.
+//! - **Threads**: rayon over batches; a batch's arithmetic does not depend
+//!   on which thread runs it, so serial and parallel runs are bit-identical.
+//!
+//! The quadrature is the settings' (`SimSettings::quadrature_points`), so a
+//! comparison with the f64 reference is like with like. External forces
+//! (`Strand::set_external_forces`) are not supported here yet.
+//!
+//! Accuracy: f32 against the f64 reference, pinned by
+//! `tests/batch_parity.rs` with named tolerances.
+
+pub mod block_diagonal;
+pub mod exact;
+pub mod forward;
+pub mod geometry;
+pub mod lanes;
+pub mod layout;
+pub mod suffix;
+mod system;
+pub mod vec;
+
+pub use lanes::{LANES, Lanes, Real};
+pub use system::{BatchSystem, MemoryUse};

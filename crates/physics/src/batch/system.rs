@@ -1,0 +1,319 @@
+//! [`BatchSystem`]: groups of strands in lane batches, stepped frame by
+//! frame like a [`crate::HairSystem`].
+
+use std::ops::Range;
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+use super::block_diagonal::step_block_diagonal;
+use super::exact::{Elimination, step_exact};
+use super::forward::{FrameState, advance};
+use super::lanes::{LANES, Lanes};
+use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::vec::V3;
+use crate::error::ParamError;
+use crate::model::StrandModel;
+use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
+use crate::params::StrandParams;
+use crate::settings::{Method, SimSettings};
+
+/// Strands sharing one model, in batches of [`LANES`].
+#[derive(Clone, Debug)]
+struct Group {
+    model: BatchModel,
+    roots: Vec<RootPose>,
+    /// Batch-major: batch b's element e is entry b·N + e.
+    q: Vec<V3<Lanes>>,
+    v: Vec<V3<Lanes>>,
+    first_strand: usize,
+}
+
+/// One batch's state and roots, as the step's iterators hand them out.
+type BatchRef<'a> = ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]);
+
+/// Per-thread step buffers.
+struct Scratch {
+    elements: Vec<ElementData<Lanes>>,
+    elimination: Vec<Elimination<Lanes>>,
+}
+
+impl Scratch {
+    fn new(n: usize) -> Self {
+        Self {
+            elements: vec![ElementData::zero(); n],
+            elimination: vec![Elimination::zero(); n],
+        }
+    }
+}
+
+/// Bytes of memory the batch path holds, for the throughput study.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MemoryUse {
+    /// State, roots and padding, divided by the strand count.
+    pub bytes_per_strand: f64,
+    /// Step scratch per worker thread (reused every step).
+    pub scratch_bytes_per_thread: usize,
+}
+
+/// Many strands stepped in f32 lanes; see the [module docs](super).
+#[derive(Clone, Debug)]
+pub struct BatchSystem {
+    settings: SimSettings,
+    groups: Vec<Group>,
+    strand_count: usize,
+    time_secs: f64,
+    head: RigidMotion,
+    parallel: bool,
+}
+
+impl BatchSystem {
+    /// An empty system. Fails if a setting is out of range or the method is
+    /// not Block-diagonal or Exact.
+    pub fn new(settings: SimSettings) -> Result<Self, ParamError> {
+        settings.validate()?;
+        if !matches!(settings.method, Method::BlockDiagonal | Method::Exact) {
+            return Err(ParamError::new(
+                "method",
+                0.0,
+                format!(
+                    "the batch path runs `block` and `exact`, not `{}`",
+                    settings.method.label()
+                ),
+            ));
+        }
+        Ok(Self {
+            settings,
+            groups: Vec::new(),
+            strand_count: 0,
+            time_secs: 0.0,
+            head: RigidMotion::default(),
+            parallel: true,
+        })
+    }
+
+    /// Adds strands sharing `params`, one per root, at their natural shape
+    /// and at rest; returns their indices.
+    pub fn add_group(
+        &mut self,
+        params: &StrandParams,
+        roots: &[RootPose],
+    ) -> Result<Range<usize>, ParamError> {
+        let model = StrandModel::new(params, self.settings.quadrature_points)?;
+        let model = BatchModel::new(&model);
+        let n = model.elements();
+        let batches = roots.len().div_ceil(LANES);
+        let natural: Vec<V3<Lanes>> = model.natural.iter().map(|k| V3::splat(*k)).collect();
+        let mut q = Vec::with_capacity(batches * n);
+        for _ in 0..batches {
+            q.extend_from_slice(&natural);
+        }
+        let start = self.strand_count;
+        self.groups.push(Group {
+            v: vec![V3::zero(); batches * n],
+            q,
+            roots: roots.to_vec(),
+            first_strand: start,
+            model,
+        });
+        self.strand_count += roots.len();
+        Ok(start..self.strand_count)
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &SimSettings {
+        &self.settings
+    }
+
+    /// Chooses parallel (rayon over batches) or serial stepping; results
+    /// are bit-identical.
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
+    }
+
+    /// Number of strands.
+    pub fn strand_count(&self) -> usize {
+        self.strand_count
+    }
+
+    /// Total element count over all strands.
+    pub fn element_count(&self) -> usize {
+        self.groups
+            .iter()
+            .map(|g| g.roots.len() * g.model.elements())
+            .sum()
+    }
+
+    /// Simulated time in seconds.
+    pub fn time_secs(&self) -> f64 {
+        self.time_secs
+    }
+
+    /// The head's motion at the current time.
+    pub fn head(&self) -> &RigidMotion {
+        &self.head
+    }
+
+    /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
+    /// along `head`, root motion sampled at the start of each substep.
+    pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        let h = self.settings.substep_secs();
+        let env = StepEnv {
+            h_secs: h as f32,
+            gravity_m_per_s2: self.settings.gravity_m_per_s2.as_vec3().to_array(),
+            air_velocity_m_per_s: self.settings.air_velocity_m_per_s.as_vec3().to_array(),
+        };
+        let exact = self.settings.method == Method::Exact;
+        for _ in 0..self.settings.substeps {
+            let motion = head.motion_at(self.time_secs);
+            for group in &mut self.groups {
+                group.step(&motion, &env, exact, self.parallel);
+            }
+            self.time_secs += h;
+        }
+        self.head = head.motion_at(self.time_secs);
+    }
+
+    fn locate(&self, index: usize) -> (&Group, usize, usize) {
+        let group = self
+            .groups
+            .iter()
+            .find(|g| (g.first_strand..g.first_strand + g.roots.len()).contains(&index))
+            .unwrap_or_else(|| panic!("strand {index} out of range 0..{}", self.strand_count));
+        let local = index - group.first_strand;
+        (group, local / LANES, local % LANES)
+    }
+
+    fn lane_values(values: &[V3<Lanes>], n: usize, batch: usize, lane: usize) -> Vec<DVec3> {
+        values[batch * n..(batch + 1) * n]
+            .iter()
+            .map(|x| Vec3::new(x.x.0[lane], x.y.0[lane], x.z.0[lane]).as_dvec3())
+            .collect()
+    }
+
+    /// Strains q of strand `index`, m⁻¹ (panics if out of range).
+    pub fn q(&self, index: usize) -> Vec<DVec3> {
+        let (g, batch, lane) = self.locate(index);
+        Self::lane_values(&g.q, g.model.elements(), batch, lane)
+    }
+
+    /// Strain rates q̇ of strand `index`, m⁻¹/s (panics if out of range).
+    pub fn v(&self, index: usize) -> Vec<DVec3> {
+        let (g, batch, lane) = self.locate(index);
+        Self::lane_values(&g.v, g.model.elements(), batch, lane)
+    }
+
+    /// Sets strand `index`'s strains and rates (rounded to f32; lengths
+    /// must match its element count).
+    pub fn set_state(&mut self, index: usize, q: &[DVec3], v: &[DVec3]) {
+        let (_, batch, lane) = self.locate(index);
+        let g = self
+            .groups
+            .iter_mut()
+            .find(|g| (g.first_strand..g.first_strand + g.roots.len()).contains(&index))
+            .expect("located above");
+        let n = g.model.elements();
+        assert!(q.len() == n && v.len() == n, "state length must be {n}");
+        for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
+            for (x, s) in dst[batch * n..(batch + 1) * n].iter_mut().zip(src) {
+                x.x.0[lane] = s.x as f32;
+                x.y.0[lane] = s.y as f32;
+                x.z.0[lane] = s.z as f32;
+            }
+        }
+    }
+
+    /// The N + 1 element boundary points of strand `index` in world
+    /// coordinates, root first (f32 reconstruction of the current state).
+    pub fn boundary_points_world(&self, index: usize) -> Vec<Vec3> {
+        let (g, batch, lane) = self.locate(index);
+        let n = g.model.elements();
+        let motion = self.head.carry(&g.roots[batch * LANES + lane]);
+        let origin = motion.position_m.as_vec3();
+        let mut s = FrameState::at_root(&RootMotion::<f32>::gather(&[motion]));
+        let pick = |x: &V3<Lanes>| V3::new(x.x.0[lane], x.y.0[lane], x.z.0[lane]);
+        let mut points = vec![origin];
+        for e in 0..n {
+            let i = batch * n + e;
+            s = advance(&s, g.model.lengths_m[e], pick(&g.q[i]), pick(&g.v[i])).0;
+            points.push(origin + Vec3::new(s.point_m.x, s.point_m.y, s.point_m.z));
+        }
+        points
+    }
+
+    /// Whether every strain and rate is finite (padding lanes included:
+    /// they copy real strands).
+    pub fn is_finite(&self) -> bool {
+        self.groups.iter().all(|g| {
+            g.q.iter().chain(&g.v).all(|x| {
+                [x.x, x.y, x.z]
+                    .iter()
+                    .all(|l| l.0.iter().all(|f| f.is_finite()))
+            })
+        })
+    }
+
+    /// Memory held per strand and per worker thread.
+    pub fn memory_use(&self) -> MemoryUse {
+        let state: usize = self
+            .groups
+            .iter()
+            .map(|g| {
+                (g.q.len() + g.v.len()) * std::mem::size_of::<V3<Lanes>>()
+                    + g.roots.len() * std::mem::size_of::<RootPose>()
+                    + g.model.elements() * 4 * 10
+            })
+            .sum();
+        let n_max = self
+            .groups
+            .iter()
+            .map(|g| g.model.elements())
+            .max()
+            .unwrap_or(0);
+        MemoryUse {
+            bytes_per_strand: state as f64 / self.strand_count.max(1) as f64,
+            scratch_bytes_per_thread: n_max
+                * (std::mem::size_of::<ElementData<Lanes>>()
+                    + std::mem::size_of::<Elimination<Lanes>>()),
+        }
+    }
+}
+
+impl Group {
+    fn step(&mut self, motion: &RigidMotion, env: &StepEnv, exact: bool, parallel: bool) {
+        let n = self.model.elements();
+        let model = &self.model;
+        let step_batch = |scratch: &mut Scratch, ((q, v), roots): BatchRef<'_>| {
+            let motions: [RigidMotion; LANES] =
+                std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
+            let root = RootMotion::<Lanes>::gather(&motions);
+            if exact {
+                step_exact(
+                    model,
+                    env,
+                    &root,
+                    q,
+                    v,
+                    &mut scratch.elements,
+                    &mut scratch.elimination,
+                );
+            } else {
+                step_block_diagonal(model, env, &root, q, v, &mut scratch.elements);
+            }
+        };
+        if parallel {
+            self.q
+                .par_chunks_mut(n)
+                .zip(self.v.par_chunks_mut(n))
+                .zip(self.roots.par_chunks(LANES))
+                .for_each_init(|| Scratch::new(n), step_batch);
+        } else {
+            let mut scratch = Scratch::new(n);
+            self.q
+                .chunks_mut(n)
+                .zip(self.v.chunks_mut(n))
+                .zip(self.roots.chunks(LANES))
+                .for_each(|batch| step_batch(&mut scratch, batch));
+        }
+    }
+}
