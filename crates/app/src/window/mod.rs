@@ -13,7 +13,7 @@
 //! [`viewport`] (camera gestures, render strands from guides).
 //!
 //! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
-//! pictures, egui painting, screenshots) and the egui panels ([`ui`],
+//! pictures, egui painting, screenshots) and the egui panels ([`ui`], [`tool_bar`],
 //! [`style_panel`], [`readout_panel`], [`file_picker`]).
 //!
 //! # Without a display
@@ -36,6 +36,7 @@ pub mod readout_panel;
 pub mod readouts;
 pub mod resample;
 pub mod style_panel;
+pub mod tool_bar;
 pub mod ui;
 pub mod undo;
 pub mod viewport;
