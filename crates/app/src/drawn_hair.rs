@@ -6,8 +6,10 @@
 //! ([`helixhair_render::interpolate`]), with roots spread on its part of
 //! the scalp (scalp groups) or scattered around the guides' roots (listed
 //! roots). Each strand gets its own shade of the group's colour, and every
-//! strand is draped over the head ([`drape_over`]): the physics does not
-//! collide hair with the head yet.
+//! strand is draped over the head ([`drape_over`]): a drawn strand is its
+//! guides' shapes moved to its own root, which can cut into the head
+//! between guides even when the guides themselves rest on it (and the
+//! `sim` command's guides do not collide at all).
 
 use glam::Vec3;
 use helixhair_render::head_shell::HeadShell;

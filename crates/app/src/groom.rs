@@ -12,12 +12,18 @@
 //! the simulated guides is [`crate::drawn_hair`]'s business.
 
 use glam::{DVec3, Vec3};
+use helixhair_physics::collision::{CollisionError, SignedDistanceField};
 use helixhair_render::HeadMesh;
 use helixhair_render::head_shell::HeadShell;
 use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
 use crate::style::{Root, StrandGroup, Style};
 use crate::style_groom::ScalpPlacement;
+
+/// Grid spacing of the head's collision field, metres: 4 mm resolves a
+/// head's curvature (radii of several centimetres) and keeps the grid of
+/// a bust with shoulders near half a million points.
+pub const COLLIDER_CELL_M: f64 = 0.004;
 
 /// A style grown on a head: what the simulation and the drawing share.
 #[derive(Clone, Debug)]
@@ -44,11 +50,43 @@ impl Groom {
         }
     }
 
+    /// The head as a collider for the physics ([`head_collider`]).
+    pub fn collider(&self) -> Result<SignedDistanceField, CollisionError> {
+        head_collider(&self.head)
+    }
+
     /// Each group as written, with the same group grown (its roots all
     /// listed).
     pub fn groups(&self) -> impl Iterator<Item = (&StrandGroup, &StrandGroup)> {
         self.style.groups.iter().zip(&self.grown.groups)
     }
+}
+
+/// `head` as a collider for the physics (the groomed render and the
+/// window share it): a signed distance field of
+/// the parts of its mesh that carry the scalp, with [`COLLIDER_CELL_M`]
+/// spacing, so simulated hair rests on the head instead of falling
+/// through it. Other parts (the default head's neck, a separate body)
+/// are left out: the field finds its inside by flooding the outside,
+/// and where two closed surfaces meet, the band around one leaks that
+/// flood into the other.
+pub fn head_collider(head: &HeadMesh) -> Result<SignedDistanceField, CollisionError> {
+    let mesh = &head.mesh;
+    let positions: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+    let part = mesh_parts(head);
+    let scalp_parts: Vec<usize> = head
+        .scalp_triangles
+        .iter()
+        .map(|&t| part[t as usize])
+        .collect();
+    let triangles: Vec<[u32; 3]> = mesh
+        .indices
+        .chunks_exact(3)
+        .enumerate()
+        .filter(|(t, _)| scalp_parts.contains(&part[*t]))
+        .map(|(_, c)| [c[0], c[1], c[2]])
+        .collect();
+    SignedDistanceField::from_triangles(&positions, &triangles, COLLIDER_CELL_M)
 }
 
 /// Whether any group places roots on the scalp (and so needs a head).
@@ -65,6 +103,43 @@ pub fn combed_direction(normal: DVec3, comb: DVec3, lift_deg: f64) -> DVec3 {
         .unwrap_or_else(|| normal.any_orthonormal_vector());
     let lift = lift_deg.to_radians();
     along * lift.cos() + normal * lift.sin()
+}
+
+/// The connected part each triangle of `head` belongs to (triangles that
+/// share a vertex position, to a micrometre, are connected: an OBJ's groups
+/// repeat the vertices on their borders).
+fn mesh_parts(head: &HeadMesh) -> Vec<usize> {
+    let mesh = &head.mesh;
+    let mut welded = std::collections::HashMap::new();
+    let vertex_key: Vec<usize> = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            let key = (*p * 1e6).round().as_ivec3().to_array();
+            let next = welded.len();
+            *welded.entry(key).or_insert(next)
+        })
+        .collect();
+    // Union-find over welded vertices.
+    let mut parent: Vec<usize> = (0..welded.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for t in mesh.indices.chunks_exact(3) {
+        let a = root(&mut parent, vertex_key[t[0] as usize]);
+        for &k in &t[1..] {
+            let b = root(&mut parent, vertex_key[k as usize]);
+            parent[b] = a;
+        }
+    }
+    mesh.indices
+        .chunks_exact(3)
+        .map(|t| root(&mut parent, vertex_key[t[0] as usize]))
+        .collect()
 }
 
 /// `head` with its scalp cut down to `placement`'s region (all of it

@@ -1,14 +1,15 @@
 //! `helixhair render`: simulate a style for some frames, then draw it
 //! offscreen into a PNG (or one PNG per frame with `--sequence`).
 //!
-//! The simulation is the headless one ([`HeadlessSim`]) on a still head;
-//! the roots of scalp placements are grown on the head first
-//! ([`crate::groom`]), and the drawn strands are interpolated from the
-//! simulated guides. Any wgpu adapter works, Mesa's lavapipe included
+//! The simulation is the headless one ([`HeadlessSim`]) on a still head,
+//! colliding with it; the roots of scalp placements are grown on the head
+//! first ([`crate::groom`]), and the drawn strands are interpolated from
+//! the simulated guides. Any wgpu adapter works, Mesa's lavapipe included
 //! (`WGPU_BACKEND=vulkan` on a machine without a GPU).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::Context as _;
@@ -151,6 +152,10 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     check_placements(&groom, &args.style, args.head.as_deref())?;
     let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default())
         .with_context(|| format!("cannot simulate {style_path}"))?;
+    let collider = groom
+        .collider()
+        .context("cannot build the head's collision field")?;
+    sim.system_mut().set_collider(Some(Arc::new(collider)));
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;

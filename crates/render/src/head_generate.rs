@@ -66,6 +66,29 @@ pub fn head_point_m(d: Vec3) -> Vec3 {
     Vec3::new(d.x * radius_x, d.y * radius_y, d.z * radius_z + forward_m) + relief * d
 }
 
+/// Whether `p` lies inside the head (nearer the centre than the surface in
+/// its direction).
+fn inside_head(p: Vec3) -> bool {
+    let r = p.length();
+    r == 0.0 || r < head_point_m(p / r).length()
+}
+
+/// Height of the head's underside above the point (`x_m`, `z_m`) of the
+/// horizontal plane, found by bisection between the centre's height
+/// (inside) and a point below the chin (outside).
+fn underside_y_m(x_m: f32, z_m: f32) -> f32 {
+    let (mut inside, mut outside) = (0.0f32, -0.2f32);
+    for _ in 0..30 {
+        let mid = 0.5 * (inside + outside);
+        if inside_head(Vec3::new(x_m, mid, z_m)) {
+            inside = mid;
+        } else {
+            outside = mid;
+        }
+    }
+    outside
+}
+
 /// Whether the head surface in direction `d` grows hair: above a hairline
 /// at the forehead in front, above the ears at the sides and down to the
 /// nape at the back.
@@ -99,7 +122,8 @@ fn push_triangle(head: &mut HeadMesh, corners: [u32; 3], scalp: bool) {
     head.mesh.indices.extend(corners);
 }
 
-/// Builds the default head (about 6,600 triangles, a fifth of them scalp).
+/// Builds the default head (about 6,900 triangles, two fifths of them
+/// scalp).
 ///
 /// Vertices: the crown pole, rings 1 to [`HEAD_RINGS`] − 1 of
 /// [`HEAD_SEGMENTS`] vertices each, the chin pole, then the neck's rings.
@@ -134,8 +158,11 @@ pub fn default_head() -> HeadMesh {
             }
         }
     }
-    // The neck: a tube from inside the jaw down, flaring at the bottom
-    // into the start of the shoulders (wide in x, shallow in z).
+    // The neck: a tube hanging from the underside of the head, flaring at
+    // the bottom into the start of the shoulders (wide in x, shallow in
+    // z). Its top ring lies on the head's surface, so no part of the neck
+    // is inside the skull: the head stays a closed solid of its own, as a
+    // collider needs.
     let neck_first = head.mesh.positions.len() as u32;
     for ring in 0..=NECK_RINGS {
         let t = ring as f32 / NECK_RINGS as f32;
@@ -144,8 +171,13 @@ pub fn default_head() -> HeadMesh {
         let (radius_x_m, radius_z_m) = (0.052 + 0.10 * flare, 0.047 + 0.025 * flare);
         for segment in 0..HEAD_SEGMENTS {
             let (sin, cos) = (TAU * segment as f32 / HEAD_SEGMENTS as f32).sin_cos();
-            let p = Vec3::new(radius_x_m * sin, y_m, -0.005 + radius_z_m * cos);
-            head.mesh.positions.push(p);
+            let (x_m, z_m) = (radius_x_m * sin, -0.005 + radius_z_m * cos);
+            let y_m = if ring == 0 {
+                underside_y_m(x_m, z_m)
+            } else {
+                y_m
+            };
+            head.mesh.positions.push(Vec3::new(x_m, y_m, z_m));
         }
     }
     let neck = |r: u32, s: u32| neck_first + r * segments + s % segments;
@@ -159,6 +191,26 @@ pub fn default_head() -> HeadMesh {
             );
             push_triangle(&mut head, [a, b, a1], false);
             push_triangle(&mut head, [a1, b, b1], false);
+        }
+    }
+    // A cap closes the neck's bottom, so the neck, too, bounds a solid.
+    for (ring, outward_y) in [(NECK_RINGS as u32, -1.0f32)] {
+        let centre = head.mesh.positions.len() as u32;
+        let ring_centre = (0..segments)
+            .map(|s| head.mesh.positions[neck(ring, s) as usize])
+            .sum::<Vec3>()
+            / segments as f32;
+        head.mesh.positions.push(ring_centre);
+        for s in 0..segments {
+            let (a, b) = (neck(ring, s), neck(ring, s + 1));
+            // Counter-clockwise seen from outside: up for the top cap,
+            // down for the bottom one.
+            let corners = if outward_y > 0.0 {
+                [centre, a, b]
+            } else {
+                [centre, b, a]
+            };
+            push_triangle(&mut head, corners, false);
         }
     }
     head.mesh.compute_normals();

@@ -1,7 +1,7 @@
 //! Keeping drawn strands out of the head: a radial shell around it.
 //!
-//! Until the physics collides hair with the head (a later issue), strands
-//! that fall through the skull would be drawn inside it. Before drawing,
+//! Strands drawn between simulated guides (or guides simulated without a
+//! collider) can cut into the head and would be drawn inside it. Before drawing,
 //! every strand point inside the head is pushed out to its surface (plus a
 //! small gap), so hair lies on the head instead of vanishing into it. This
 //! changes only the picture, never the simulation.

@@ -15,7 +15,8 @@
 //!   transparency (a random subset of the samples per strand and pixel,
 //!   so overlapping thin strands add up).
 //! - **Fibre shading**: Kajiya–Kay diffuse plus Marschner-style R, TRT and
-//!   TT lobes from shifted tangents (`shaders/hair.wgsl`).
+//!   TT lobes from shifted tangents, evaluated per strand point
+//!   (`shaders/hair.wgsl`).
 //! - **Self-shadowing**: a deep opacity map from the key light
 //!   ([`gpu::shadow`]) makes a dense groom read as a volume.
 //! - The **head** is lit with wrapped diffuse and receives the hair's
