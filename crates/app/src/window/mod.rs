@@ -57,6 +57,8 @@ pub use event_loop::run_window;
 pub const HEADLESS_HINT: &str = "\
 The headless commands need no display:
     helixhair sim --style assets/styles/curly.ron    simulate a style and report
+    helixhair render --style assets/styles/groomed/curly.ron --out curly.png
+                                                     draw it offscreen (no display needed)
     helixhair bench --help                           measure speed and accuracy
 See `helixhair --help` for every command.";
 
