@@ -10,7 +10,9 @@
 //! user's head pose and the built-in motions, with velocities and
 //! accelerations for the physics), [`collision`] (the head collider
 //! handed to the physics), [`readouts`], [`default_style`] and
-//! [`viewport`] (camera gestures, render strands from guides).
+//! [`viewport`] (camera gestures, render strands from guides) and
+//! [`drawn`] (styles with `render` sections, drawn as `helixhair render`
+//! draws them).
 //!
 //! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
 //! pictures, egui painting, screenshots) and the egui panels ([`ui`], [`tool_bar`],
@@ -27,6 +29,7 @@ pub mod app_state;
 pub mod collision;
 pub mod default_style;
 pub mod document;
+pub mod drawn;
 pub mod event_loop;
 pub mod file_picker;
 pub mod head_motion;
