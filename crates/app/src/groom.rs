@@ -50,31 +50,9 @@ impl Groom {
         }
     }
 
-    /// The head as a collider for the physics: a signed distance field of
-    /// the parts of its mesh that carry the scalp, with [`COLLIDER_CELL_M`]
-    /// spacing, so simulated hair rests on the head instead of falling
-    /// through it. Other parts (the default head's neck, a separate body)
-    /// are left out: the field finds its inside by flooding the outside,
-    /// and where two closed surfaces meet, the band around one leaks that
-    /// flood into the other.
+    /// The head as a collider for the physics ([`head_collider`]).
     pub fn collider(&self) -> Result<SignedDistanceField, CollisionError> {
-        let mesh = &self.head.mesh;
-        let positions: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
-        let part = mesh_parts(&self.head);
-        let scalp_parts: Vec<usize> = self
-            .head
-            .scalp_triangles
-            .iter()
-            .map(|&t| part[t as usize])
-            .collect();
-        let triangles: Vec<[u32; 3]> = mesh
-            .indices
-            .chunks_exact(3)
-            .enumerate()
-            .filter(|(t, _)| scalp_parts.contains(&part[*t]))
-            .map(|(_, c)| [c[0], c[1], c[2]])
-            .collect();
-        SignedDistanceField::from_triangles(&positions, &triangles, COLLIDER_CELL_M)
+        head_collider(&self.head)
     }
 
     /// Each group as written, with the same group grown (its roots all
@@ -82,6 +60,33 @@ impl Groom {
     pub fn groups(&self) -> impl Iterator<Item = (&StrandGroup, &StrandGroup)> {
         self.style.groups.iter().zip(&self.grown.groups)
     }
+}
+
+/// `head` as a collider for the physics (the groomed render and the
+/// window share it): a signed distance field of
+/// the parts of its mesh that carry the scalp, with [`COLLIDER_CELL_M`]
+/// spacing, so simulated hair rests on the head instead of falling
+/// through it. Other parts (the default head's neck, a separate body)
+/// are left out: the field finds its inside by flooding the outside,
+/// and where two closed surfaces meet, the band around one leaks that
+/// flood into the other.
+pub fn head_collider(head: &HeadMesh) -> Result<SignedDistanceField, CollisionError> {
+    let mesh = &head.mesh;
+    let positions: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+    let part = mesh_parts(head);
+    let scalp_parts: Vec<usize> = head
+        .scalp_triangles
+        .iter()
+        .map(|&t| part[t as usize])
+        .collect();
+    let triangles: Vec<[u32; 3]> = mesh
+        .indices
+        .chunks_exact(3)
+        .enumerate()
+        .filter(|(t, _)| scalp_parts.contains(&part[*t]))
+        .map(|(_, c)| [c[0], c[1], c[2]])
+        .collect();
+    SignedDistanceField::from_triangles(&positions, &triangles, COLLIDER_CELL_M)
 }
 
 /// Whether any group places roots on the scalp (and so needs a head).

@@ -29,6 +29,7 @@ use crate::style::Style;
 
 use super::app_state::{AppState, CompareMethods};
 use super::default_style::default_style;
+use super::drawn::DrawnCache;
 use super::ui::{ViewState, draw};
 use super::viewport::{HairLook, posed_head};
 use super::window_gpu::{WindowGpu, save_png};
@@ -51,6 +52,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     let mut handler = Handler {
         args: args.clone(),
         look: HairLook::new(&app.head_mesh, args.render_strands),
+        drawn: DrawnCache::default(),
         view: ViewState::new(app.sim.system().strands().len()),
         app,
         open: None,
@@ -85,6 +87,7 @@ struct Handler {
     args: WindowArgs,
     app: AppState,
     look: HairLook,
+    drawn: DrawnCache,
     view: ViewState,
     open: Option<Open>,
     error: Option<anyhow::Error>,
@@ -139,7 +142,17 @@ impl Handler {
         let head_mesh = posed_head(&self.app.head_mesh, pose);
         let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
         for (slot, run) in runs.enumerate() {
-            let hair = self.look.strands(&run.strand_buffers(), pose);
+            let guides = run.strand_buffers();
+            let hair = self
+                .drawn
+                .strands(
+                    self.app.doc.style(),
+                    &self.app.head_mesh,
+                    &guides,
+                    pose,
+                    self.args.render_strands,
+                )
+                .unwrap_or_else(|| self.look.strands(&guides, pose));
             let scene = Scene {
                 hair: &hair,
                 head: &head_mesh,

@@ -315,6 +315,25 @@ mod tests {
     }
 
     #[test]
+    fn scalp_placed_groups_grow_once_and_keep_their_state_on_edits() {
+        let src = include_str!("../../../../assets/styles/groomed/curly.ron");
+        let mut style = Style::from_ron(src, std::path::Path::new("curly.ron")).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None).unwrap();
+        // The placements' counts, grown into strands (the file lists none).
+        let placed: usize = style
+            .groups
+            .iter()
+            .filter_map(|g| g.scalp.as_ref().map(|p| p.count as usize))
+            .sum();
+        assert_eq!(sim.system().strands().len(), placed);
+        run(&mut sim, 5);
+        let before = sim.strand_buffers();
+        style.groups[0].params.air_drag *= 2.0;
+        sim.sync(&style).unwrap();
+        assert_eq!(sim.strand_buffers(), before);
+    }
+
+    #[test]
     fn tip_difference_is_rms_and_max() {
         let a = [DVec3::ZERO, DVec3::ZERO];
         let b = [DVec3::new(3.0, 0.0, 0.0), DVec3::new(0.0, 4.0, 0.0)];

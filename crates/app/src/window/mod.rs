@@ -10,10 +10,12 @@
 //! user's head pose and the built-in motions, with velocities and
 //! accelerations for the physics), [`collision`] (the head collider
 //! handed to the physics), [`readouts`], [`default_style`] and
-//! [`viewport`] (camera gestures, render strands from guides).
+//! [`viewport`] (camera gestures, render strands from guides) and
+//! [`drawn`] (styles with `render` sections, drawn as `helixhair render`
+//! draws them).
 //!
 //! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
-//! pictures, egui painting, screenshots) and the egui panels ([`ui`],
+//! pictures, egui painting, screenshots) and the egui panels ([`ui`], [`tool_bar`],
 //! [`style_panel`], [`readout_panel`], [`file_picker`]).
 //!
 //! # Without a display
@@ -27,6 +29,7 @@ pub mod app_state;
 pub mod collision;
 pub mod default_style;
 pub mod document;
+pub mod drawn;
 pub mod event_loop;
 pub mod file_picker;
 pub mod head_motion;
@@ -36,6 +39,7 @@ pub mod readout_panel;
 pub mod readouts;
 pub mod resample;
 pub mod style_panel;
+pub mod tool_bar;
 pub mod ui;
 pub mod undo;
 pub mod viewport;
@@ -56,6 +60,8 @@ pub use event_loop::run_window;
 pub const HEADLESS_HINT: &str = "\
 The headless commands need no display:
     helixhair sim --style assets/styles/curly.ron    simulate a style and report
+    helixhair render --style assets/styles/groomed/curly.ron --out curly.png
+                                                     draw it offscreen (no display needed)
     helixhair bench --help                           measure speed and accuracy
 See `helixhair --help` for every command.";
 
