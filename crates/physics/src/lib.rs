@@ -26,6 +26,8 @@ pub mod collision;
 pub mod energy;
 pub mod error;
 pub mod forces;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod guard;
 pub mod hair_system;
 pub mod helix;

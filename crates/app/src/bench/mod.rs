@@ -12,6 +12,7 @@
 //! | `accuracy` | error against cost on three scenes, Pareto front; iterations that win back Block-diagonal's error | `accuracy.csv`, `accuracy_*.svg`, `error_model.ron`, `iterations.csv`, `iterations.svg` |
 //! | `stability` | stable, damped-out or blown-up over dt × stiffness × root speed | `stability.csv`, `stability.svg`, `curly_dt.csv` |
 //! | `modes` | first-mode frequency and damping against N and the analytic value | `modes.csv`, `modes_*.svg` |
+//! | `throughput` | element-steps per second and memory per strand, CPU (1 and all threads) and GPU, against strand count and N | `throughput.csv`, `throughput.svg` |
 
 pub mod accuracy;
 pub mod chart;
@@ -22,6 +23,7 @@ pub mod pareto;
 pub mod scenes;
 pub mod stability;
 pub mod table;
+pub mod throughput;
 pub mod timing;
 
 use std::io::Write;
@@ -41,11 +43,20 @@ pub enum Study {
     Stability,
     /// First-mode frequency and damping against element count.
     Modes,
+    /// Element-steps per second of the batch and GPU paths against strand
+    /// count.
+    Throughput,
 }
 
 impl Study {
     /// Every study, in the order `--study` lists them.
-    pub const ALL: [Study; 4] = [Study::Cost, Study::Accuracy, Study::Stability, Study::Modes];
+    pub const ALL: [Study; 5] = [
+        Study::Cost,
+        Study::Accuracy,
+        Study::Stability,
+        Study::Modes,
+        Study::Throughput,
+    ];
 }
 
 /// Arguments of `helixhair bench`.
@@ -102,6 +113,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             Study::Accuracy => accuracy::run(&mut ctx),
             Study::Stability => stability::run(&mut ctx),
             Study::Modes => modes::run(&mut ctx),
+            Study::Throughput => throughput::run(&mut ctx),
         }
         .with_context(|| format!("study {study:?}"))?;
         writeln!(ctx.log, "   ({:.1} s)", start.elapsed().as_secs_f64())?;

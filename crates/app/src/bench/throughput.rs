@@ -1,0 +1,284 @@
+//! Study `throughput`: element-steps per second and memory per strand of
+//! every path that steps many strands, against strand count and N.
+//!
+//! Paths: the f64 reference (`HairSystem`, one thread; up to 1,000
+//! strands, it is slow), the f32 batch path (`BatchSystem`) on one thread
+//! and on all threads, and the GPU kernels (`GpuSystem`) on whatever adapter
+//! the environment gives; without one the GPU rows are skipped with the
+//! reason. On the development machine the only adapter is lavapipe, Mesa's
+//! software Vulkan: its figures are CPU figures, not a GPU's.
+//!
+//! Scene: straight 20 cm default strands on roots around a still head, one
+//! step per 60 Hz frame. Each figure is the median of [`BATCHES`] timed
+//! batches of at least [`BATCH_SECS`]; the machine is shared, so compare
+//! paths as ratios within one run. `frame_ms` is the physics time of one
+//! frame at that strand count; the log names the largest strand count whose
+//! frame stays under [`FRAME_BUDGET_MS`].
+
+use std::time::Instant;
+
+use glam::DVec3;
+use helixhair_physics::batch::BatchSystem;
+use helixhair_physics::gpu::{GpuContext, GpuSystem};
+use helixhair_physics::{HairSystem, Method, RigidMotion, RootPose, SimSettings, StrandParams};
+use serde::Serialize;
+
+use super::BenchContext;
+use super::chart::{Axis, LineChart, Series, draw_line_chart};
+use super::table::write_csv;
+use crate::sim_report::median;
+
+/// Timed batches per figure (odd: the median is one batch).
+pub const BATCHES: usize = 5;
+/// Shortest timed batch, seconds.
+pub const BATCH_SECS: f64 = 0.1;
+/// The physics budget of one 60 Hz frame.
+pub const FRAME_BUDGET_MS: f64 = 8.0;
+/// Strand counts (full, quick).
+pub const STRANDS: (&[usize], &[usize]) = (&[10, 100, 1_000, 10_000, 100_000], &[10, 100]);
+/// Element counts (full, quick).
+pub const ELEMENTS: (&[usize], &[usize]) = (&[10, 20], &[10]);
+/// Quadrature points per element: the reference's default 4, and 2.
+pub const POINTS: [usize; 2] = [2, 4];
+/// Largest strand count the f64 reference is timed at.
+pub const REFERENCE_MAX_STRANDS: usize = 1_000;
+
+/// One row of `throughput.csv`.
+#[derive(Clone, Debug, Serialize)]
+pub struct ThroughputRow {
+    /// `f64-reference-1-thread`, `f32-batch-1-thread`,
+    /// `f32-batch-all-threads` or `gpu` (see `adapter`).
+    pub path: String,
+    /// The adapter for GPU rows, the thread count for CPU rows.
+    pub adapter: String,
+    /// `block` or `exact`.
+    pub method: String,
+    /// Strands stepped together.
+    pub strands: usize,
+    /// Elements per strand.
+    pub elements: usize,
+    /// Quadrature points per element.
+    pub points: usize,
+    /// Median element-steps per second.
+    pub element_steps_per_sec: f64,
+    /// Physics milliseconds of one frame (one step) at this strand count.
+    pub frame_ms: f64,
+    /// Memory held per strand (state, roots, scratch), bytes.
+    pub bytes_per_strand: f64,
+    /// Whether the state stayed finite (a blow-up would time NaN arithmetic).
+    pub finite: bool,
+}
+
+fn roots(count: usize) -> Vec<RootPose> {
+    (0..count)
+        .map(|i| {
+            // Golden-angle spiral on a 10 cm sphere, strands growing outwards.
+            let t = (i as f64 + 0.5) / count as f64;
+            let (polar, azimuth) = ((1.0 - t).acos() * 0.9, i as f64 * 2.399_963);
+            let dir = DVec3::new(
+                polar.sin() * azimuth.cos(),
+                polar.cos(),
+                polar.sin() * azimuth.sin(),
+            );
+            RootPose::from_direction(dir * 0.1, dir, DVec3::Y)
+        })
+        .collect()
+}
+
+/// Median element-steps per second of `step` (which does `work`
+/// element-steps per call).
+fn rate(mut step: impl FnMut(), work: f64) -> f64 {
+    step();
+    let mut calls = 1usize;
+    let mut t = Instant::now();
+    step();
+    while t.elapsed().as_secs_f64() < BATCH_SECS {
+        calls *= 2;
+        t = Instant::now();
+        for _ in 0..calls {
+            step();
+        }
+    }
+    let rates: Vec<f64> = (0..BATCHES)
+        .map(|_| {
+            let t = Instant::now();
+            for _ in 0..calls {
+                step();
+            }
+            work * calls as f64 / t.elapsed().as_secs_f64()
+        })
+        .collect();
+    median(&rates)
+}
+
+/// Runs the study: `throughput.csv`, `throughput.svg`.
+pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
+    let strands = if ctx.quick { STRANDS.1 } else { STRANDS.0 };
+    let elements = if ctx.quick { ELEMENTS.1 } else { ELEMENTS.0 };
+    let head = RigidMotion::default();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let gpu_note = match GpuContext::new_headless() {
+        Ok(c) => format!("GPU rows on `{}`", c.adapter_name),
+        Err(e) => format!("GPU rows skipped: {e}"),
+    };
+    writeln!(ctx.log, "   {gpu_note}")?;
+    let mut rows = Vec::new();
+    for &n in elements {
+        for points in POINTS {
+            for method in [Method::BlockDiagonal, Method::Exact] {
+                let settings = SimSettings {
+                    method,
+                    quadrature_points: points,
+                    ..SimSettings::default()
+                };
+                let params = StrandParams {
+                    elements: n,
+                    ..StrandParams::default()
+                };
+                for &count in strands {
+                    let roots = roots(count);
+                    let work = (count * n) as f64;
+                    let mut push = |path: &str, adapter: String, r: f64, bytes: f64, finite| {
+                        rows.push(ThroughputRow {
+                            path: path.into(),
+                            adapter,
+                            method: method.name().into(),
+                            strands: count,
+                            elements: n,
+                            points,
+                            element_steps_per_sec: r,
+                            frame_ms: 1e3 * work / r,
+                            bytes_per_strand: bytes,
+                            finite,
+                        })
+                    };
+                    if count <= REFERENCE_MAX_STRANDS {
+                        let mut sys = HairSystem::new(settings.clone())?;
+                        sys.add_group(&params, &roots)?;
+                        sys.set_parallel(false);
+                        let r = rate(|| sys.step_frame(&head), work);
+                        let finite = sys.is_finite();
+                        push("f64-reference-1-thread", "1".into(), r, f64::NAN, finite);
+                    }
+                    for parallel in [false, true] {
+                        let mut sys = BatchSystem::new(settings.clone())?;
+                        sys.add_group(&params, &roots)?;
+                        sys.set_parallel(parallel);
+                        let r = rate(|| sys.step_frame(&head), work);
+                        let memory = sys.memory_use();
+                        let (path, t) = if parallel {
+                            ("f32-batch-all-threads", threads)
+                        } else {
+                            ("f32-batch-1-thread", 1)
+                        };
+                        push(
+                            path,
+                            t.to_string(),
+                            r,
+                            memory.bytes_per_strand,
+                            sys.is_finite(),
+                        );
+                    }
+                    let gpu = GpuContext::new_headless()
+                        .map_err(anyhow::Error::from)
+                        .and_then(|c| Ok(GpuSystem::new(c, &settings, &params, &roots)?));
+                    match gpu {
+                        Ok(mut g) => {
+                            let r = rate(
+                                || {
+                                    g.step_frame(&head);
+                                    let _ = g.wait();
+                                },
+                                work,
+                            );
+                            let finite = g
+                                .read_state()
+                                .map(|(q, v)| q.iter().chain(&v).flatten().all(|x| x.is_finite()))
+                                .unwrap_or(false);
+                            let adapter = g.adapter_name().to_owned();
+                            push("gpu", adapter, r, g.bytes_per_strand() as f64, finite);
+                        }
+                        Err(e) => writeln!(ctx.log, "   gpu, {count} strands, N = {n}: {e}")?,
+                    }
+                }
+            }
+        }
+    }
+    write_csv(&ctx.file("throughput.csv"), &rows)?;
+    report_budget(ctx, &rows)?;
+    draw(ctx, &rows, elements[0])
+}
+
+/// Logs the largest strand count per path whose frame fits the budget.
+fn report_budget(ctx: &mut BenchContext<'_>, rows: &[ThroughputRow]) -> anyhow::Result<()> {
+    let mut keys: Vec<(String, String, usize, usize)> = rows
+        .iter()
+        .map(|r| (r.path.clone(), r.method.clone(), r.elements, r.points))
+        .collect();
+    keys.dedup();
+    for (path, method, n, points) in keys {
+        let fits = rows
+            .iter()
+            .filter(|r| {
+                r.path == path && r.method == method && r.elements == n && r.points == points
+            })
+            .filter(|r| r.frame_ms <= FRAME_BUDGET_MS && r.finite)
+            .max_by_key(|r| r.strands);
+        let best = rows
+            .iter()
+            .filter(|r| {
+                r.path == path && r.method == method && r.elements == n && r.points == points
+            })
+            .map(|r| r.element_steps_per_sec)
+            .fold(0.0, f64::max);
+        writeln!(
+            ctx.log,
+            "   {path}, {method}, N = {n}, {points} points: best {best:.3e} element-steps/s; \
+             {} strands fit a {FRAME_BUDGET_MS} ms frame (measured counts)",
+            fits.map_or("no measured count".to_owned(), |r| r.strands.to_string()),
+        )?;
+    }
+    Ok(())
+}
+
+fn draw(ctx: &BenchContext<'_>, rows: &[ThroughputRow], n: usize) -> anyhow::Result<()> {
+    let mut keys: Vec<(String, String)> = rows
+        .iter()
+        .filter(|r| r.elements == n && r.points == 2)
+        .map(|r| (r.path.clone(), r.method.clone()))
+        .collect();
+    keys.sort();
+    keys.dedup();
+    let series = keys
+        .iter()
+        .enumerate()
+        .map(|(i, (path, method))| Series {
+            name: format!("{path}, {method}"),
+            points: rows
+                .iter()
+                .filter(|r| {
+                    &r.path == path && &r.method == method && r.elements == n && r.points == 2
+                })
+                .map(|r| (r.strands as f64, r.element_steps_per_sec))
+                .collect(),
+            line: true,
+            markers: true,
+            colour: if i >= 6 { i + 1 } else { i },
+        })
+        .collect();
+    draw_line_chart(
+        &ctx.file("throughput.svg"),
+        &LineChart {
+            title: format!("Throughput, N = {n}, 2 quadrature points, one step per frame"),
+            x: Axis {
+                label: "strands".into(),
+                log: true,
+            },
+            y: Axis {
+                label: "element-steps per second".into(),
+                log: true,
+            },
+            series,
+        },
+    )
+}

@@ -1,0 +1,471 @@
+//! [`GpuSystem`]: one group of strands stepped by the WGSL kernels in
+//! `shaders/physics/` (`common.wgsl` + `block_diagonal.wgsl` or `exact.wgsl`).
+//!
+//! How it works. The state (q, q̇ as vec4 per element) and the per-element
+//! scratch live in storage buffers; each substep writes the uniforms (step,
+//! gravity, the head's motion at that instant) and submits the stage
+//! dispatches: Block-diagonal `stage_frames` (per strand), `stage_elements`
+//! (per element), `stage_suffix` (per strand), `stage_solve` (per element);
+//! Exact `stage_exact` (per strand). Nothing is read back in the frame
+//! loop: [`GpuSystem::read_state`] exists for tests and tools, and a
+//! renderer binds [`GpuSystem::frames_buffer`] (Block-diagonal) directly:
+//! its `point_m` members are the element boundary points relative to each
+//! root, so a vertex or compute pass can build the strand polylines on the
+//! GPU (see `docs/gpu.md`).
+
+use std::borrow::Cow;
+
+use wgpu::util::DeviceExt;
+
+use super::device::{GpuContext, GpuError};
+use super::layout::{
+    BeyondGpu, ElementConstGpu, EliminationGpu, FrameGpu, JacobiansGpu, OffDiagonalGpu, OwnGpu,
+    ParamsGpu, RootPoseGpu,
+};
+use crate::model::StrandModel;
+use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
+use crate::params::StrandParams;
+use crate::settings::{Method, SimSettings};
+
+/// `shaders/physics/common.wgsl`: structs and the arithmetic shared by the kernels.
+pub const COMMON_WGSL: &str = include_str!("../../../../shaders/physics/common.wgsl");
+/// `shaders/physics/block_diagonal.wgsl`: the four Block-diagonal stages.
+pub const BLOCK_DIAGONAL_WGSL: &str = include_str!("../../../../shaders/physics/block_diagonal.wgsl");
+/// `shaders/physics/exact.wgsl`: the one-invocation-per-strand Exact step.
+pub const EXACT_WGSL: &str = include_str!("../../../../shaders/physics/exact.wgsl");
+
+/// The full source of a kernel module: the common part, then the kernel.
+pub fn kernel_source(method: Method) -> Option<String> {
+    let kernel = match method {
+        Method::BlockDiagonal => BLOCK_DIAGONAL_WGSL,
+        Method::Exact => EXACT_WGSL,
+        _ => return None,
+    };
+    Some(format!("{COMMON_WGSL}\n{kernel}"))
+}
+
+const WORKGROUP: u32 = 64;
+
+/// A state read back: (q, q̇), one vec4 per element, strand-major.
+pub type GpuState = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+
+/// How many invocations a stage runs.
+#[derive(Clone, Copy, Debug)]
+enum Span {
+    PerStrand,
+    PerElement,
+}
+
+fn f4(v: glam::DVec3) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, 0.0]
+}
+
+fn mat(m: glam::DMat3) -> [[f32; 4]; 3] {
+    [f4(m.x_axis), f4(m.y_axis), f4(m.z_axis)]
+}
+
+/// Strands of one group stepped on the GPU.
+#[derive(Debug)]
+pub struct GpuSystem {
+    ctx: GpuContext,
+    settings: SimSettings,
+    params: ParamsGpu,
+    elements: Vec<ElementConstGpu>,
+    roots: Vec<RootPoseGpu>,
+    params_buffer: wgpu::Buffer,
+    q_buffer: wgpu::Buffer,
+    v_buffer: wgpu::Buffer,
+    scratch: Vec<wgpu::Buffer>,
+    bind_group: wgpu::BindGroup,
+    stages: Vec<(wgpu::ComputePipeline, Span)>,
+    time_secs: f64,
+}
+
+impl GpuSystem {
+    /// Uploads strands sharing `params`, one per root, at rest in their
+    /// natural shape, and builds the kernels for `settings.method`.
+    pub fn new(
+        ctx: GpuContext,
+        settings: &SimSettings,
+        params: &StrandParams,
+        roots: &[RootPose],
+    ) -> Result<Self, GpuError> {
+        settings.validate()?;
+        let source = kernel_source(settings.method)
+            .ok_or_else(|| GpuError::UnsupportedMethod(settings.method.label()))?;
+        let model = StrandModel::new(params, settings.quadrature_points)?;
+        let n = model.elements();
+        let elements: Vec<ElementConstGpu> = (0..n)
+            .map(|e| {
+                let mut stiffness_length = f4(model.stiffness[e]);
+                stiffness_length[3] = model.lengths_m[e] as f32;
+                let mut natural_friction = f4(model.natural[e]);
+                natural_friction[3] = model.friction[e] as f32;
+                ElementConstGpu {
+                    stiffness_length,
+                    natural_friction,
+                }
+            })
+            .collect();
+        let roots_gpu: Vec<RootPoseGpu> = roots
+            .iter()
+            .map(|r| RootPoseGpu {
+                position_m: f4(r.position_m),
+                head_from_root: mat(r.head_from_root),
+            })
+            .collect();
+        let mut nodes = [[0.0; 4]; 2];
+        let mut weights = [[0.0; 4]; 2];
+        for (i, (x, w)) in model
+            .quadrature
+            .nodes
+            .iter()
+            .zip(&model.quadrature.weights)
+            .enumerate()
+        {
+            nodes[i / 4][i % 4] = *x as f32;
+            weights[i / 4][i % 4] = *w as f32;
+        }
+        let h = settings.substep_secs();
+        let gpu_params = ParamsGpu {
+            strand_count: roots.len() as u32,
+            elements: n as u32,
+            points: model.quadrature.len() as u32,
+            pad0: 0,
+            h_secs: h as f32,
+            mass_per_length: model.mass_per_length as f32,
+            air_drag: model.air_drag as f32,
+            mass_scale: (1.0 + h * model.air_drag / model.mass_per_length) as f32,
+            gravity_m_per_s2: f4(settings.gravity_m_per_s2),
+            air_velocity_m_per_s: f4(settings.air_velocity_m_per_s),
+            nodes,
+            weights,
+            head_rotation: mat(glam::DMat3::IDENTITY),
+            head_angular_velocity: [0.0; 4],
+            head_angular_acceleration: [0.0; 4],
+            head_velocity: [0.0; 4],
+            head_acceleration: [0.0; 4],
+        };
+        let count = roots.len() * n;
+        let natural: Vec<[f32; 4]> = (0..count).map(|i| f4(model.natural[i % n])).collect();
+        let zero = vec![[0.0f32; 4]; count];
+        let device = &ctx.device;
+        let limit = ctx.limits.max_storage_buffer_binding_size;
+        let storage = wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC;
+        let init = |label: &'static str, bytes: &[u8], usage| -> Result<wgpu::Buffer, GpuError> {
+            if bytes.len() as u64 > limit {
+                return Err(GpuError::TooLarge {
+                    what: label,
+                    bytes: bytes.len() as u64,
+                    limit_bytes: limit,
+                });
+            }
+            Ok(
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytes,
+                    usage,
+                }),
+            )
+        };
+        let params_buffer = init(
+            "params",
+            bytemuck::bytes_of(&gpu_params),
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        )?;
+        let elements_buffer = init("elements", bytemuck::cast_slice(&elements), storage)?;
+        let roots_buffer = init("roots", bytemuck::cast_slice(&roots_gpu), storage)?;
+        let q_buffer = init("q", bytemuck::cast_slice(&natural), storage)?;
+        let v_buffer = init("v", bytemuck::cast_slice(&zero), storage)?;
+        let scratch_sizes: [(&'static str, usize); 4] = if settings.method == Method::Exact {
+            [
+                ("jacobians", size_of::<JacobiansGpu>()),
+                ("own", size_of::<OwnGpu>()),
+                ("off_diagonal", size_of::<OffDiagonalGpu>()),
+                ("elimination", size_of::<EliminationGpu>()),
+            ]
+        } else {
+            [
+                ("frames", size_of::<FrameGpu>()),
+                ("jacobians", size_of::<JacobiansGpu>()),
+                ("own", size_of::<OwnGpu>()),
+                ("beyond", size_of::<BeyondGpu>()),
+            ]
+        };
+        let scratch = scratch_sizes
+            .iter()
+            .map(|(label, size)| {
+                let bytes = (size * count.max(1)) as u64;
+                if bytes > limit {
+                    return Err(GpuError::TooLarge {
+                        what: label,
+                        bytes,
+                        limit_bytes: limit,
+                    });
+                }
+                Ok(device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: bytes,
+                    usage: storage,
+                    mapped_at_creation: false,
+                }))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
+        for b in 1..=8 {
+            entries.push(entry(
+                b,
+                wgpu::BufferBindingType::Storage { read_only: b <= 2 },
+            ));
+        }
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("physics"),
+            entries: &entries,
+        });
+        let buffers: Vec<&wgpu::Buffer> = [
+            &params_buffer,
+            &elements_buffer,
+            &roots_buffer,
+            &q_buffer,
+            &v_buffer,
+        ]
+        .into_iter()
+        .chain(scratch.iter())
+        .collect();
+        let bind_entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("physics"),
+            layout: &layout,
+            entries: &bind_entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("physics"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(settings.method.name()),
+            source: wgpu::ShaderSource::Wgsl(Cow::Owned(source)),
+        });
+        let entry_points: &[(&str, Span)] = if settings.method == Method::Exact {
+            &[("stage_exact", Span::PerStrand)]
+        } else {
+            &[
+                ("stage_frames", Span::PerStrand),
+                ("stage_elements", Span::PerElement),
+                ("stage_suffix", Span::PerStrand),
+                ("stage_solve", Span::PerElement),
+            ]
+        };
+        let stages = entry_points
+            .iter()
+            .map(|(name, span)| {
+                let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(name),
+                    layout: Some(&pipeline_layout),
+                    module: &module,
+                    entry_point: Some(name),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+                (pipeline, *span)
+            })
+            .collect();
+        Ok(Self {
+            settings: settings.clone(),
+            params: gpu_params,
+            elements,
+            roots: roots_gpu,
+            params_buffer,
+            q_buffer,
+            v_buffer,
+            scratch,
+            bind_group,
+            stages,
+            time_secs: 0.0,
+            ctx,
+        })
+    }
+
+    /// The uniforms of a step taken while the head moves as `head`.
+    pub fn params_at(&self, head: &RigidMotion) -> ParamsGpu {
+        ParamsGpu {
+            head_rotation: mat(head.world_from_body),
+            head_angular_velocity: f4(head.angular_velocity_rad_per_s),
+            head_angular_acceleration: f4(head.angular_acceleration_rad_per_s2),
+            head_velocity: f4(head.velocity_m_per_s),
+            head_acceleration: f4(head.acceleration_m_per_s2),
+            ..self.params
+        }
+    }
+
+    /// Per-element constants as uploaded (binding 1).
+    pub fn element_constants(&self) -> &[ElementConstGpu] {
+        &self.elements
+    }
+
+    /// Roots as uploaded (binding 2).
+    pub fn roots(&self) -> &[RootPoseGpu] {
+        &self.roots
+    }
+
+    /// The adapter's name.
+    pub fn adapter_name(&self) -> &str {
+        &self.ctx.adapter_name
+    }
+
+    /// Simulated time in seconds.
+    pub fn time_secs(&self) -> f64 {
+        self.time_secs
+    }
+
+    /// Number of strands.
+    pub fn strand_count(&self) -> usize {
+        self.roots.len()
+    }
+
+    /// Elements per strand.
+    pub fn elements(&self) -> usize {
+        self.elements.len()
+    }
+
+    /// Bytes of GPU memory per strand (state and scratch).
+    pub fn bytes_per_strand(&self) -> usize {
+        let per_element = 2 * 16
+            + self
+                .scratch
+                .iter()
+                .map(|b| b.size() as usize)
+                .sum::<usize>()
+                / (self.roots.len() * self.elements.len()).max(1);
+        per_element * self.elements.len() + size_of::<RootPoseGpu>()
+    }
+
+    /// The frame state buffer of Block-diagonal (binding 5: one
+    /// [`FrameGpu`] per element, strand-major), for a renderer to read
+    /// points from on the GPU; `None` for Exact.
+    pub fn frames_buffer(&self) -> Option<&wgpu::Buffer> {
+        (self.settings.method == Method::BlockDiagonal).then(|| &self.scratch[0])
+    }
+
+    /// The state buffers (q, q̇), one vec4 per element, strand-major.
+    pub fn state_buffers(&self) -> (&wgpu::Buffer, &wgpu::Buffer) {
+        (&self.q_buffer, &self.v_buffer)
+    }
+
+    /// Uploads a state (one vec4 per element, strand-major).
+    pub fn set_state(&self, q: &[[f32; 4]], v: &[[f32; 4]]) {
+        self.ctx
+            .queue
+            .write_buffer(&self.q_buffer, 0, bytemuck::cast_slice(q));
+        self.ctx
+            .queue
+            .write_buffer(&self.v_buffer, 0, bytemuck::cast_slice(v));
+    }
+
+    fn dispatch_size(&self, span: Span) -> (u32, u32) {
+        let count = match span {
+            Span::PerStrand => self.roots.len(),
+            Span::PerElement => self.roots.len() * self.elements.len(),
+        } as u32;
+        let groups = count.div_ceil(WORKGROUP).max(1);
+        let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
+        (x, groups.div_ceil(x))
+    }
+
+    /// Advances one frame: `substeps` submissions of the stage dispatches,
+    /// the head's motion sampled at the start of each. No readback.
+    pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        let h = self.settings.substep_secs();
+        for _ in 0..self.settings.substeps {
+            let params = self.params_at(&head.motion_at(self.time_secs));
+            self.ctx
+                .queue
+                .write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
+            let mut encoder =
+                self.ctx
+                    .device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                        label: Some("step"),
+                    });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("step"),
+                    timestamp_writes: None,
+                });
+                pass.set_bind_group(0, &self.bind_group, &[]);
+                for (pipeline, span) in &self.stages {
+                    let (x, y) = self.dispatch_size(*span);
+                    pass.set_pipeline(pipeline);
+                    pass.dispatch_workgroups(x, y, 1);
+                }
+            }
+            self.ctx.queue.submit([encoder.finish()]);
+            self.time_secs += h;
+        }
+    }
+
+    /// Waits for every submitted step to finish (for timing).
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.ctx
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| GpuError::Readback(e.to_string()))
+    }
+
+    /// Reads (q, q̇) back: one vec4 per element, strand-major. For tests and
+    /// tools, not the frame loop.
+    pub fn read_state(&self) -> Result<GpuState, GpuError> {
+        Ok((self.read(&self.q_buffer)?, self.read(&self.v_buffer)?))
+    }
+
+    fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<[f32; 4]>, GpuError> {
+        let device = &self.ctx.device;
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: buffer.size(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+        self.ctx.queue.submit([encoder.finish()]);
+        let slice = staging.slice(..);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = sender.send(r);
+        });
+        self.wait()?;
+        receiver
+            .recv()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let data = bytemuck::cast_slice(&view).to_vec();
+        drop(view);
+        staging.unmap();
+        Ok(data)
+    }
+}

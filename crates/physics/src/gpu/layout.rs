@@ -1,0 +1,191 @@
+//! Host twins of the WGSL structs in `shaders/physics/common.wgsl`, `#[repr(C)]`
+//! plain data (bytemuck), with every vec3 padded to a vec4 and every
+//! mat3x3 stored as three vec4 columns, as WGSL lays them out in storage and
+//! uniform buffers. `tests/gpu_layout.rs` checks sizes and member offsets
+//! against the shader, reflected by naga; [`size_asserts`] pins the sizes at
+//! compile time.
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::batch::vec::{M3, V3};
+
+/// A WGSL `mat3x3<f32>`: three columns padded to 16 bytes.
+pub type Mat3Gpu = [[f32; 4]; 3];
+
+/// Uniforms of one step (WGSL `Params`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ParamsGpu {
+    /// Number of strands.
+    pub strand_count: u32,
+    /// Elements per strand N.
+    pub elements: u32,
+    /// Quadrature points per element (≤ 8).
+    pub points: u32,
+    /// Padding.
+    pub pad0: u32,
+    /// Step h, seconds.
+    pub h_secs: f32,
+    /// ρS, kg/m.
+    pub mass_per_length: f32,
+    /// ν, N·s/m².
+    pub air_drag: f32,
+    /// s = 1 + hν/ρS.
+    pub mass_scale: f32,
+    /// Gravity, m/s² (w unused).
+    pub gravity_m_per_s2: [f32; 4],
+    /// Air velocity, m/s (w unused).
+    pub air_velocity_m_per_s: [f32; 4],
+    /// Quadrature nodes, 4 per vec4.
+    pub nodes: [[f32; 4]; 2],
+    /// Quadrature weights, 4 per vec4.
+    pub weights: [[f32; 4]; 2],
+    /// Head rotation, world from head.
+    pub head_rotation: Mat3Gpu,
+    /// Head angular velocity, rad/s.
+    pub head_angular_velocity: [f32; 4],
+    /// Head angular acceleration, rad/s².
+    pub head_angular_acceleration: [f32; 4],
+    /// Velocity of the head origin, m/s.
+    pub head_velocity: [f32; 4],
+    /// Acceleration of the head origin, m/s².
+    pub head_acceleration: [f32; 4],
+}
+
+/// Per-element constants (WGSL `ElementConst`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ElementConstGpu {
+    /// (K_Q in N·m³, ℓ_Q in m).
+    pub stiffness_length: [f32; 4],
+    /// (qⁿ_Q in m⁻¹, γℓ_Q in N·m³·s).
+    pub natural_friction: [f32; 4],
+}
+
+/// A root on the head (WGSL `RootPose`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct RootPoseGpu {
+    /// Root point in head coordinates, m.
+    pub position_m: [f32; 4],
+    /// Root frame in head coordinates.
+    pub head_from_root: Mat3Gpu,
+}
+
+/// Frame state at an element start (WGSL `Frame`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FrameGpu {
+    /// R_Q.
+    pub frame: Mat3Gpu,
+    /// ω, rad/s.
+    pub angular_velocity: [f32; 4],
+    /// α, rad/s².
+    pub angular_acceleration: [f32; 4],
+    /// p_Q relative to the root point, m: what a renderer draws.
+    pub point_m: [f32; 4],
+    /// ṗ_Q, m/s.
+    pub point_velocity: [f32; 4],
+    /// p̈_Q, m/s².
+    pub point_acceleration: [f32; 4],
+}
+
+/// A_Q and B_Q (WGSL `Jacobians`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct JacobiansGpu {
+    /// A_Q, m².
+    pub a: Mat3Gpu,
+    /// B_Q, m.
+    pub b: Mat3Gpu,
+}
+
+/// An element's own sums (WGSL `Own`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct OwnGpu {
+    /// D_Q.
+    pub mass_block: Mat3Gpu,
+    /// Own inertia about the root point.
+    pub inertia: Mat3Gpu,
+    /// Σ GᵀF.
+    pub force: [f32; 4],
+    /// (first moment, mass).
+    pub moment: [f32; 4],
+    /// Σ wF.
+    pub force_sum: [f32; 4],
+    /// Σ w r×F.
+    pub torque_sum: [f32; 4],
+}
+
+/// Suffix sums past an element (WGSL `Beyond`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct BeyondGpu {
+    /// I past the element.
+    pub inertia: Mat3Gpu,
+    /// (c, m) past the element.
+    pub moment: [f32; 4],
+    /// Force past the element.
+    pub force: [f32; 4],
+    /// Torque past the element.
+    pub torque: [f32; 4],
+}
+
+/// U_Q and V_Q (WGSL `OffDiagonal`, Exact only).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct OffDiagonalGpu {
+    /// U_Q.
+    pub u: Mat3Gpu,
+    /// V_Q.
+    pub v: Mat3Gpu,
+}
+
+/// What Exact's elimination keeps per element (WGSL `Elimination`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct EliminationGpu {
+    /// W̃ top.
+    pub w_top: Mat3Gpu,
+    /// W̃ bottom.
+    pub w_bottom: Mat3Gpu,
+    /// S̃⁻¹.
+    pub s_inv: Mat3Gpu,
+    /// r̃.
+    pub rhs: [f32; 4],
+}
+
+/// Compile-time sizes, equal to the WGSL sizes the layout test reflects.
+pub mod size_asserts {
+    use super::*;
+    const _: () = assert!(std::mem::size_of::<ParamsGpu>() == 240);
+    const _: () = assert!(std::mem::size_of::<ElementConstGpu>() == 32);
+    const _: () = assert!(std::mem::size_of::<RootPoseGpu>() == 64);
+    const _: () = assert!(std::mem::size_of::<FrameGpu>() == 128);
+    const _: () = assert!(std::mem::size_of::<JacobiansGpu>() == 96);
+    const _: () = assert!(std::mem::size_of::<OwnGpu>() == 160);
+    const _: () = assert!(std::mem::size_of::<BeyondGpu>() == 96);
+    const _: () = assert!(std::mem::size_of::<OffDiagonalGpu>() == 96);
+    const _: () = assert!(std::mem::size_of::<EliminationGpu>() == 160);
+}
+
+/// A vec3 padded to a WGSL vec4.
+pub fn v4(v: V3<f32>) -> [f32; 4] {
+    [v.x, v.y, v.z, 0.0]
+}
+
+/// The xyz of a padded vec4.
+pub fn v3(v: [f32; 4]) -> V3<f32> {
+    V3::new(v[0], v[1], v[2])
+}
+
+/// A matrix as padded columns.
+pub fn m4(m: &M3<f32>) -> Mat3Gpu {
+    [v4(m.c0), v4(m.c1), v4(m.c2)]
+}
+
+/// Padded columns as a matrix.
+pub fn m3(m: &Mat3Gpu) -> M3<f32> {
+    M3::from_cols(v3(m[0]), v3(m[1]), v3(m[2]))
+}

@@ -1,0 +1,75 @@
+//! The GPU path (cargo feature `gpu`): Block-diagonal and Exact steps as
+//! wgpu compute kernels, with a CPU twin for every kernel stage.
+//!
+//! - [`device`]: a headless device from the environment's adapter, and
+//!   [`GpuError`] (no adapter is an error the caller turns into a CPU
+//!   fallback: [`Stepper::prefer_gpu`] does it with a message).
+//! - [`layout`]: host structs of the WGSL structs, checked against the
+//!   shaders by `tests/gpu_layout.rs`.
+//! - [`kernels`]: [`GpuSystem`], buffers, pipelines and the step.
+//! - [`twin`]: the CPU twins, one per WGSL entry point, same names.
+//!
+//! The WGSL lives in the top-level `shaders/physics/` folder (`common.wgsl`,
+//! `block_diagonal.wgsl`, `exact.wgsl`; the renderer's shaders are the
+//! files directly in `shaders/`), included with `include_str!`.
+//! `docs/gpu.md` explains the stage split and how a renderer reads the
+//! state without a readback.
+
+pub mod device;
+pub mod kernels;
+pub mod layout;
+pub mod twin;
+
+pub use device::{GpuContext, GpuError};
+pub use kernels::GpuSystem;
+
+use crate::batch::BatchSystem;
+use crate::error::ParamError;
+use crate::motion::{HeadTrajectory, RootPose};
+use crate::params::StrandParams;
+use crate::settings::SimSettings;
+
+/// A group of strands on the GPU, or on the CPU batch path when no GPU is
+/// available.
+#[derive(Debug)]
+pub enum Stepper {
+    /// Stepped by the kernels.
+    Gpu(Box<GpuSystem>),
+    /// Stepped by [`BatchSystem`].
+    Cpu(Box<BatchSystem>),
+}
+
+impl Stepper {
+    /// The GPU path if an adapter exists, else the CPU batch path; the
+    /// message says which and why (print it: it is the user's clear sign
+    /// that the GPU was not used).
+    pub fn prefer_gpu(
+        settings: &SimSettings,
+        params: &StrandParams,
+        roots: &[RootPose],
+    ) -> Result<(Self, String), ParamError> {
+        let gpu =
+            GpuContext::new_headless().and_then(|ctx| GpuSystem::new(ctx, settings, params, roots));
+        match gpu {
+            Ok(system) => {
+                let message = format!("physics on the GPU ({})", system.adapter_name());
+                Ok((Stepper::Gpu(Box::new(system)), message))
+            }
+            Err(GpuError::Param(e)) => Err(e),
+            Err(e) => {
+                let mut cpu = BatchSystem::new(settings.clone())?;
+                cpu.add_group(params, roots)?;
+                let message = format!("{e}; falling back to the CPU batch path");
+                Ok((Stepper::Cpu(Box::new(cpu)), message))
+            }
+        }
+    }
+
+    /// Advances one frame on whichever path holds the strands.
+    pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        match self {
+            Stepper::Gpu(g) => g.step_frame(head),
+            Stepper::Cpu(c) => c.step_frame(head),
+        }
+    }
+}

@@ -1,0 +1,265 @@
+//! CPU twins of the GPU kernels: one function per WGSL entry point, with
+//! the entry point's name and its bindings in binding order, computing the
+//! same thing from the same buffers with the batch path's f32 arithmetic
+//! ([`crate::batch`], at width 1). The parity tests run a step both ways and
+//! compare; a twin is also the reference when a kernel is changed.
+
+use crate::batch::exact::{Elimination, step_exact};
+use crate::batch::forward::{FrameState, advance, own_sums};
+use crate::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
+use crate::batch::vec::V3;
+
+use super::layout::{
+    BeyondGpu, ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu, m3, m4, v3,
+    v4,
+};
+
+/// The batch path's constants and environment from the kernel uniforms.
+pub fn model_of(params: &ParamsGpu, elements: &[ElementConstGpu]) -> (BatchModel, StepEnv) {
+    let points = params.points as usize;
+    let flat =
+        |a: &[[f32; 4]; 2]| -> Vec<f32> { a.iter().flatten().copied().take(points).collect() };
+    let model = BatchModel {
+        lengths_m: elements.iter().map(|e| e.stiffness_length[3]).collect(),
+        stiffness: elements
+            .iter()
+            .map(|e| {
+                [
+                    e.stiffness_length[0],
+                    e.stiffness_length[1],
+                    e.stiffness_length[2],
+                ]
+            })
+            .collect(),
+        natural: elements
+            .iter()
+            .map(|e| {
+                [
+                    e.natural_friction[0],
+                    e.natural_friction[1],
+                    e.natural_friction[2],
+                ]
+            })
+            .collect(),
+        friction: elements.iter().map(|e| e.natural_friction[3]).collect(),
+        mass_per_length: params.mass_per_length,
+        air_drag: params.air_drag,
+        nodes: flat(&params.nodes),
+        weights: flat(&params.weights),
+    };
+    let xyz = |v: [f32; 4]| [v[0], v[1], v[2]];
+    let env = StepEnv {
+        h_secs: params.h_secs,
+        gravity_m_per_s2: xyz(params.gravity_m_per_s2),
+        air_velocity_m_per_s: xyz(params.air_velocity_m_per_s),
+    };
+    (model, env)
+}
+
+/// The root frame state of a strand, carried by the head in f32 (WGSL
+/// `root_state`).
+pub fn root_state(params: &ParamsGpu, pose: &RootPoseGpu) -> FrameState<f32> {
+    let head = m3(&params.head_rotation);
+    let offset = head * v3(pose.position_m);
+    let w = v3(params.head_angular_velocity);
+    let alpha = v3(params.head_angular_acceleration);
+    FrameState {
+        frame: head.mul_mat(&m3(&pose.head_from_root)),
+        angular_velocity: w,
+        angular_acceleration: alpha,
+        point_m: V3::zero(),
+        point_velocity: v3(params.head_velocity) + w.cross(offset),
+        point_acceleration: v3(params.head_acceleration)
+            + alpha.cross(offset)
+            + w.cross(w.cross(offset)),
+    }
+}
+
+fn frame_of(f: &FrameGpu) -> FrameState<f32> {
+    FrameState {
+        frame: m3(&f.frame),
+        angular_velocity: v3(f.angular_velocity),
+        angular_acceleration: v3(f.angular_acceleration),
+        point_m: v3(f.point_m),
+        point_velocity: v3(f.point_velocity),
+        point_acceleration: v3(f.point_acceleration),
+    }
+}
+
+/// Twin of `stage_frames`: per strand, the frame chain and A_Q, B_Q.
+pub fn stage_frames(
+    params: &ParamsGpu,
+    elements: &[ElementConstGpu],
+    roots: &[RootPoseGpu],
+    q: &[[f32; 4]],
+    v: &[[f32; 4]],
+    frames: &mut [FrameGpu],
+    jacobians: &mut [JacobiansGpu],
+) {
+    let n = params.elements as usize;
+    for (strand, pose) in roots.iter().enumerate() {
+        let mut s = root_state(params, pose);
+        for (e, element) in elements.iter().enumerate().take(n) {
+            let i = strand * n + e;
+            frames[i] = FrameGpu {
+                frame: m4(&s.frame),
+                angular_velocity: v4(s.angular_velocity),
+                angular_acceleration: v4(s.angular_acceleration),
+                point_m: v4(s.point_m),
+                point_velocity: v4(s.point_velocity),
+                point_acceleration: v4(s.point_acceleration),
+            };
+            let (next, a, b) = advance(&s, element.stiffness_length[3], v3(q[i]), v3(v[i]));
+            jacobians[i] = JacobiansGpu {
+                a: m4(&a),
+                b: m4(&b),
+            };
+            s = next;
+        }
+    }
+}
+
+/// Twin of `stage_elements`: per element, its own sums.
+pub fn stage_elements(
+    params: &ParamsGpu,
+    elements: &[ElementConstGpu],
+    q: &[[f32; 4]],
+    v: &[[f32; 4]],
+    frames: &[FrameGpu],
+    own: &mut [OwnGpu],
+) {
+    let (model, env) = model_of(params, elements);
+    let n = params.elements as usize;
+    for (i, out) in own.iter_mut().enumerate() {
+        let el = own_sums::<f32, false>(
+            &model,
+            &env,
+            i % n,
+            &frame_of(&frames[i]),
+            v3(q[i]),
+            v3(v[i]),
+        );
+        let mut moment = v4(el.first_moment);
+        moment[3] = el.mass;
+        *out = OwnGpu {
+            mass_block: m4(&el.own_mass_block),
+            inertia: m4(&el.inertia),
+            force: v4(el.own_force),
+            moment,
+            force_sum: v4(el.force_sum),
+            torque_sum: v4(el.torque_sum),
+        };
+    }
+}
+
+fn element_of(jac: &JacobiansGpu, own: &OwnGpu) -> ElementData<f32> {
+    ElementData {
+        a: m3(&jac.a),
+        b: m3(&jac.b),
+        own_mass_block: m3(&own.mass_block),
+        own_force: v3(own.force),
+        mass: own.moment[3],
+        first_moment: v3(own.moment),
+        inertia: m3(&own.inertia),
+        force_sum: v3(own.force_sum),
+        torque_sum: v3(own.torque_sum),
+        ..ElementData::zero()
+    }
+}
+
+/// Twin of `stage_suffix`: per strand, the sums past each element.
+pub fn stage_suffix(params: &ParamsGpu, own: &[OwnGpu], beyond: &mut [BeyondGpu]) {
+    let n = params.elements as usize;
+    for (own, beyond) in own.chunks(n).zip(beyond.chunks_mut(n)) {
+        let mut b = Beyond::<f32>::zero();
+        for e in (0..n).rev() {
+            let mut moment = v4(b.first_moment);
+            moment[3] = b.mass;
+            beyond[e] = BeyondGpu {
+                inertia: m4(&b.inertia),
+                moment,
+                force: v4(b.force),
+                torque: v4(b.torque),
+            };
+            b.add(&element_of(&bytemuck::Zeroable::zeroed(), &own[e]));
+        }
+    }
+}
+
+/// Twin of `stage_solve`: per element, its block, the 3×3 solve and the
+/// integration.
+pub fn stage_solve(
+    params: &ParamsGpu,
+    elements: &[ElementConstGpu],
+    q: &mut [[f32; 4]],
+    v: &mut [[f32; 4]],
+    jacobians: &[JacobiansGpu],
+    own: &[OwnGpu],
+    beyond: &[BeyondGpu],
+) {
+    let (model, env) = model_of(params, elements);
+    let n = params.elements as usize;
+    for i in 0..q.len() {
+        let b = &beyond[i];
+        let sums = Beyond {
+            mass: b.moment[3],
+            first_moment: v3(b.moment),
+            inertia: m3(&b.inertia),
+            force: v3(b.force),
+            torque: v3(b.torque),
+        };
+        let terms = element_terms(&element_of(&jacobians[i], &own[i]), &sums);
+        let (mut qi, mut vi) = (v3(q[i]), v3(v[i]));
+        let (diagonal, rhs) = step_terms(&model, &env, i % n, terms.force, qi, vi);
+        let step_matrix = terms
+            .mass_block
+            .scale(mass_scale(&model, &env))
+            .add_diagonal(diagonal);
+        integrate(env.h_secs, &mut qi, &mut vi, step_matrix.inverse() * rhs);
+        q[i] = v4(qi);
+        v[i] = v4(vi);
+    }
+}
+
+/// Twin of `stage_exact`: per strand, the three sweeps of
+/// [`crate::batch::exact`]. The kernel keeps its per-element intermediates
+/// in bindings 5–8; the twin keeps them in local scratch.
+pub fn stage_exact(
+    params: &ParamsGpu,
+    elements: &[ElementConstGpu],
+    roots: &[RootPoseGpu],
+    q: &mut [[f32; 4]],
+    v: &mut [[f32; 4]],
+) {
+    let (model, env) = model_of(params, elements);
+    let n = params.elements as usize;
+    let mut scratch = vec![ElementData::<f32>::zero(); n];
+    let mut elimination = vec![Elimination::<f32>::zero(); n];
+    for (strand, pose) in roots.iter().enumerate() {
+        let s = root_state(params, pose);
+        let root = RootMotion {
+            world_from_root: s.frame,
+            angular_velocity_rad_per_s: s.angular_velocity,
+            angular_acceleration_rad_per_s2: s.angular_acceleration,
+            velocity_m_per_s: s.point_velocity,
+            acceleration_m_per_s2: s.point_acceleration,
+        };
+        let range = strand * n..(strand + 1) * n;
+        let mut qs: Vec<V3<f32>> = q[range.clone()].iter().map(|x| v3(*x)).collect();
+        let mut vs: Vec<V3<f32>> = v[range.clone()].iter().map(|x| v3(*x)).collect();
+        step_exact(
+            &model,
+            &env,
+            &root,
+            &mut qs,
+            &mut vs,
+            &mut scratch,
+            &mut elimination,
+        );
+        for (k, i) in range.enumerate() {
+            q[i] = v4(qs[k]);
+            v[i] = v4(vs[k]);
+        }
+    }
+}

@@ -1,0 +1,111 @@
+//! The WGSL kernels parse and validate without a GPU, and every host struct
+//! of `gpu::layout` has the size and member offsets naga computes for its
+//! WGSL twin.
+#![cfg(feature = "gpu")]
+
+use std::mem::{offset_of, size_of};
+
+use helixhair_physics::Method;
+use helixhair_physics::gpu::kernels::kernel_source;
+use helixhair_physics::gpu::layout::*;
+use wgpu::naga;
+
+fn module(method: Method) -> naga::Module {
+    let source = kernel_source(method).expect("a kernel exists");
+    let module = naga::front::wgsl::parse_str(&source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{method:?}: {e:?}"));
+    module
+}
+
+/// (size, [(member, offset)]) of WGSL struct `name`.
+fn reflect(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
+    let ty = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no struct {name}"))
+        .1;
+    match &ty.inner {
+        naga::TypeInner::Struct { members, span } => (
+            *span,
+            members
+                .iter()
+                .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                .collect(),
+        ),
+        other => panic!("{name} is {other:?}"),
+    }
+}
+
+macro_rules! check {
+    ($module:expr, $wgsl:literal, $host:ty, [$($field:ident => $wgsl_field:literal),* $(,)?]) => {{
+        let (size, members) = reflect($module, $wgsl);
+        assert_eq!(size as usize, size_of::<$host>(), "size of {}", $wgsl);
+        $(
+            let offset = members
+                .iter()
+                .find(|(n, _)| n == $wgsl_field)
+                .unwrap_or_else(|| panic!("{} has no {}", $wgsl, $wgsl_field))
+                .1;
+            assert_eq!(offset as usize, offset_of!($host, $field), "{}.{}", $wgsl, $wgsl_field);
+        )*
+    }};
+}
+
+#[test]
+fn kernels_validate_and_host_structs_match_the_shaders() {
+    let block = module(Method::BlockDiagonal);
+    let exact = module(Method::Exact);
+    for m in [&block, &exact] {
+        check!(m, "Params", ParamsGpu, [
+            strand_count => "strand_count", elements => "elements", points => "points",
+            h_secs => "h_secs", mass_per_length => "mass_per_length", air_drag => "air_drag",
+            mass_scale => "mass_scale", gravity_m_per_s2 => "gravity_m_per_s2",
+            air_velocity_m_per_s => "air_velocity_m_per_s", nodes => "nodes", weights => "weights",
+            head_rotation => "head_rotation", head_angular_velocity => "head_angular_velocity",
+            head_angular_acceleration => "head_angular_acceleration",
+            head_velocity => "head_velocity", head_acceleration => "head_acceleration",
+        ]);
+        check!(m, "ElementConst", ElementConstGpu, [
+            stiffness_length => "stiffness_length", natural_friction => "natural_friction",
+        ]);
+        check!(m, "RootPose", RootPoseGpu, [position_m => "position_m", head_from_root => "head_from_root"]);
+        check!(m, "Frame", FrameGpu, [
+            frame => "frame", angular_velocity => "angular_velocity",
+            angular_acceleration => "angular_acceleration", point_m => "point_m",
+            point_velocity => "point_velocity", point_acceleration => "point_acceleration",
+        ]);
+        check!(m, "Jacobians", JacobiansGpu, [a => "a", b => "b"]);
+        check!(m, "Own", OwnGpu, [
+            mass_block => "mass_block", inertia => "inertia", force => "force",
+            moment => "moment", force_sum => "force_sum", torque_sum => "torque_sum",
+        ]);
+        check!(m, "Beyond", BeyondGpu, [
+            inertia => "inertia", moment => "moment", force => "force", torque => "torque",
+        ]);
+    }
+    check!(&exact, "OffDiagonal", OffDiagonalGpu, [u => "u", v => "v"]);
+    check!(&exact, "Elimination", EliminationGpu, [
+        w_top => "w_top", w_bottom => "w_bottom", s_inv => "s_inv", rhs => "rhs",
+    ]);
+    // Round trip: bytes written by the host read back as the same values.
+    let params = ParamsGpu {
+        strand_count: 3,
+        h_secs: 0.25,
+        head_rotation: [
+            [1.0, 2.0, 3.0, 0.0],
+            [4.0, 5.0, 6.0, 0.0],
+            [7.0, 8.0, 9.0, 0.0],
+        ],
+        ..bytemuck::Zeroable::zeroed()
+    };
+    let bytes = bytemuck::bytes_of(&params);
+    let back: ParamsGpu = bytemuck::pod_read_unaligned(bytes);
+    assert_eq!(back, params);
+}

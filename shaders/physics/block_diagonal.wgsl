@@ -1,0 +1,97 @@
+// Block-diagonal step on the GPU (append to common.wgsl). Four stages per
+// step, each a dispatch:
+//   stage_frames   one invocation per strand: the root-to-tip frame chain
+//                  (R, ω, α, p, ṗ, p̈ at each element start) and A_Q, B_Q
+//   stage_elements one invocation per element: its quadrature samples and
+//                  own sums (forces, D_Q, mass moments)
+//   stage_suffix   one invocation per strand: tip-to-root suffix sums
+//   stage_solve    one invocation per element: M_QQ and Q_Q from the sums,
+//                  the 3×3 solve, integrate
+// The chain and the suffix are sequential per strand (N ≤ 200 steps of a
+// few hundred flops); the per-element stages carry the bulk of the work.
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read> elements_const: array<ElementConst>;
+@group(0) @binding(2) var<storage, read> roots: array<RootPose>;
+@group(0) @binding(3) var<storage, read_write> q: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> v: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read_write> frames: array<Frame>;
+@group(0) @binding(6) var<storage, read_write> jacobians: array<Jacobians>;
+@group(0) @binding(7) var<storage, read_write> own: array<Own>;
+@group(0) @binding(8) var<storage, read_write> beyond: array<Beyond>;
+
+fn flat_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
+    return id.x + id.y * groups.x * 64u;
+}
+
+fn load_frame(i: u32) -> FrameState {
+    let f = frames[i];
+    var s: FrameState;
+    s.frame = f.frame;
+    s.w = f.angular_velocity.xyz;
+    s.alpha = f.angular_acceleration.xyz;
+    s.p = f.point_m.xyz;
+    s.pv = f.point_velocity.xyz;
+    s.pa = f.point_acceleration.xyz;
+    return s;
+}
+
+@compute @workgroup_size(64)
+fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let strand = flat_index(id, groups);
+    if strand >= params.strand_count {
+        return;
+    }
+    let n = params.elements;
+    var s = root_state(strand);
+    for (var e = 0u; e < n; e++) {
+        let i = strand * n + e;
+        frames[i] = Frame(s.frame, vec4<f32>(s.w, 0.0), vec4<f32>(s.alpha, 0.0), vec4<f32>(s.p, 0.0),
+            vec4<f32>(s.pv, 0.0), vec4<f32>(s.pa, 0.0));
+        let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
+        jacobians[i] = Jacobians(adv.a, adv.b);
+        s = adv.next;
+    }
+}
+
+@compute @workgroup_size(64)
+fn stage_elements(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = flat_index(id, groups);
+    if i >= params.strand_count * params.elements {
+        return;
+    }
+    let e = i % params.elements;
+    own[i] = own_sums(e, load_frame(i), q[i].xyz, v[i].xyz, false).own;
+}
+
+@compute @workgroup_size(64)
+fn stage_suffix(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let strand = flat_index(id, groups);
+    if strand >= params.strand_count {
+        return;
+    }
+    let n = params.elements;
+    var b = zero_beyond();
+    for (var k = 0u; k < n; k++) {
+        let i = strand * n + (n - 1u - k);
+        beyond[i] = b;
+        add_beyond(&b, own[i]);
+    }
+}
+
+@compute @workgroup_size(64)
+fn stage_solve(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = flat_index(id, groups);
+    if i >= params.strand_count * params.elements {
+        return;
+    }
+    let e = i % params.elements;
+    let terms = element_terms(jacobians[i], own[i], beyond[i]);
+    let qi = q[i].xyz;
+    let vi = v[i].xyz;
+    let st = step_terms(e, terms.force, qi, vi);
+    let m = add_diagonal(terms.mass_block * params.mass_scale, st[0]);
+    let v_next = vi + inverse3(m) * st[1];
+    v[i] = vec4<f32>(v_next, 0.0);
+    q[i] = vec4<f32>(qi + v_next * params.h_secs, 0.0);
+}
