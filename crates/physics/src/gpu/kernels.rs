@@ -30,7 +30,8 @@ use crate::settings::{Method, SimSettings};
 /// `shaders/physics/common.wgsl`: structs and the arithmetic shared by the kernels.
 pub const COMMON_WGSL: &str = include_str!("../../../../shaders/physics/common.wgsl");
 /// `shaders/physics/block_diagonal.wgsl`: the four Block-diagonal stages.
-pub const BLOCK_DIAGONAL_WGSL: &str = include_str!("../../../../shaders/physics/block_diagonal.wgsl");
+pub const BLOCK_DIAGONAL_WGSL: &str =
+    include_str!("../../../../shaders/physics/block_diagonal.wgsl");
 /// `shaders/physics/exact.wgsl`: the one-invocation-per-strand Exact step.
 pub const EXACT_WGSL: &str = include_str!("../../../../shaders/physics/exact.wgsl");
 
