@@ -16,6 +16,14 @@
 //! Block-diagonal, Exact or Iterative) and **integrate**. Everything is f64
 //! and O(N) per strand except the dense solve.
 //!
+//! # Many strands
+//!
+//! [`batch::BatchSystem`] steps Block-diagonal or Exact in f32 with SIMD
+//! lanes across strands, in parallel over batches, matching the f64 path
+//! within named tolerances (`tests/batch_parity.rs`). With the cargo
+//! feature `gpu`, `gpu::GpuSystem` runs the same arithmetic as wgpu compute
+//! kernels (`shaders/`), each stage with a CPU twin (`gpu::twin`).
+//!
 //! This crate knows nothing of rendering, windows or file formats; its
 //! parameter types derive serde so that callers can embed them in theirs.
 
