@@ -6,15 +6,13 @@
 //! them time the same work; a curl costs the same per step (the series in
 //! the helix coefficients have a fixed length).
 
-use std::sync::Arc;
-
-use glam::DVec3;
 use helixhair_physics::settings::DEFAULT_ITERATIONS;
-use helixhair_physics::{Method, RootPose, Strand, StrandModel, StrandParams};
+use helixhair_physics::{Method, StrandParams};
 use serde::Serialize;
 
 use super::BenchContext;
 use super::chart::{Axis, LineChart, draw_line_chart, series_per_method};
+use super::scenes::horizontal_strand;
 use super::table::write_csv;
 use super::timing::{BATCHES, time_steps};
 
@@ -58,9 +56,7 @@ pub fn measure(method: Method, elements: usize, batches: usize) -> CostRow {
         elements,
         ..StrandParams::default()
     };
-    let model = Arc::new(StrandModel::new(&params, 4).expect("default parameters are valid"));
-    let root = RootPose::from_direction(DVec3::ZERO, DVec3::X, DVec3::Y);
-    let mut strand = Strand::new(model, root, method);
+    let mut strand = horizontal_strand(&params, method);
     let t = time_steps(&mut strand, TIMING_STEP_SECS, batches);
     CostRow {
         method: method.label(),

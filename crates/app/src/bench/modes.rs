@@ -20,15 +20,14 @@
 //! step's own damping, about π/1000 per period there, stays below 1% of
 //! the physical ζ.
 
-use std::sync::Arc;
-
 use glam::DVec3;
-use helixhair_physics::{Method, RigidMotion, RootPose, Strand, StrandModel, StrandParams};
+use helixhair_physics::{Method, RigidMotion, Strand, StrandParams};
 use serde::Serialize;
 
 use super::BenchContext;
 use super::chart::{Axis, LineChart, REFERENCE_COLOUR, Series, draw_line_chart, series_per_method};
 use super::cost::SOLVERS;
+use super::scenes::horizontal_strand;
 use super::table::write_csv;
 
 /// First cantilever eigenvalue ω₁ √(ρS L⁴ / EI).
@@ -113,12 +112,7 @@ pub fn measure(method: Method, elements: usize) -> ModeRow {
         ..StrandParams::default()
     };
     let (omega, zeta) = analytic_first_mode(&params);
-    let model = Arc::new(StrandModel::new(&params, 4).expect("default parameters are valid"));
-    let mut strand = Strand::new(
-        model,
-        RootPose::from_direction(DVec3::ZERO, DVec3::X, DVec3::Y),
-        method,
-    );
+    let mut strand = horizontal_strand(&params, method);
     let bend = vec![DVec3::new(0.0, 0.0, INITIAL_CURVATURE_PER_M); elements];
     strand.set_state(&bend, &vec![DVec3::ZERO; elements]);
     let root = RigidMotion::default();

@@ -17,12 +17,13 @@
 //! The curl classes match the example styles: wavy R = 2.5 cm, step 12 cm;
 //! curly R = 1.2 cm, step 3 cm; coily R = 5 mm, step 8 mm.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use glam::DVec3;
 use helixhair_physics::{
     Bounce, HairSystem, HeadTrajectory, Method, NaturalShape, Oscillation, RigidMotion, RootPose,
-    SimSettings, StrandParams,
+    SimSettings, Strand, StrandModel, StrandParams,
 };
 
 /// Frame length of every scene, seconds.
@@ -167,6 +168,16 @@ impl Scene {
             frame_secs: FRAME_SECS,
         }
     }
+}
+
+/// A lone strand with `params` on a horizontal root at the origin (growing
+/// along +x, n₁ = +y), solved with `method` and the default quadrature:
+/// the cantilever the cost and modes studies time and shake.
+pub fn horizontal_strand(params: &StrandParams, method: Method) -> Strand {
+    let quadrature = SimSettings::default().quadrature_points;
+    let model = StrandModel::new(params, quadrature).expect("bench parameters are valid");
+    let root = RootPose::from_direction(DVec3::ZERO, DVec3::X, DVec3::Y);
+    Strand::new(Arc::new(model), root, method)
 }
 
 /// How a scene is run: solver, elements and substeps per 1/60 s frame.

@@ -15,8 +15,6 @@
 //! frame at that strand count; the log names the largest strand count whose
 //! frame stays under [`FRAME_BUDGET_MS`].
 
-use std::time::Instant;
-
 use glam::DVec3;
 use helixhair_physics::batch::BatchSystem;
 use helixhair_physics::gpu::{GpuContext, GpuSystem};
@@ -26,6 +24,7 @@ use serde::Serialize;
 use super::BenchContext;
 use super::chart::{Axis, LineChart, Series, draw_line_chart};
 use super::table::write_csv;
+use super::timing::secs_per_call;
 use crate::sim_report::median;
 
 /// Timed batches per figure (odd: the median is one batch).
@@ -87,28 +86,9 @@ fn roots(count: usize) -> Vec<RootPose> {
 
 /// Median element-steps per second of `step` (which does `work`
 /// element-steps per call).
-fn rate(mut step: impl FnMut(), work: f64) -> f64 {
-    step();
-    let mut calls = 1usize;
-    let mut t = Instant::now();
-    step();
-    while t.elapsed().as_secs_f64() < BATCH_SECS {
-        calls *= 2;
-        t = Instant::now();
-        for _ in 0..calls {
-            step();
-        }
-    }
-    let rates: Vec<f64> = (0..BATCHES)
-        .map(|_| {
-            let t = Instant::now();
-            for _ in 0..calls {
-                step();
-            }
-            work * calls as f64 / t.elapsed().as_secs_f64()
-        })
-        .collect();
-    median(&rates)
+fn rate(step: impl FnMut(), work: f64) -> f64 {
+    // BATCHES is odd, so this is the median of the batches' rates.
+    work / median(&secs_per_call(step, BATCHES, BATCH_SECS))
 }
 
 /// Runs the study: `throughput.csv`, `throughput.svg`.

@@ -1,9 +1,9 @@
 //! Timing one strand's steps: medians of repeated batches.
 //!
 //! The machine is shared and noisy, so a single timing means little: each
-//! measurement runs a warm-up, then [`BATCHES`] batches sized to take about
-//! [`BATCH_SECS`] each, and reports the median batch with the fastest and
-//! slowest. Methods are compared as ratios of medians from one run.
+//! measurement runs a warm-up, then batches sized to take at least a given
+//! time ([`secs_per_call`]; [`BATCH_SECS`] for one strand's steps), and
+//! reports the median batch with the fastest and slowest. Methods are compared as ratios of medians from one run.
 
 use std::time::Instant;
 
@@ -30,23 +30,41 @@ pub struct StepTiming {
     pub max_secs: f64,
 }
 
+/// Seconds per call of `call`, one figure per batch: after a warm-up call,
+/// the calls per batch double until a batch lasts `batch_secs`, then
+/// `batches` batches of that many calls are timed.
+pub fn secs_per_call(mut call: impl FnMut(), batches: usize, batch_secs: f64) -> Vec<f64> {
+    let mut timed = |count: usize| {
+        let start = Instant::now();
+        for _ in 0..count {
+            call();
+        }
+        start.elapsed().as_secs_f64()
+    };
+    timed(1);
+    let mut per_batch = 1usize;
+    while timed(per_batch) < batch_secs && per_batch < MAX_CALLS_PER_BATCH {
+        per_batch *= 2;
+    }
+    (0..batches.max(1))
+        .map(|_| timed(per_batch) / per_batch as f64)
+        .collect()
+}
+
+/// Most calls one batch may hold (a call too fast to time on its own).
+pub const MAX_CALLS_PER_BATCH: usize = 1 << 20;
+
 /// Times `strand.step` under a still root and gravity with step `h_secs`.
 pub fn time_steps(strand: &mut Strand, h_secs: f64, batches: usize) -> StepTiming {
     let root = RigidMotion::default();
     let gravity = DVec3::new(0.0, -9.81, 0.0);
-    let mut step = |count: usize| {
-        let start = Instant::now();
-        for _ in 0..count {
+    let secs = secs_per_call(
+        || {
             strand.step(&root, gravity, DVec3::ZERO, h_secs);
-        }
-        start.elapsed().as_secs_f64()
-    };
-    let one = step(2) / 2.0;
-    let per_batch = ((BATCH_SECS / one.max(1e-9)) as usize).clamp(1, 100_000);
-    step(per_batch);
-    let secs: Vec<f64> = (0..batches.max(1))
-        .map(|_| step(per_batch) / per_batch as f64)
-        .collect();
+        },
+        batches,
+        BATCH_SECS,
+    );
     StepTiming {
         median_secs: median(&secs),
         min_secs: secs.iter().copied().fold(f64::INFINITY, f64::min),

@@ -58,7 +58,10 @@ impl SignedDistanceField {
             (g.z as usize).min(self.dims[2] - 2),
         ];
         let t = g - DVec3::new(i[0] as f64, i[1] as f64, i[2] as f64);
-        let c = |dx: usize, dy: usize, dz: usize| self.at(i[0] + dx, i[1] + dy, i[2] + dz);
+        // The cell's eight corners, read once: corner[dx][dy][dz].
+        let corner = [0, 1]
+            .map(|dx| [0, 1].map(|dy| [0, 1].map(|dz| self.at(i[0] + dx, i[1] + dy, i[2] + dz))));
+        let c = |dx: usize, dy: usize, dz: usize| corner[dx][dy][dz];
         // Trilinear value and its exact gradient.
         let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
         let (c00, c10) = (
