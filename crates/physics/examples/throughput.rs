@@ -82,10 +82,13 @@ fn main() {
         let mut batch = BatchSystem::new(settings).expect("valid settings");
         batch.add_group(&params, &roots).expect("valid params");
         batch.set_parallel(false);
+        let start = Instant::now();
         for _ in 0..steps {
             batch.step_frame(&head);
         }
+        let secs = start.elapsed().as_secs_f64();
         assert!(batch.is_finite(), "non-finite state");
+        eprintln!("{:.3e} element-steps/s", work * steps as f64 / secs);
         return;
     }
     println!("path,method,strands,elements,points,element_steps_per_sec");

@@ -2,11 +2,10 @@
 //!
 //! The fast path steps [`LANES`] strands at once: every quantity of the
 //! step (a strain, a frame entry, a mass moment) is a [`Lanes`], one f32 per
-//! strand, and every operation acts lane by lane. The arrays are plain
-//! `[f32; LANES]` with element-wise loops, which LLVM turns into SIMD
-//! instructions of whatever width the target has (two SSE registers on
-//! baseline x86-64, one AVX register with `-C target-cpu=native`), so the
-//! code is portable and needs no `unsafe` and no intrinsics.
+//! strand, and every operation acts lane by lane. [`Lanes`] wraps
+//! `wide::f32x8`, whose operators are explicit SIMD instructions of the
+//! width the build enables (one AVX register, or two SSE registers on
+//! baseline x86-64; a portable fallback elsewhere), with no `unsafe` here.
 //!
 //! The step's arithmetic is written once, generic over [`Real`], and runs on
 //! [`Lanes`] (the batch path) or on plain `f32` (the CPU twins of the GPU
@@ -14,14 +13,12 @@
 
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-/// Strands per batch: 8 f32 lanes fill one AVX register.
-#[cfg(target_feature = "avx")]
+use wide::f32x8;
+
+/// Strands per batch: one [`wide::f32x8`]. The width is the same on every
+/// build, so the data layout is too; results do not depend on the
+/// instruction set, since every lane runs the same IEEE operations.
 pub const LANES: usize = 8;
-/// Strands per batch: 4 f32 lanes fill one SSE register (baseline x86-64
-/// and other targets); wider lanes would only add register spills. Results
-/// do not depend on the width: every lane runs the same IEEE operations.
-#[cfg(not(target_feature = "avx"))]
-pub const LANES: usize = 4;
 
 /// The scalar operations the step's arithmetic needs.
 pub trait Real:
@@ -90,33 +87,32 @@ impl Real for f32 {
     }
 }
 
-/// One f32 per strand of a batch.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lanes(pub [f32; LANES]);
-
-impl Default for Lanes {
-    fn default() -> Self {
-        Lanes([0.0; LANES])
-    }
-}
+/// One f32 per strand of a batch: a [`wide::f32x8`], which is one AVX
+/// register where the build enables AVX (see `.cargo/config.toml`) and two
+/// SSE registers otherwise. Its operators are explicit SIMD instructions,
+/// so the step vectorises whatever LLVM's auto-vectoriser makes of a very
+/// long straight-line function (it gives up on plain `[f32; 8]` arrays
+/// there: measured, no faster than 4 lanes).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Lanes(pub f32x8);
 
 impl Lanes {
+    /// The lanes as an array.
     #[inline(always)]
-    fn map(self, f: impl Fn(f32) -> f32) -> Self {
-        let mut out = self.0;
-        for x in &mut out {
-            *x = f(*x);
-        }
-        Lanes(out)
+    pub fn to_array(self) -> [f32; LANES] {
+        self.0.to_array()
     }
 
+    /// Lanes from an array.
     #[inline(always)]
-    fn zip(self, o: Self, f: impl Fn(f32, f32) -> f32) -> Self {
-        let mut out = self.0;
-        for (x, y) in out.iter_mut().zip(o.0) {
-            *x = f(*x, y);
-        }
-        Lanes(out)
+    pub fn from_array(a: [f32; LANES]) -> Self {
+        Lanes(f32x8::new(a))
+    }
+
+    /// Sets lane `i` to `x`.
+    #[inline(always)]
+    pub fn set_lane(&mut self, i: usize, x: f32) {
+        self.0.as_mut_array()[i] = x;
     }
 }
 
@@ -126,13 +122,13 @@ macro_rules! lane_op {
             type Output = Lanes;
             #[inline(always)]
             fn $method(self, o: Lanes) -> Lanes {
-                self.zip(o, |a, b| a $op b)
+                Lanes(self.0 $op o.0)
             }
         }
         impl $assign_trait for Lanes {
             #[inline(always)]
             fn $assign(&mut self, o: Lanes) {
-                *self = self.zip(o, |a, b| a $op b);
+                self.0 = self.0 $op o.0;
             }
         }
     };
@@ -145,7 +141,7 @@ impl Mul for Lanes {
     type Output = Lanes;
     #[inline(always)]
     fn mul(self, o: Lanes) -> Lanes {
-        self.zip(o, |a, b| a * b)
+        Lanes(self.0 * o.0)
     }
 }
 
@@ -153,7 +149,7 @@ impl Div for Lanes {
     type Output = Lanes;
     #[inline(always)]
     fn div(self, o: Lanes) -> Lanes {
-        self.zip(o, |a, b| a / b)
+        Lanes(self.0 / o.0)
     }
 }
 
@@ -161,7 +157,7 @@ impl Neg for Lanes {
     type Output = Lanes;
     #[inline(always)]
     fn neg(self) -> Lanes {
-        self.map(|a| -a)
+        Lanes(-self.0)
     }
 }
 
@@ -169,40 +165,45 @@ impl Real for Lanes {
     const WIDTH: usize = LANES;
     #[inline(always)]
     fn splat(x: f32) -> Self {
-        Lanes([x; LANES])
+        Lanes(f32x8::splat(x))
     }
     #[inline(always)]
     fn from_fn(f: impl Fn(usize) -> f32) -> Self {
-        Lanes(std::array::from_fn(f))
+        Self::from_array(std::array::from_fn(f))
     }
     #[inline(always)]
     fn lane(self, i: usize) -> f32 {
-        self.0[i]
+        self.0.as_array()[i]
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
-        self.map(f32::sqrt)
+        Lanes(self.0.sqrt())
     }
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
-        (self.map(f32::sin), self.map(f32::cos))
+        // Lane by lane with the standard library, as the f64 path does:
+        // wide's polynomial sin/cos would differ from the reference by more
+        // than f32 round-off. Only tight coils (y ≥ 4) get here.
+        let a = self.to_array();
+        (
+            Self::from_array(a.map(f32::sin)),
+            Self::from_array(a.map(f32::cos)),
+        )
     }
     #[inline(always)]
     fn max(self, o: Self) -> Self {
-        self.zip(o, f32::max)
+        Lanes(self.0.max(o.0))
     }
     #[inline(always)]
     fn all_below(self, limit: f32) -> bool {
-        self.0.iter().all(|x| *x < limit)
+        self.0.simd_lt(f32x8::splat(limit)).all()
     }
     #[inline(always)]
     fn select_below(self, limit: f32, if_below: Self, otherwise: Self) -> Self {
-        let mut out = otherwise.0;
-        for ((o, y), b) in out.iter_mut().zip(self.0).zip(if_below.0) {
-            if y < limit {
-                *o = b;
-            }
-        }
-        Lanes(out)
+        Lanes(
+            self.0
+                .simd_lt(f32x8::splat(limit))
+                .select(if_below.0, otherwise.0),
+        )
     }
 }

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::block_diagonal::step_block_diagonal;
 use super::exact::{Elimination, step_exact};
 use super::forward::{FrameState, advance};
-use super::lanes::{LANES, Lanes};
+use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::vec::V3;
 use crate::error::ParamError;
@@ -187,7 +187,7 @@ impl BatchSystem {
     fn lane_values(values: &[V3<Lanes>], n: usize, batch: usize, lane: usize) -> Vec<DVec3> {
         values[batch * n..(batch + 1) * n]
             .iter()
-            .map(|x| Vec3::new(x.x.0[lane], x.y.0[lane], x.z.0[lane]).as_dvec3())
+            .map(|x| Vec3::new(x.x.lane(lane), x.y.lane(lane), x.z.lane(lane)).as_dvec3())
             .collect()
     }
 
@@ -216,9 +216,9 @@ impl BatchSystem {
         assert!(q.len() == n && v.len() == n, "state length must be {n}");
         for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
             for (x, s) in dst[batch * n..(batch + 1) * n].iter_mut().zip(src) {
-                x.x.0[lane] = s.x as f32;
-                x.y.0[lane] = s.y as f32;
-                x.z.0[lane] = s.z as f32;
+                x.x.set_lane(lane, s.x as f32);
+                x.y.set_lane(lane, s.y as f32);
+                x.z.set_lane(lane, s.z as f32);
             }
         }
     }
@@ -231,7 +231,7 @@ impl BatchSystem {
         let motion = self.head.carry(&g.roots[batch * LANES + lane]);
         let origin = motion.position_m.as_vec3();
         let mut s = FrameState::at_root(&RootMotion::<f32>::gather(&[motion]));
-        let pick = |x: &V3<Lanes>| V3::new(x.x.0[lane], x.y.0[lane], x.z.0[lane]);
+        let pick = |x: &V3<Lanes>| V3::new(x.x.lane(lane), x.y.lane(lane), x.z.lane(lane));
         let mut points = vec![origin];
         for e in 0..n {
             let i = batch * n + e;
@@ -248,7 +248,7 @@ impl BatchSystem {
             g.q.iter().chain(&g.v).all(|x| {
                 [x.x, x.y, x.z]
                     .iter()
-                    .all(|l| l.0.iter().all(|f| f.is_finite()))
+                    .all(|l| l.to_array().iter().all(|f| f.is_finite()))
             })
         })
     }
