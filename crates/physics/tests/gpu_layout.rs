@@ -62,7 +62,8 @@ macro_rules! check {
 fn kernels_validate_and_host_structs_match_the_shaders() {
     let block = module(Method::BlockDiagonal);
     let exact = module(Method::Exact);
-    for m in [&block, &exact] {
+    let dense = module(Method::Dense);
+    for m in [&block, &exact, &dense] {
         check!(m, "Params", ParamsGpu, [
             strand_count => "strand_count", elements => "elements", points => "points",
             h_secs => "h_secs", mass_per_length => "mass_per_length", air_drag => "air_drag",
@@ -94,6 +95,7 @@ fn kernels_validate_and_host_structs_match_the_shaders() {
     check!(&exact, "Elimination", EliminationGpu, [
         w_top => "w_top", w_bottom => "w_bottom", s_inv => "s_inv", rhs => "rhs",
     ]);
+    check!(&dense, "DenseOwn", DenseOwnGpu, [own => "own", u => "u", v => "v"]);
     // Round trip: bytes written by the host read back as the same values.
     let params = ParamsGpu {
         strand_count: 3,
