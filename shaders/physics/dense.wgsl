@@ -11,18 +11,17 @@
 //                      the matrix, the right-hand side into `solution`;
 //                  (2) all invocations assemble the blocks below the
 //                      diagonal, s·(X_Qᵀ A_P + Y_Qᵀ B_P) for P < Q;
-//                  (3) right-looking Cholesky, column k: invocation 0 takes
-//                      the pivot (and the forward-substitution entry y_k),
-//                      all scale column k, then all update the trailing
-//                      lower triangle and the right-hand side, one row per
-//                      invocation;
-//                  (4) back substitution, one entry per barrier pair;
+//                  (3) right-looking square-root-free Cholesky
+//                      S = L D Lᵀ, column k: all update the trailing lower
+//                      triangle and the right-hand side (the forward
+//                      substitution), one row per invocation, one barrier;
+//                  (4) back substitution, one entry per barrier;
 //                  (5) integrate, one element per invocation.
 // The matrix lives in a storage buffer (9N² floats per strand, row-major,
-// the factor overwriting the lower triangle): at N = 20 it is 14.4 KB, too
+// the factors overwriting the lower triangle): at N = 20 it is 14.4 KB, too
 // big for wgpu's default 16 KiB of workgroup memory once X and Y are there
-// too. X, Y and the solution vector sit in workgroup memory, which caps N
-// at MAX_DENSE_ELEMENTS = 64 (6.9 KiB).
+// too. X, Y and the two solution vectors sit in workgroup memory, which
+// caps N at MAX_DENSE_ELEMENTS = 64 (7.5 KiB).
 
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read> elements_const: array<ElementConst>;
@@ -41,14 +40,15 @@ struct DenseOwn {
     v: mat3x3<f32>,
 }
 
-const DENSE_WORKGROUP: u32 = 64u;
+const DENSE_WORKGROUP: u32 = 32u;
 const MAX_DENSE_ELEMENTS: u32 = 64u;
 
 var<workgroup> column_x: array<mat3x3<f32>, MAX_DENSE_ELEMENTS>;
 var<workgroup> column_y: array<mat3x3<f32>, MAX_DENSE_ELEMENTS>;
-// 3 · MAX_DENSE_ELEMENTS: rhs, then y, then Δv.
+// 3 · MAX_DENSE_ELEMENTS each: rhs (then z, then partial sums of the back
+// substitution), and Δv.
 var<workgroup> solution: array<f32, 192>;
-var<workgroup> pivot: f32;
+var<workgroup> delta_v: array<f32, 192>;
 
 fn flat_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
     return id.x + id.y * groups.x * 64u;
@@ -100,7 +100,7 @@ fn at(base: u32, dim: u32, row: u32, col: u32) -> u32 {
     return base + row * dim + col;
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(DENSE_WORKGROUP)
 fn stage_dense(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
@@ -157,43 +157,33 @@ fn stage_dense(
     }
     storageBarrier();
 
-    // (3) Cholesky S = L Lᵀ with L y = rhs folded in.
+    // (3) S = L D Lᵀ (square-root-free Cholesky) with L z = rhs folded
+    // in. Column k is read, never written, while rows i > k update: one
+    // barrier per column.
     for (var k = 0u; k < dim; k++) {
-        if lid == 0u {
-            let p = sqrt(matrix[at(base, dim, k, k)]);
-            matrix[at(base, dim, k, k)] = p;
-            solution[k] = solution[k] / p;
-            pivot = p;
-        }
-        workgroupBarrier();
-        storageBarrier();
-        let p = pivot;
+        let d_k = matrix[at(base, dim, k, k)];
+        let z_k = solution[k];
         for (var i = k + 1u + lid; i < dim; i += DENSE_WORKGROUP) {
-            matrix[at(base, dim, i, k)] = matrix[at(base, dim, i, k)] / p;
-        }
-        storageBarrier();
-        let y_k = solution[k];
-        for (var i = k + 1u + lid; i < dim; i += DENSE_WORKGROUP) {
-            let l_ik = matrix[at(base, dim, i, k)];
+            let c = matrix[at(base, dim, i, k)] / d_k;
             for (var j = k + 1u; j <= i; j++) {
-                matrix[at(base, dim, i, j)] -= l_ik * matrix[at(base, dim, j, k)];
+                matrix[at(base, dim, i, j)] -= c * matrix[at(base, dim, j, k)];
             }
-            solution[i] -= l_ik * y_k;
+            solution[i] -= c * z_k;
         }
         workgroupBarrier();
         storageBarrier();
     }
 
-    // (4) Back substitution Lᵀ Δv = y.
+    // (4) Back substitution D Lᵀ Δv = z, last row first: every invocation
+    // forms x_k, invocation 0 keeps it, the others fold it into rows < k.
     for (var t = 0u; t < dim; t++) {
         let k = dim - 1u - t;
-        if lid == 0u {
-            solution[k] = solution[k] / matrix[at(base, dim, k, k)];
-        }
-        workgroupBarrier();
-        let x_k = solution[k];
+        let x_k = solution[k] / matrix[at(base, dim, k, k)];
         for (var i = lid; i < k; i += DENSE_WORKGROUP) {
             solution[i] -= matrix[at(base, dim, k, i)] * x_k;
+        }
+        if lid == 0u {
+            delta_v[k] = x_k;
         }
         workgroupBarrier();
     }
@@ -201,7 +191,7 @@ fn stage_dense(
     // (5) Integrate.
     for (var e = lid; e < n; e += DENSE_WORKGROUP) {
         let i = first + e;
-        let dv = vec3<f32>(solution[3u * e], solution[3u * e + 1u], solution[3u * e + 2u]);
+        let dv = vec3<f32>(delta_v[3u * e], delta_v[3u * e + 1u], delta_v[3u * e + 2u]);
         let v_next = v[i].xyz + dv;
         v[i] = vec4<f32>(v_next, 0.0);
         q[i] = vec4<f32>(q[i].xyz + v_next * params.h_secs, 0.0);

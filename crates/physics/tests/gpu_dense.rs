@@ -29,7 +29,7 @@ use helixhair_physics::{
 /// GPU Dense against its CPU twins over [`SHAKE_STEPS`] steps of a head
 /// shake from a random state: max |Δ| over max |value| for q̇ and q. Both
 /// are f32 and differ in operation order and fused multiply-adds.
-/// Measured on lavapipe (70 curly strands, N = 10): Δv 3.5e-6, Δq 3.8e-7.
+/// Measured on lavapipe (70 curly strands, N = 10): Δv 4.6e-6, Δq 7.1e-7.
 const TRAJECTORY_TOL: f32 = 5e-5;
 /// Steps of the head shake (5 s at 60 Hz).
 const SHAKE_STEPS: usize = 300;
@@ -38,7 +38,7 @@ const SHAKE_STEPS: usize = 300;
 /// step (`HairSystem`, `Method::Dense`) from the same random state: max
 /// |v_f32 − v_f64| over max |v_f64|, the measure and tolerance of
 /// `tests/batch_parity.rs` for Exact (f32 round-off amplified by the step
-/// matrix's conditioning). Measured: 9.6e-6 (N = 10 and 20, straight and
+/// matrix's conditioning). Measured: 6.9e-6 (N = 10 and 20, straight and
 /// curly, 2 and 4 points).
 const F64_ONE_STEP_TOL: f64 = 5e-4;
 
@@ -46,7 +46,7 @@ const F64_ONE_STEP_TOL: f64 = 5e-4;
 /// the same random state: max |Δ| over max |value| for q̇. Exact and Dense
 /// solve the same step matrix by different eliminations, so they differ by
 /// f32 round-off only: the GPU-against-twin tolerance of
-/// `tests/gpu_parity.rs`. Measured on lavapipe (N = 5, 10, 20): ≤ 1.5e-6
+/// `tests/gpu_parity.rs`. Measured on lavapipe (N = 5, 10, 20): ≤ 1.2e-6
 /// against the Exact kernel, ≤ 1.6e-6 against the Exact twin.
 const DENSE_EQUALS_EXACT_TOL: f32 = 5e-5;
 

@@ -18,17 +18,19 @@
 //!    the block of rows Q and columns P is M_PQᵀ = X_Qᵀ A_P + Y_Qᵀ B_P. The
 //!    step matrix is S = s M + diag(D), s = 1 + hν/ρS, D = hγℓ + h²K
 //!    ([`super::suffix::step_terms`]).
-//! 4. [`cholesky_solve`]: right-looking Cholesky S = L Lᵀ, column by column
-//!    (pivot, scale the column, update the trailing lower triangle), with
-//!    the forward substitution L y = rhs folded into the same column loop,
-//!    then the back substitution Lᵀ Δv = y. No pivoting: S is symmetric
-//!    positive definite (D > 0).
+//! 4. [`ldlt_solve`]: right-looking square-root-free Cholesky S = L D Lᵀ,
+//!    column by column (update the trailing lower triangle from column k),
+//!    with the forward substitution L z = rhs folded into the same column
+//!    loop, then the back substitution D Lᵀ Δv = z. No pivoting: S is
+//!    symmetric positive definite (D > 0). Without the square root a
+//!    column needs no scaling pass, which saves the GPU two barriers per
+//!    column.
 //! 5. Integrate: v ← v + Δv, q ← q + h v.
 //!
 //! Cost: O(N²) assembly and O(N³) factorisation against Exact's O(N), for
 //! the same answer to round-off; memory 9N² numbers per strand. The
-//! matrix is stored row-major, `matrix[row * 3N + col]`; the factor
-//! overwrites the lower triangle.
+//! matrix is stored row-major, `matrix[row * 3N + col]`; the factors
+//! overwrite the lower triangle (L d_k below the diagonal, D on it).
 
 use super::forward::forward;
 use super::lanes::Real;
@@ -67,7 +69,7 @@ impl<T: Real> DenseColumn<T> {
 pub struct DenseScratch<T> {
     /// Per element, from [`columns`].
     pub columns: Vec<DenseColumn<T>>,
-    /// Row-major 3N×3N: S, then its Cholesky factor in the lower triangle.
+    /// Row-major 3N×3N: S, then its L D Lᵀ factors in the lower triangle.
     pub matrix: Vec<T>,
     /// 3N: rhs, then y, then Δv.
     pub rhs: Vec<T>,
@@ -154,27 +156,33 @@ pub fn assemble<T: Real>(
 }
 
 /// Stage 4: solves S x = rhs in place (`rhs` becomes x) by a right-looking
-/// Cholesky with the forward substitution folded in, then the back
-/// substitution. Reads only the lower triangle of `matrix` (row-major,
-/// `dim`×`dim`) and overwrites it with L. A non-positive pivot yields NaN,
-/// which the caller sees as a non-finite state.
+/// square-root-free Cholesky, S = L D Lᵀ with L unit lower triangular, the
+/// forward substitution L z = rhs folded into the column loop, then the
+/// back substitution D Lᵀ x = z.
+///
+/// Column k: d_k = S_kk; for every row i > k, c = S_ik / d_k, then
+/// S_ij −= c·S_jk for k < j ≤ i and rhs_i −= c·rhs_k. Column k itself is
+/// left as it is (S_ik = L_ik d_k) and the diagonal holds D, so a column
+/// needs no separate scaling pass: on the GPU that is one barrier per
+/// column instead of three. Back substitution, k from the last row up:
+/// x_k = rhs_k / d_k, then rhs_i −= S_ki x_k for i < k.
+///
+/// Reads only the lower triangle of `matrix` (row-major, `dim`×`dim`) and
+/// overwrites it with the factors. No pivoting: S is symmetric positive
+/// definite (D > 0); a zero or non-finite pivot yields a non-finite
+/// result, which the caller sees as a non-finite state.
 #[inline(always)]
-pub fn cholesky_solve<T: Real>(dim: usize, matrix: &mut [T], rhs: &mut [T]) {
+pub fn ldlt_solve<T: Real>(dim: usize, matrix: &mut [T], rhs: &mut [T]) {
     for k in 0..dim {
-        let pivot = matrix[k * dim + k].sqrt();
-        matrix[k * dim + k] = pivot;
-        rhs[k] = rhs[k] / pivot;
+        let d_k = matrix[k * dim + k];
+        let z_k = rhs[k];
         for i in k + 1..dim {
-            matrix[i * dim + k] = matrix[i * dim + k] / pivot;
-        }
-        let y_k = rhs[k];
-        for i in k + 1..dim {
-            let l_ik = matrix[i * dim + k];
+            let c = matrix[i * dim + k] / d_k;
             for j in k + 1..=i {
-                let l_jk = matrix[j * dim + k];
-                matrix[i * dim + j] -= l_ik * l_jk;
+                let s_jk = matrix[j * dim + k];
+                matrix[i * dim + j] -= c * s_jk;
             }
-            rhs[i] -= l_ik * y_k;
+            rhs[i] -= c * z_k;
         }
     }
     for k in (0..dim).rev() {
@@ -212,7 +220,7 @@ pub fn step_dense<T: Real>(
         &dense.diagonal,
         &mut dense.matrix,
     );
-    cholesky_solve(3 * n, &mut dense.matrix, &mut dense.rhs);
+    ldlt_solve(3 * n, &mut dense.matrix, &mut dense.rhs);
     for e in 0..n {
         let x = &dense.rhs[3 * e..3 * e + 3];
         integrate(env.h_secs, &mut q[e], &mut v[e], V3::new(x[0], x[1], x[2]));

@@ -8,12 +8,12 @@
 //! | --- | --- | --- |
 //! | `stage_frames` | one per strand | root-to-tip chain, A_Q, B_Q (as Block-diagonal) |
 //! | `stage_elements` | one per element | own sums with U_Q and V_Q |
-//! | `stage_dense` | a workgroup of [`DENSE_WORKGROUP`] per strand | suffix (one invocation), assembly of S = s·M + diag(D) (blocks in parallel), right-looking Cholesky with the forward substitution folded in (rows in parallel, three barriers per column), back substitution, integrate |
+//! | `stage_dense` | a workgroup of [`DENSE_WORKGROUP`] per strand | suffix (one invocation), assembly of S = s·M + diag(D) (blocks in parallel), right-looking square-root-free Cholesky S = L D Lᵀ with the forward substitution folded in (rows in parallel, one barrier per column), back substitution (one barrier per row), integrate |
 //!
 //! Memory. The step matrix is 9N² f32 per strand in a storage buffer
 //! (binding 8), so Dense's memory per strand grows as N²: 3.6 KB at
 //! N = 10, 14.4 KB at N = 20. The per-element X_Q, Y_Q and the 3N-entry
-//! solution vector live in workgroup memory: 6.9 KiB for
+//! right-hand side and Δv live in workgroup memory: 7.5 KiB for
 //! [`MAX_DENSE_ELEMENTS`] = 64, inside the 16 KiB every wgpu device
 //! offers (`max_compute_workgroup_storage_size`'s default). Keeping the
 //! whole matrix in workgroup memory as well would be faster on a real GPU
@@ -28,17 +28,19 @@ use super::layout::{DenseOwnGpu, FrameGpu, JacobiansGpu};
 pub const DENSE_WGSL: &str = include_str!("../../../../shaders/physics/dense.wgsl");
 
 /// Invocations of one `stage_dense` workgroup (WGSL `DENSE_WORKGROUP`):
-/// enough for the rows of a 3N = 60 matrix to update in one pass at N = 20.
-pub const DENSE_WORKGROUP: u32 = 64;
+/// one warp on NVIDIA hardware, so a barrier is cheap there, and the 3N
+/// rows of N ≤ 10 update in one pass (N = 20 takes two). On lavapipe 32
+/// ran 20% faster than 64 at N = 10 and the same at N = 20.
+pub const DENSE_WORKGROUP: u32 = 32;
 
 /// Most elements per strand the Dense kernel takes (WGSL
 /// `MAX_DENSE_ELEMENTS`): the size of its workgroup arrays.
 pub const MAX_DENSE_ELEMENTS: usize = 64;
 
 /// Bytes of workgroup memory `stage_dense` declares: X and Y (two
-/// mat3x3, 48 bytes each) per element, 3 floats of solution per element,
-/// and the pivot.
-pub const DENSE_WORKGROUP_BYTES: usize = MAX_DENSE_ELEMENTS * (2 * 48 + 3 * 4) + 4;
+/// mat3x3, 48 bytes each) per element, and 3 floats each of the
+/// right-hand side and of Δv per element.
+pub const DENSE_WORKGROUP_BYTES: usize = MAX_DENSE_ELEMENTS * (2 * 48 + 2 * 3 * 4);
 
 /// Bytes of the step matrix of one strand of `n` elements.
 pub fn matrix_bytes_per_strand(n: usize) -> usize {

@@ -3,7 +3,7 @@
 //! f32 arithmetic of [`crate::batch::dense`] at width 1. `stage_frames` is
 //! Block-diagonal's ([`super::twin::stage_frames`]): the kernels share it.
 
-use crate::batch::dense::{DenseScratch, assemble, cholesky_solve, columns};
+use crate::batch::dense::{DenseScratch, assemble, columns, ldlt_solve};
 use crate::batch::forward::own_sums;
 use crate::batch::layout::ElementData;
 use crate::batch::suffix::{integrate, mass_scale, step_terms};
@@ -61,8 +61,8 @@ fn strand_data(
 }
 
 /// Twin of `stage_dense`: per strand, the suffix, the assembly of S, the
-/// Cholesky solve and the integration. `matrix` holds 9N² floats per
-/// strand, row-major; afterwards its lower triangle is the factor L, as
+/// L D Lᵀ solve and the integration. `matrix` holds 9N² floats per
+/// strand, row-major; afterwards its lower triangle holds the factors, as
 /// the kernel leaves it (the kernel leaves the upper triangle unwritten).
 pub fn stage_dense(
     params: &ParamsGpu,
@@ -91,7 +91,7 @@ pub fn stage_dense(
         }
         let s = &mut matrix[strand * dim * dim..(strand + 1) * dim * dim];
         assemble(&data, &dense.columns, scale, &dense.diagonal, s);
-        cholesky_solve(dim, s, &mut dense.rhs);
+        ldlt_solve(dim, s, &mut dense.rhs);
         for e in 0..n {
             let i = strand * n + e;
             let (mut qi, mut vi) = (v3(q[i]), v3(v[i]));
