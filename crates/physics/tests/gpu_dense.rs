@@ -19,7 +19,7 @@ use helixhair_physics::gpu::dense_twin::{mass_matrix, stage_dense, stage_element
 use helixhair_physics::gpu::kernels::GpuState;
 use helixhair_physics::gpu::layout::{DenseOwnGpu, FrameGpu, JacobiansGpu};
 use helixhair_physics::gpu::twin::stage_exact;
-use helixhair_physics::gpu::{GpuContext, GpuError, GpuSystem};
+use helixhair_physics::gpu::{GpuContext, GpuError, GpuSystem, Stepper};
 use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::{
     HairSystem, HeadTrajectory, Method, NaturalShape, Oscillation, RigidMotion, RootPose,
@@ -442,4 +442,31 @@ fn dense_kernel_refuses_strands_longer_than_its_workgroup_arrays() {
         ),
         "{err}"
     );
+}
+
+#[test]
+fn stepper_falls_back_to_cpu_exact_when_dense_cannot_run_on_the_gpu() {
+    if context().is_none() {
+        return;
+    }
+    // 65 elements: too many for the kernel, so the CPU batch path takes the
+    // strands with Exact (Dense's answer in O(N)) and says so.
+    let params = StrandParams {
+        elements: 65,
+        ..StrandParams::default()
+    };
+    let (stepper, message) =
+        Stepper::prefer_gpu(&settings(Method::Dense, 2), &params, &roots(3)).expect("valid");
+    match stepper {
+        Stepper::Cpu(cpu) => assert_eq!(cpu.settings().method, Method::Exact),
+        Stepper::Gpu(_) => panic!("65 elements ran on the GPU"),
+    }
+    assert!(
+        message.contains("at most 64 elements") && message.contains("with Exact"),
+        "{message}"
+    );
+    // Within the limit, Dense runs on the GPU.
+    let (stepper, message) =
+        Stepper::prefer_gpu(&settings(Method::Dense, 2), &curl(10), &roots(3)).expect("valid");
+    assert!(matches!(stepper, Stepper::Gpu(_)), "{message}");
 }
