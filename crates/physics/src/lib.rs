@@ -22,7 +22,9 @@
 //! lanes across strands, in parallel over batches, matching the f64 path
 //! within named tolerances (`tests/batch_parity.rs`). With the cargo
 //! feature `gpu`, `gpu::GpuSystem` runs the same arithmetic as wgpu compute
-//! kernels (`shaders/`), each stage with a CPU twin (`gpu::twin`).
+//! kernels (`shaders/physics/`: Block-diagonal, Exact, and Dense with a
+//! workgroup per strand), each stage with a CPU twin (`gpu::twin`,
+//! `gpu::dense_twin`); [`batch::dense`] is Dense's f32 arithmetic.
 //!
 //! This crate knows nothing of rendering, windows or file formats; its
 //! parameter types derive serde so that callers can embed them in theirs.

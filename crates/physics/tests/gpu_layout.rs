@@ -6,6 +6,9 @@
 use std::mem::{offset_of, size_of};
 
 use helixhair_physics::Method;
+use helixhair_physics::gpu::dense_kernels::{
+    DENSE_WORKGROUP, DENSE_WORKGROUP_BYTES, MAX_DENSE_ELEMENTS,
+};
 use helixhair_physics::gpu::kernels::kernel_source;
 use helixhair_physics::gpu::layout::*;
 use wgpu::naga;
@@ -43,6 +46,19 @@ fn reflect(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
     }
 }
 
+/// The value of WGSL `const NAME: u32`.
+fn constant_u32(module: &naga::Module, name: &str) -> u32 {
+    let (_, c) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no constant {name}"));
+    match module.global_expressions[c.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => v,
+        ref other => panic!("{name} is {other:?}"),
+    }
+}
+
 macro_rules! check {
     ($module:expr, $wgsl:literal, $host:ty, [$($field:ident => $wgsl_field:literal),* $(,)?]) => {{
         let (size, members) = reflect($module, $wgsl);
@@ -62,7 +78,8 @@ macro_rules! check {
 fn kernels_validate_and_host_structs_match_the_shaders() {
     let block = module(Method::BlockDiagonal);
     let exact = module(Method::Exact);
-    for m in [&block, &exact] {
+    let dense = module(Method::Dense);
+    for m in [&block, &exact, &dense] {
         check!(m, "Params", ParamsGpu, [
             strand_count => "strand_count", elements => "elements", points => "points",
             h_secs => "h_secs", mass_per_length => "mass_per_length", air_drag => "air_drag",
@@ -94,6 +111,26 @@ fn kernels_validate_and_host_structs_match_the_shaders() {
     check!(&exact, "Elimination", EliminationGpu, [
         w_top => "w_top", w_bottom => "w_bottom", s_inv => "s_inv", rhs => "rhs",
     ]);
+    check!(&dense, "DenseOwn", DenseOwnGpu, [own => "own", u => "u", v => "v"]);
+    // The Dense kernel's workgroup and array sizes are the host's.
+    assert_eq!(constant_u32(&dense, "DENSE_WORKGROUP"), DENSE_WORKGROUP);
+    assert_eq!(
+        constant_u32(&dense, "MAX_DENSE_ELEMENTS") as usize,
+        MAX_DENSE_ELEMENTS
+    );
+    let stage_dense = dense
+        .entry_points
+        .iter()
+        .find(|e| e.name == "stage_dense")
+        .expect("stage_dense");
+    assert_eq!(stage_dense.workgroup_size, [DENSE_WORKGROUP, 1, 1]);
+    let workgroup_bytes: u32 = dense
+        .global_variables
+        .iter()
+        .filter(|(_, g)| g.space == naga::AddressSpace::WorkGroup)
+        .map(|(_, g)| dense.types[g.ty].inner.size(dense.to_ctx()))
+        .sum();
+    assert_eq!(workgroup_bytes as usize, DENSE_WORKGROUP_BYTES);
     // Round trip: bytes written by the host read back as the same values.
     let params = ParamsGpu {
         strand_count: 3,

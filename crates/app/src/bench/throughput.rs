@@ -5,7 +5,11 @@
 //! strands, it is slow), the f32 batch path (`BatchSystem`) on one thread
 //! and on all threads, and the GPU kernels (`GpuSystem`) on whatever adapter
 //! the environment gives; without one the GPU rows are skipped with the
-//! reason. On the development machine the only adapter is lavapipe, Mesa's
+//! reason. Methods: Block-diagonal, Exact and Dense. `BatchSystem` has no
+//! Dense, so Dense's `f32-batch-1-thread` rows time
+//! `batch::dense::step_dense` over the same lane batches on one thread
+//! (its matrix is per-thread scratch, so its memory per strand is the
+//! batch state's); on the GPU the matrix is per strand, 36N² bytes. On the development machine the only adapter is lavapipe, Mesa's
 //! software Vulkan: its figures are CPU figures, not a GPU's.
 //!
 //! Scene: straight 20 cm default strands on roots around a still head, one
@@ -16,9 +20,14 @@
 //! frame stays under [`FRAME_BUDGET_MS`].
 
 use glam::DVec3;
-use helixhair_physics::batch::BatchSystem;
+use helixhair_physics::batch::dense::{DenseScratch, step_dense};
+use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use helixhair_physics::batch::vec::V3;
+use helixhair_physics::batch::{BatchSystem, LANES, Lanes};
 use helixhair_physics::gpu::{GpuContext, GpuSystem};
-use helixhair_physics::{HairSystem, Method, RigidMotion, RootPose, SimSettings, StrandParams};
+use helixhair_physics::{
+    HairSystem, Method, RigidMotion, RootPose, SimSettings, StrandModel, StrandParams,
+};
 use serde::Serialize;
 
 use super::BenchContext;
@@ -50,7 +59,7 @@ pub struct ThroughputRow {
     pub path: String,
     /// The adapter for GPU rows, the thread count for CPU rows.
     pub adapter: String,
-    /// `block` or `exact`.
+    /// `block`, `exact` or `dense`.
     pub method: String,
     /// Strands stepped together.
     pub strands: usize,
@@ -91,6 +100,53 @@ fn rate(step: impl FnMut(), work: f64) -> f64 {
     work / median(&secs_per_call(step, BATCHES, BATCH_SECS))
 }
 
+/// What one timed path reports: (element-steps/s, bytes per strand, finite).
+type Timed = (f64, f64, bool);
+
+/// Dense on the f32 lanes, one thread: `step_dense` over every lane batch
+/// of `roots`, as `BatchSystem` steps Block-diagonal and Exact.
+fn lane_dense(
+    settings: &SimSettings,
+    params: &StrandParams,
+    roots: &[RootPose],
+    head: &RigidMotion,
+    work: f64,
+) -> anyhow::Result<Timed> {
+    let model = BatchModel::new(&StrandModel::new(params, settings.quadrature_points)?);
+    let n = model.elements();
+    let env = StepEnv {
+        h_secs: settings.substep_secs() as f32,
+        gravity_m_per_s2: settings.gravity_m_per_s2.as_vec3().to_array(),
+        air_velocity_m_per_s: settings.air_velocity_m_per_s.as_vec3().to_array(),
+    };
+    let natural: Vec<V3<Lanes>> = model.natural.iter().map(|k| V3::splat(*k)).collect();
+    let batches = roots.len().div_ceil(LANES);
+    let mut q = natural.repeat(batches);
+    let mut v = vec![V3::<Lanes>::zero(); batches * n];
+    let mut scratch = vec![ElementData::zero(); n];
+    let mut dense = DenseScratch::new(n);
+    let r = rate(
+        || {
+            let states = q.chunks_mut(n).zip(v.chunks_mut(n));
+            for ((q, v), roots) in states.zip(roots.chunks(LANES)) {
+                let motions: [RigidMotion; LANES] =
+                    std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
+                let root = RootMotion::<Lanes>::gather(&motions);
+                step_dense(&model, &env, &root, q, v, &mut scratch, &mut dense);
+            }
+        },
+        work,
+    );
+    let finite = q.iter().chain(&v).all(|x| {
+        [x.x, x.y, x.z]
+            .iter()
+            .all(|l| l.0.iter().all(|f| f.is_finite()))
+    });
+    let state_bytes = (q.len() + v.len()) * size_of::<V3<Lanes>>();
+    let bytes = state_bytes as f64 / roots.len().max(1) as f64 + size_of::<RootPose>() as f64;
+    Ok((r, bytes, finite))
+}
+
 /// Runs the study: `throughput.csv`, `throughput.svg`.
 pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
     let strands = if ctx.quick { STRANDS.1 } else { STRANDS.0 };
@@ -105,7 +161,7 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
     let mut rows = Vec::new();
     for &n in elements {
         for points in POINTS {
-            for method in [Method::BlockDiagonal, Method::Exact] {
+            for method in [Method::BlockDiagonal, Method::Exact, Method::Dense] {
                 let settings = SimSettings {
                     method,
                     quadrature_points: points,
@@ -140,7 +196,17 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
                         let finite = sys.is_finite();
                         push("f64-reference-1-thread", "1".into(), r, f64::NAN, finite);
                     }
-                    for parallel in [false, true] {
+                    // Dense: one thread on the lanes (no BatchSystem);
+                    // the others: BatchSystem, serial and parallel.
+                    let batch_paths: &[bool] = if method == Method::Dense {
+                        let (r, bytes, finite) =
+                            lane_dense(&settings, &params, &roots, &head, work)?;
+                        push("f32-batch-1-thread", "1".into(), r, bytes, finite);
+                        &[]
+                    } else {
+                        &[false, true]
+                    };
+                    for &parallel in batch_paths {
                         let mut sys = BatchSystem::new(settings.clone())?;
                         sys.add_group(&params, &roots)?;
                         sys.set_parallel(parallel);

@@ -30,10 +30,16 @@
 //! comparison with the f64 reference is like with like. External forces
 //! (`Strand::set_external_forces`) are not supported here yet.
 //!
+//! [`dense`] holds an f32 Dense step (the whole 3N×3N step matrix,
+//! Cholesky-factored) for one strand or a batch: the arithmetic of the GPU
+//! Dense kernel's CPU twin; [`BatchSystem`] itself steps Block-diagonal and
+//! Exact (Exact gives Dense's answer in O(N)).
+//!
 //! Accuracy: f32 against the f64 reference, pinned by
 //! `tests/batch_parity.rs` with named tolerances.
 
 pub mod block_diagonal;
+pub mod dense;
 pub mod exact;
 pub mod forward;
 pub mod geometry;

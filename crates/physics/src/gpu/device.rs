@@ -28,7 +28,7 @@ pub enum GpuError {
         reason: String,
     },
     /// A method the kernels do not implement.
-    #[error("the GPU path runs `block` and `exact`, not `{0}`")]
+    #[error("the GPU path runs `block`, `exact` and `dense`, not `{0}`")]
     UnsupportedMethod(String),
     /// A parameter out of range.
     #[error(transparent)]
@@ -42,6 +42,17 @@ pub enum GpuError {
         bytes: u64,
         /// The adapter's limit.
         limit_bytes: u64,
+    },
+    /// A strand longer than the Dense kernel's workgroup arrays.
+    #[error(
+        "the GPU Dense kernel takes at most {max} elements per strand, not {elements}; \
+         use `exact` (the same answer in O(N))"
+    )]
+    TooManyElements {
+        /// Elements per strand asked for.
+        elements: usize,
+        /// The kernel's limit.
+        max: usize,
     },
     /// Mapping a buffer for readback failed.
     #[error("reading GPU memory back failed: {0}")]

@@ -1,14 +1,17 @@
 //! [`GpuSystem`]: one group of strands stepped by the WGSL kernels in
-//! `shaders/physics/` (`common.wgsl` + `block_diagonal.wgsl` or `exact.wgsl`).
+//! `shaders/physics/` (`common.wgsl` + `block_diagonal.wgsl`, `exact.wgsl`
+//! or `dense.wgsl`).
 //!
 //! How it works. The state (q, q̇ as vec4 per element) and the per-element
 //! scratch live in storage buffers; each substep writes the uniforms (step,
 //! gravity, the head's motion at that instant) and submits the stage
 //! dispatches: Block-diagonal `stage_frames` (per strand), `stage_elements`
 //! (per element), `stage_suffix` (per strand), `stage_solve` (per element);
-//! Exact `stage_exact` (per strand). Nothing is read back in the frame
-//! loop: [`GpuSystem::read_state`] exists for tests and tools, and a
-//! renderer binds [`GpuSystem::frames_buffer`] (Block-diagonal) directly:
+//! Exact `stage_exact` (per strand); Dense `stage_frames`, `stage_elements`
+//! and `stage_dense` (a workgroup per strand, see [`super::dense_kernels`]).
+//! Nothing is read back in the frame loop: [`GpuSystem::read_state`] exists
+//! for tests and tools, and a renderer binds [`GpuSystem::frames_buffer`]
+//! (Block-diagonal and Dense) directly:
 //! its `point_m` members are the element boundary points relative to each
 //! root, so a vertex or compute pass can build the strand polylines on the
 //! GPU (see `docs/gpu.md`).
@@ -17,6 +20,7 @@ use std::borrow::Cow;
 
 use wgpu::util::DeviceExt;
 
+use super::dense_kernels::{self, DENSE_WGSL};
 use super::device::{GpuContext, GpuError};
 use super::layout::{
     BeyondGpu, ElementConstGpu, EliminationGpu, FrameGpu, JacobiansGpu, OffDiagonalGpu, OwnGpu,
@@ -40,6 +44,7 @@ pub fn kernel_source(method: Method) -> Option<String> {
     let kernel = match method {
         Method::BlockDiagonal => BLOCK_DIAGONAL_WGSL,
         Method::Exact => EXACT_WGSL,
+        Method::Dense => DENSE_WGSL,
         _ => return None,
     };
     Some(format!("{COMMON_WGSL}\n{kernel}"))
@@ -52,9 +57,13 @@ pub type GpuState = (Vec<[f32; 4]>, Vec<[f32; 4]>);
 
 /// How many invocations a stage runs.
 #[derive(Clone, Copy, Debug)]
-enum Span {
+pub(crate) enum Span {
+    /// One invocation per strand (workgroups of 64).
     PerStrand,
+    /// One invocation per element (workgroups of 64).
     PerElement,
+    /// One workgroup per strand.
+    WorkgroupPerStrand,
 }
 
 fn f4(v: glam::DVec3) -> [f32; 4] {
@@ -96,6 +105,9 @@ impl GpuSystem {
             .ok_or_else(|| GpuError::UnsupportedMethod(settings.method.label()))?;
         let model = StrandModel::new(params, settings.quadrature_points)?;
         let n = model.elements();
+        if settings.method == Method::Dense {
+            dense_kernels::check(n, &ctx.limits)?;
+        }
         let elements: Vec<ElementConstGpu> = (0..n)
             .map(|e| {
                 let mut stiffness_length = f4(model.stiffness[e]);
@@ -180,20 +192,20 @@ impl GpuSystem {
         let roots_buffer = init("roots", bytemuck::cast_slice(&roots_gpu), storage)?;
         let q_buffer = init("q", bytemuck::cast_slice(&natural), storage)?;
         let v_buffer = init("v", bytemuck::cast_slice(&zero), storage)?;
-        let scratch_sizes: [(&'static str, usize); 4] = if settings.method == Method::Exact {
-            [
+        let scratch_sizes: [(&'static str, usize); 4] = match settings.method {
+            Method::Exact => [
                 ("jacobians", size_of::<JacobiansGpu>()),
                 ("own", size_of::<OwnGpu>()),
                 ("off_diagonal", size_of::<OffDiagonalGpu>()),
                 ("elimination", size_of::<EliminationGpu>()),
-            ]
-        } else {
-            [
+            ],
+            Method::Dense => dense_kernels::scratch_sizes(n),
+            _ => [
                 ("frames", size_of::<FrameGpu>()),
                 ("jacobians", size_of::<JacobiansGpu>()),
                 ("own", size_of::<OwnGpu>()),
                 ("beyond", size_of::<BeyondGpu>()),
-            ]
+            ],
         };
         let scratch = scratch_sizes
             .iter()
@@ -267,15 +279,15 @@ impl GpuSystem {
             label: Some(settings.method.name()),
             source: wgpu::ShaderSource::Wgsl(Cow::Owned(source)),
         });
-        let entry_points: &[(&str, Span)] = if settings.method == Method::Exact {
-            &[("stage_exact", Span::PerStrand)]
-        } else {
-            &[
+        let entry_points: &[(&str, Span)] = match settings.method {
+            Method::Exact => &[("stage_exact", Span::PerStrand)],
+            Method::Dense => &dense_kernels::STAGES,
+            _ => &[
                 ("stage_frames", Span::PerStrand),
                 ("stage_elements", Span::PerElement),
                 ("stage_suffix", Span::PerStrand),
                 ("stage_solve", Span::PerElement),
-            ]
+            ],
         };
         let stages = entry_points
             .iter()
@@ -361,11 +373,11 @@ impl GpuSystem {
         per_element * self.elements.len() + size_of::<RootPoseGpu>()
     }
 
-    /// The frame state buffer of Block-diagonal (binding 5: one
+    /// The frame state buffer of Block-diagonal and Dense (binding 5: one
     /// [`FrameGpu`] per element, strand-major), for a renderer to read
     /// points from on the GPU; `None` for Exact.
     pub fn frames_buffer(&self) -> Option<&wgpu::Buffer> {
-        (self.settings.method == Method::BlockDiagonal).then(|| &self.scratch[0])
+        (self.settings.method != Method::Exact).then(|| &self.scratch[0])
     }
 
     /// The state buffers (q, q̇), one vec4 per element, strand-major.
@@ -384,11 +396,13 @@ impl GpuSystem {
     }
 
     fn dispatch_size(&self, span: Span) -> (u32, u32) {
-        let count = match span {
-            Span::PerStrand => self.roots.len(),
-            Span::PerElement => self.roots.len() * self.elements.len(),
-        } as u32;
-        let groups = count.div_ceil(WORKGROUP).max(1);
+        let strands = self.roots.len() as u32;
+        let groups = match span {
+            Span::PerStrand => strands.div_ceil(WORKGROUP),
+            Span::PerElement => (strands * self.elements.len() as u32).div_ceil(WORKGROUP),
+            Span::WorkgroupPerStrand => strands,
+        }
+        .max(1);
         let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
         (x, groups.div_ceil(x))
     }

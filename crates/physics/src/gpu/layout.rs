@@ -156,6 +156,18 @@ pub struct EliminationGpu {
     pub rhs: [f32; 4],
 }
 
+/// An element's own sums with U_Q and V_Q (WGSL `DenseOwn`, Dense only).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct DenseOwnGpu {
+    /// The sums Block-diagonal also needs.
+    pub own: OwnGpu,
+    /// U_Q = Σ_own wρS G, kg·m.
+    pub u: Mat3Gpu,
+    /// V_Q = Σ_own wρS [r]×G, kg·m².
+    pub v: Mat3Gpu,
+}
+
 /// Compile-time sizes, equal to the WGSL sizes the layout test reflects.
 pub mod size_asserts {
     use super::*;
@@ -168,6 +180,7 @@ pub mod size_asserts {
     const _: () = assert!(std::mem::size_of::<BeyondGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<OffDiagonalGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<EliminationGpu>() == 160);
+    const _: () = assert!(std::mem::size_of::<DenseOwnGpu>() == 256);
 }
 
 /// A vec3 padded to a WGSL vec4.

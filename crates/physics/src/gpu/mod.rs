@@ -1,5 +1,5 @@
-//! The GPU path (cargo feature `gpu`): Block-diagonal and Exact steps as
-//! wgpu compute kernels, with a CPU twin for every kernel stage.
+//! The GPU path (cargo feature `gpu`): Block-diagonal, Exact and Dense
+//! steps as wgpu compute kernels, with a CPU twin for every kernel stage.
 //!
 //! - [`device`]: a headless device from the environment's adapter, and
 //!   [`GpuError`] (no adapter is an error the caller turns into a CPU
@@ -7,14 +7,19 @@
 //! - [`layout`]: host structs of the WGSL structs, checked against the
 //!   shaders by `tests/gpu_layout.rs`.
 //! - [`kernels`]: [`GpuSystem`], buffers, pipelines and the step.
-//! - [`twin`]: the CPU twins, one per WGSL entry point, same names.
+//! - [`dense_kernels`]: the Dense kernel's stages, buffers and limits (a
+//!   workgroup per strand factoring its 3N×3N step matrix).
+//! - [`twin`]: the CPU twins, one per WGSL entry point, same names;
+//!   [`dense_twin`] those of the Dense kernel.
 //!
 //! The WGSL lives in the top-level `shaders/physics/` folder (`common.wgsl`,
-//! `block_diagonal.wgsl`, `exact.wgsl`; the renderer's shaders are the
+//! `block_diagonal.wgsl`, `exact.wgsl`, `dense.wgsl`; the renderer's shaders are the
 //! files directly in `shaders/`), included with `include_str!`.
 //! `docs/gpu.md` explains the stage split and how a renderer reads the
 //! state without a readback.
 
+pub mod dense_kernels;
+pub mod dense_twin;
 pub mod device;
 pub mod kernels;
 pub mod layout;
@@ -27,7 +32,7 @@ use crate::batch::BatchSystem;
 use crate::error::ParamError;
 use crate::motion::{HeadTrajectory, RootPose};
 use crate::params::StrandParams;
-use crate::settings::SimSettings;
+use crate::settings::{Method, SimSettings};
 
 /// A group of strands on the GPU, or on the CPU batch path when no GPU is
 /// available.
@@ -57,9 +62,20 @@ impl Stepper {
             }
             Err(GpuError::Param(e)) => Err(e),
             Err(e) => {
-                let mut cpu = BatchSystem::new(settings.clone())?;
+                // The batch path has no Dense; Exact solves the same step
+                // matrix to round-off in O(N).
+                let (cpu_settings, note) = if settings.method == Method::Dense {
+                    let exact = SimSettings {
+                        method: Method::Exact,
+                        ..settings.clone()
+                    };
+                    (exact, " with Exact (Dense's answer in O(N))")
+                } else {
+                    (settings.clone(), "")
+                };
+                let mut cpu = BatchSystem::new(cpu_settings)?;
                 cpu.add_group(params, roots)?;
-                let message = format!("{e}; falling back to the CPU batch path");
+                let message = format!("{e}; falling back to the CPU batch path{note}");
                 Ok((Stepper::Cpu(Box::new(cpu)), message))
             }
         }

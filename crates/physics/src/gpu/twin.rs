@@ -76,7 +76,7 @@ pub fn root_state(params: &ParamsGpu, pose: &RootPoseGpu) -> FrameState<f32> {
     }
 }
 
-fn frame_of(f: &FrameGpu) -> FrameState<f32> {
+pub(crate) fn frame_of(f: &FrameGpu) -> FrameState<f32> {
     FrameState {
         frame: m3(&f.frame),
         angular_velocity: v3(f.angular_velocity),
@@ -140,20 +140,25 @@ pub fn stage_elements(
             v3(q[i]),
             v3(v[i]),
         );
-        let mut moment = v4(el.first_moment);
-        moment[3] = el.mass;
-        *out = OwnGpu {
-            mass_block: m4(&el.own_mass_block),
-            inertia: m4(&el.inertia),
-            force: v4(el.own_force),
-            moment,
-            force_sum: v4(el.force_sum),
-            torque_sum: v4(el.torque_sum),
-        };
+        *out = own_of(&el);
     }
 }
 
-fn element_of(jac: &JacobiansGpu, own: &OwnGpu) -> ElementData<f32> {
+/// An element's own sums as the kernels store them (WGSL `Own`).
+pub(crate) fn own_of(el: &ElementData<f32>) -> OwnGpu {
+    let mut moment = v4(el.first_moment);
+    moment[3] = el.mass;
+    OwnGpu {
+        mass_block: m4(&el.own_mass_block),
+        inertia: m4(&el.inertia),
+        force: v4(el.own_force),
+        moment,
+        force_sum: v4(el.force_sum),
+        torque_sum: v4(el.torque_sum),
+    }
+}
+
+pub(crate) fn element_of(jac: &JacobiansGpu, own: &OwnGpu) -> ElementData<f32> {
     ElementData {
         a: m3(&jac.a),
         b: m3(&jac.b),
