@@ -299,6 +299,8 @@ struct OwnSums {
 }
 
 fn own_sums(e: u32, s: FrameState, k: vec3<f32>, k_dot: vec3<f32>, with_uv: bool) -> OwnSums {
+    // As batch::forward::own_sums: products with G = R J in the element's
+    // frame (GᵀG = JᵀJ, GᵀF = Jᵀ RᵀF), R applied once per element.
     let length_m = elements_const[e].stiffness_length.w;
     let rho_s = params.mass_per_length;
     let nu = params.air_drag;
@@ -310,6 +312,9 @@ fn own_sums(e: u32, s: FrameState, k: vec3<f32>, k_dot: vec3<f32>, with_uv: bool
     out.own.inertia = zero3;
     out.u = zero3;
     out.v = zero3;
+    var local_force = vec3<f32>(0.0);
+    var u_local = zero3;
+    var v_local = zero3;
     for (var i = 0u; i < params.points; i++) {
         let lp = local_point(node(i) * length_m, k, k_dot);
         let rva = carry(s, lp.h, lp.h_dot, lp.h_ddot);
@@ -317,19 +322,24 @@ fn own_sums(e: u32, s: FrameState, k: vec3<f32>, k_dot: vec3<f32>, with_uv: bool
         let w_len = weight(i) * length_m;
         let w_mass = w_len * rho_s;
         let force = ((g - rva[2]) * rho_s - (rva[1] - air) * nu) * w_len;
-        let jac = s.frame * lp.jacobian;
-        let jac_w = jac * w_mass;
-        out.own.force += vec4<f32>(transpose(jac) * force, 0.0);
+        let jac = lp.jacobian;
+        local_force += transpose(jac) * (transpose(s.frame) * force);
         out.own.force_sum += vec4<f32>(force, 0.0);
         out.own.torque_sum += vec4<f32>(cross(r, force), 0.0);
-        out.own.mass_block += transpose(jac_w) * jac;
+        out.own.mass_block += transpose(jac * w_mass) * jac;
         out.own.moment += vec4<f32>(r * w_mass, w_mass);
         let r_w = r * w_mass;
         out.own.inertia += add_diagonal(outer(r_w, r) * -1.0, vec3<f32>(dot(r_w, r)));
         if with_uv {
-            out.u += jac_w;
-            out.v += cross_cols(r, jac_w);
+            let jac_w = jac * w_mass;
+            u_local += jac_w;
+            v_local += cross_cols(lp.h, jac_w);
         }
+    }
+    out.own.force = vec4<f32>(local_force, 0.0);
+    if with_uv {
+        out.u = s.frame * u_local;
+        out.v = cross_cols(s.p, out.u) + s.frame * v_local;
     }
     return out;
 }
