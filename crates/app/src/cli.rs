@@ -13,6 +13,7 @@ use helixhair_physics::settings::MAX_ITERATIONS;
 
 use crate::atomic_write::write_atomically;
 use crate::bench::{BenchArgs, run_bench};
+use crate::engine::EngineKind;
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;
@@ -61,6 +62,11 @@ pub struct SimArgs {
     /// The style file (RON; see docs/style-format.md).
     #[arg(long, value_name = "FILE")]
     pub style: PathBuf,
+    /// Physics engine, instead of the style's `engine`: reference (f64,
+    /// every solver, stability guard) or batch (f32 SIMD on all cores,
+    /// exact or block only).
+    #[arg(long, value_name = "ENGINE", value_parser = parse_engine)]
+    pub engine: Option<EngineKind>,
     /// Solver, instead of the style's: exact, dense, block, block-own or
     /// iterative:K (K block-preconditioned CG iterations).
     #[arg(long, value_name = "METHOD", value_parser = parse_method)]
@@ -102,6 +108,17 @@ pub fn parse_method(name: &str) -> Result<Method, String> {
     })
 }
 
+/// Parses an engine name as [`EngineKind::label`] spells it.
+pub fn parse_engine(name: &str) -> Result<EngineKind, String> {
+    EngineKind::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = EngineKind::ALL.iter().map(|k| k.label()).collect();
+        format!(
+            "unknown engine `{name}`; expected one of {}",
+            names.join(", ")
+        )
+    })
+}
+
 /// Runs the command `cli` asks for. Normal output goes to `stdout`; the
 /// summary goes to `stderr` when the JSON report takes stdout.
 pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow::Result<()> {
@@ -118,6 +135,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     let style = Style::load(&args.style)?;
     let style_path = args.style.display().to_string();
     let overrides = SimOverrides {
+        engine: args.engine,
         method: args.method,
         dt_secs: args.dt,
         accuracy_target: args.accuracy,

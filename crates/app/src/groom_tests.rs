@@ -64,7 +64,7 @@ fn scalp_roots_lie_in_their_region_and_grow_outwards() {
     assert!(grown.groups.iter().all(|g| g.scalp.is_none()));
     // The headless simulation grows them on the default head itself.
     let sim = HeadlessSim::new(&style, SimOverrides::default()).expect("builds");
-    assert_eq!(sim.system().strands().len(), 32);
+    assert_eq!(sim.engine().strand_count(), 32);
 }
 
 #[test]
@@ -113,14 +113,14 @@ fn simulated_guides_rest_on_the_head_through_its_collider() {
         "the head's centre is inside: {inside:?}"
     );
     let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default()).expect("builds");
-    sim.system_mut().set_collider(Some(collider.clone()));
+    sim.engine_mut().set_collider(Some(collider.clone()));
     sim.run(60).expect("stays finite");
     // Hair falling onto the head stops at its surface, within the contact
     // penalty's give: about g h² / α = 11 mm at rest for one 1/60 s step
     // (ContactSettings), more while a falling strand is caught; without the
     // collider strands fall right through (tens of centimetres).
-    let deepest = (0..sim.system().strands().len())
-        .flat_map(|i| sim.system().boundary_points_world(i))
+    let deepest = (0..sim.engine().strand_count())
+        .flat_map(|i| sim.engine().boundary_points_world(i))
         .filter_map(|p| collider.sample(p).map(|(d, _)| d))
         .fold(f64::MAX, f64::min);
     assert!(

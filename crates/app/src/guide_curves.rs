@@ -8,9 +8,10 @@
 //! turn by at most [`MAX_TURN_RAD`].
 
 use glam::{DVec3, Vec3};
-use helixhair_physics::HairSystem;
 use helixhair_physics::helix::centreline_and_jacobian;
 use helixhair_render::StrandBuffers;
+
+use crate::engine::Engine;
 
 /// Largest angle the tangent turns between two drawn points, radians.
 pub const MAX_TURN_RAD: f64 = 0.45;
@@ -19,14 +20,13 @@ pub const MAX_TURN_RAD: f64 = 0.45;
 pub const MAX_POINTS_PER_ELEMENT: usize = 16;
 
 /// The centreline of strand `index`, root first, metres, world
-/// coordinates.
-pub fn guide_curve(system: &HairSystem, index: usize) -> Vec<DVec3> {
-    let strand = &system.strands()[index];
-    let motion = system.head().carry(strand.root());
-    let kin = strand.kinematics(&motion);
-    let lengths_m = &strand.model().lengths_m;
+/// coordinates (reconstructed in f64 on either engine).
+pub fn guide_curve(engine: &Engine, index: usize) -> Vec<DVec3> {
+    let (motion, kin) = engine.kinematics(index);
+    let lengths_m = &engine.strand_model(index).lengths_m;
+    let q_all = engine.q(index);
     let mut points = Vec::new();
-    for (element, &q) in strand.q().iter().enumerate() {
+    for (element, &q) in q_all.iter().enumerate() {
         let length_m = lengths_m[element];
         let start = motion.position_m + kin.points_m[element];
         let frame = kin.frames[element];
@@ -37,16 +37,16 @@ pub fn guide_curve(system: &HairSystem, index: usize) -> Vec<DVec3> {
             start + frame * centreline_and_jacobian(sigma, q).0
         }));
     }
-    points.push(motion.position_m + kin.points_m[strand.q().len()]);
+    points.push(motion.position_m + kin.points_m[q_all.len()]);
     points
 }
 
-/// The centrelines of every strand of `system`, in `f32` for drawing.
-pub fn guide_curves(system: &HairSystem) -> StrandBuffers {
+/// The centrelines of every strand of `engine`, in `f32` for drawing.
+pub fn guide_curves(engine: &Engine) -> StrandBuffers {
     let mut buffers = StrandBuffers::default();
-    for i in 0..system.strands().len() {
+    for i in 0..engine.strand_count() {
         buffers.push_strand(
-            guide_curve(system, i)
+            guide_curve(engine, i)
                 .into_iter()
                 .map(|p: DVec3| p.as_vec3()),
         );
@@ -73,7 +73,7 @@ mod tests {
         let style = Style::load(Path::new(path)).expect("loads");
         let mut sim = HeadlessSim::new(&style, SimOverrides::default()).expect("builds");
         sim.run(3).expect("finite");
-        let system = sim.system();
+        let system = sim.engine();
         let curve = guide_curve(system, 0);
         let boundaries = system.boundary_points_world(0);
         assert!(curve.len() > 2 * boundaries.len(), "{} points", curve.len());
@@ -92,6 +92,6 @@ mod tests {
             assert!(nearest < 1e-9, "boundary {b} is {nearest} m from the curve");
         }
         assert_eq!(curve.first(), boundaries.first());
-        assert_eq!(guide_curves(system).strand_count(), system.strands().len());
+        assert_eq!(guide_curves(system).strand_count(), system.strand_count());
     }
 }

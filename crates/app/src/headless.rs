@@ -3,13 +3,21 @@
 //!
 //! The head sits at the origin and does not move (root positions in the
 //! style are therefore also world positions). Every frame is timed with a
-//! wall clock around [`HairSystem::step_frame`], and the state is checked
+//! wall clock around [`Engine::step_frame`], and the state is checked
 //! for NaN and infinities after each one, so a blow-up is reported at the
-//! frame where it happened. The physics crate's guard normally prevents
-//! one; what it did is kept ([`HeadlessSim::guard_events`]) for the report.
+//! frame where it happened.
+//!
+//! The engine ([`crate::engine`]) is the style's `engine` or `--engine`:
+//! the f64 reference (whose guard normally prevents a blow-up; what it did
+//! is kept, [`HeadlessSim::guard_events`], for the report) or the f32
+//! batch path, which runs only Exact and Block-diagonal and has no guard.
+//! A combination the engine cannot run is refused before anything is
+//! built, naming the option or field that asked for it
+//! ([`SimError::Conflict`]).
 //!
 //! With an accuracy target (style field or `--accuracy`), each group's
-//! element count and solver come from [`crate::auto_choice`].
+//! element count and solver come from [`crate::auto_choice`] (reference
+//! engine only: the choice may pick any solver per group).
 
 use std::ops::Range;
 use std::time::Instant;
@@ -20,6 +28,7 @@ use thiserror::Error;
 use helixhair_render::head_generate::default_head;
 
 use crate::auto_choice::{Choice, choose};
+use crate::engine::{Engine, EngineKind};
 use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
 use crate::groom::{grow_scalp_roots, needs_head};
@@ -30,6 +39,8 @@ use crate::style_validate::{check_accuracy_target, param_issue};
 /// Command-line overrides of the style's settings.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SimOverrides {
+    /// Engine to use instead of the style's `engine`.
+    pub engine: Option<EngineKind>,
     /// Solver to use instead of the style's `sim.method`.
     pub method: Option<Method>,
     /// Frame time step in seconds instead of the style's `sim.dt_secs`.
@@ -55,6 +66,17 @@ pub enum SimError {
         value: String,
         /// What the physics crate says about it.
         error: ParamError,
+    },
+    /// The engine cannot run what the options and the style ask for
+    /// together (the batch engine with a solver other than Exact and
+    /// Block-diagonal, or with an accuracy target).
+    #[error("{options}: {message}")]
+    Conflict {
+        /// The command-line options involved, as written (`--engine batch
+        /// --method dense`).
+        options: String,
+        /// What cannot be done and how to fix it.
+        message: String,
     },
     /// The style does not describe a valid hair system (a loaded style has
     /// been validated, so this concerns styles built in code).
@@ -86,7 +108,7 @@ pub enum SimError {
 /// A hair system built from a style, with a still head.
 #[derive(Clone, Debug)]
 pub struct HeadlessSim {
-    system: HairSystem,
+    engine: Engine,
     group_names: Vec<String>,
     group_of_strand: Vec<usize>,
     head: RigidMotion,
@@ -133,6 +155,8 @@ impl HeadlessSim {
                 error,
             });
         }
+        let engine_kind = overrides.engine.unwrap_or(style.engine);
+        check_engine_options(engine_kind, &settings, accuracy_target, overrides)?;
         let model = match accuracy_target {
             Some(_) => {
                 Some(ErrorModel::built_in().map_err(|e| SimError::ErrorModel(format!("{e:#}")))?)
@@ -162,8 +186,8 @@ impl HeadlessSim {
                 .max();
             settings.substeps = settings.substeps.max(needed.unwrap_or(1));
         }
-        let mut system =
-            HairSystem::new(settings).map_err(|e| style_issue(param_issue(&sim_path, &e)))?;
+        let mut system = Engine::new(engine_kind, settings)
+            .map_err(|e| style_issue(param_issue(&sim_path, &e)))?;
         let mut group_of_strand = Vec::with_capacity(style.strand_count());
         let mut choices = Vec::new();
         for (i, group) in style.groups.iter().enumerate() {
@@ -183,15 +207,18 @@ impl HeadlessSim {
                 .add_group(&params, &group.root_poses())
                 .map_err(|e| style_issue(param_issue(&params_path, &e)))?;
             if let Some(choice) = choice {
-                for strand in &mut system.strands_mut()[range.clone()] {
-                    strand.set_method(choice.method);
+                // An accuracy target implies the reference engine (checked above).
+                if let Some(reference) = system.reference_mut() {
+                    for strand in &mut reference.strands_mut()[range.clone()] {
+                        strand.set_method(choice.method);
+                    }
                 }
                 choices.push(choice);
             }
             group_of_strand.extend(range.map(|_| i));
         }
         Ok(Self {
-            system,
+            engine: system,
             group_names: style.groups.iter().map(|g| g.name.clone()).collect(),
             group_of_strand,
             head: RigidMotion::default(),
@@ -200,14 +227,20 @@ impl HeadlessSim {
         })
     }
 
-    /// The hair system.
-    pub fn system(&self) -> &HairSystem {
-        &self.system
+    /// The engine and its hair system.
+    pub fn engine(&self) -> &Engine {
+        &self.engine
     }
 
-    /// Mutable access to the hair system (tests poison its state).
-    pub fn system_mut(&mut self) -> &mut HairSystem {
-        &mut self.system
+    /// Mutable access to the engine (tests poison its state; `render`
+    /// gives it the head collider).
+    pub fn engine_mut(&mut self) -> &mut Engine {
+        &mut self.engine
+    }
+
+    /// The reference hair system, when the engine is the reference one.
+    pub fn reference(&self) -> Option<&HairSystem> {
+        self.engine.reference()
     }
 
     /// The group names, in style order.
@@ -237,12 +270,14 @@ impl HeadlessSim {
     /// Advances one frame; returns its wall time in seconds.
     pub fn step(&mut self) -> f64 {
         let start = Instant::now();
-        self.system.step_frame(&self.head);
+        self.engine.step_frame(&self.head);
         let secs = start.elapsed().as_secs_f64();
-        let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
-        let events = self.system.last_guard_events();
-        self.guard_events
-            .extend_from_slice(&events[..events.len().min(room)]);
+        if let Some(reference) = self.engine.reference() {
+            let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
+            let events = reference.last_guard_events();
+            self.guard_events
+                .extend_from_slice(&events[..events.len().min(room)]);
+        }
         secs
     }
 
@@ -252,16 +287,81 @@ impl HeadlessSim {
         let mut wall_secs = Vec::with_capacity(steps);
         for step in 1..=steps {
             wall_secs.push(self.step());
-            if !self.system.is_finite() {
+            if !self.engine.is_finite() {
                 return Err(SimError::NotFinite {
                     step,
                     steps,
-                    time_secs: self.system.time_secs(),
+                    time_secs: self.engine.time_secs(),
                 });
             }
         }
         Ok(wall_secs)
     }
+}
+
+/// Refuses what `kind` cannot run, naming the options (or the style
+/// field) that asked for it. A loaded style never asks for an impossible
+/// combination itself (its validation refuses one), so at least one
+/// option is always involved.
+fn check_engine_options(
+    kind: EngineKind,
+    settings: &helixhair_physics::SimSettings,
+    accuracy_target: Option<f64>,
+    overrides: SimOverrides,
+) -> Result<(), SimError> {
+    if kind == EngineKind::Reference {
+        return Ok(());
+    }
+    let allowed = EngineKind::BATCH_METHODS.map(|m| format!("`{}`", m.label()));
+    let allowed = allowed.join(" or ");
+    let method = settings.method.label();
+    let (options, message) = if !kind.runs(settings.method) {
+        match (overrides.engine, overrides.method) {
+            (Some(_), Some(_)) => (
+                format!("--engine batch --method {method}"),
+                format!(
+                    "the batch engine runs the {allowed} solver only; \
+                     use --method exact or block, or --engine reference"
+                ),
+            ),
+            (Some(_), None) => (
+                "--engine batch".to_owned(),
+                format!(
+                    "the style's `sim.method` is `{method}`, which the batch engine cannot run \
+                     (it runs {allowed}); add --method exact or --method block"
+                ),
+            ),
+            (None, Some(_)) => (
+                format!("--method {method}"),
+                format!(
+                    "the style's `engine` is `Batch`, which runs the {allowed} solver only; \
+                     add --engine reference to use `{method}`"
+                ),
+            ),
+            // A style built in code (a loaded one is validated).
+            (None, None) => (
+                "style field `engine: Batch`".to_owned(),
+                format!("the batch engine runs {allowed} only, not `sim.method` `{method}`"),
+            ),
+        }
+    } else if accuracy_target.is_some() {
+        let option = if overrides.engine.is_some() {
+            "--engine batch"
+        } else if overrides.accuracy_target.is_some() {
+            "--accuracy"
+        } else {
+            "style field `engine: Batch`"
+        };
+        (
+            option.to_owned(),
+            "an accuracy target chooses a solver per group, which only the reference engine \
+             runs; drop the target, or use --engine reference"
+                .to_owned(),
+        )
+    } else {
+        return Ok(());
+    };
+    Err(SimError::Conflict { options, message })
 }
 
 #[cfg(test)]
@@ -291,11 +391,11 @@ mod tests {
     #[test]
     fn strands_follow_the_style_groups_in_order() {
         let sim = HeadlessSim::new(&style(), SimOverrides::default()).expect("builds");
-        assert_eq!(sim.system().strands().len(), 3);
+        assert_eq!(sim.engine().strand_count(), 3);
         let groups: Vec<&str> = (0..3).map(|i| sim.group_name(i)).collect();
         assert_eq!(groups, ["a", "b", "b"]);
         assert_eq!(sim.group_name(3), "", "out of range");
-        assert_eq!(sim.system().element_count(), 3 + 10 + 10);
+        assert_eq!(sim.engine().element_count(), 3 + 10 + 10);
     }
 
     #[test]
@@ -303,23 +403,22 @@ mod tests {
         let overrides = SimOverrides {
             method: Some(Method::Dense),
             dt_secs: Some(0.004),
-            accuracy_target: None,
+            ..SimOverrides::default()
         };
         let mut sim = HeadlessSim::new(&style(), overrides).expect("builds");
-        assert_eq!(sim.system().settings().method, Method::Dense);
-        assert_eq!(sim.system().settings().dt_secs, 0.004);
+        assert_eq!(sim.engine().settings().method, Method::Dense);
+        assert_eq!(sim.engine().settings().dt_secs, 0.004);
         let wall = sim.run(5).expect("finite");
         assert_eq!(wall.len(), 5);
-        assert!((sim.system().time_secs() - 0.02).abs() < 1e-15);
+        assert!((sim.engine().time_secs() - 0.02).abs() < 1e-15);
     }
 
     #[test]
     fn an_out_of_range_dt_names_the_option() {
         for dt in [0.5, -1.0, f64::NAN] {
             let overrides = SimOverrides {
-                method: None,
                 dt_secs: Some(dt),
-                accuracy_target: None,
+                ..SimOverrides::default()
             };
             let error = HeadlessSim::new(&style(), overrides).expect_err("refused");
             assert!(
@@ -339,11 +438,11 @@ mod tests {
     fn a_non_finite_state_stops_the_run_at_that_step() {
         let mut sim = HeadlessSim::new(&style(), SimOverrides::default()).expect("builds");
         sim.run(2).expect("finite so far");
-        let strand = &mut sim.system_mut().strands_mut()[1];
-        let mut q = strand.q().to_vec();
+        let engine = sim.engine_mut();
+        let mut q = engine.q(1);
         q[4] = DVec3::new(f64::NAN, 0.0, 0.0);
-        let v = strand.v().to_vec();
-        strand.set_state(&q, &v);
+        let v = engine.v(1);
+        engine.set_state(1, &q, &v);
         let error = sim.run(10).expect_err("blows up");
         assert!(
             matches!(
@@ -357,5 +456,71 @@ mod tests {
             "{error}"
         );
         assert!(error.to_string().contains("after step 1 of 10"), "{error}");
+    }
+
+    #[test]
+    fn the_batch_engine_runs_the_style_and_refuses_what_it_cannot_run() {
+        let batch = SimOverrides {
+            engine: Some(EngineKind::Batch),
+            ..SimOverrides::default()
+        };
+        let mut sim = HeadlessSim::new(&style(), batch).expect("Exact runs on the batch engine");
+        assert_eq!(sim.engine().kind(), EngineKind::Batch);
+        assert_eq!(sim.engine().element_count(), 3 + 10 + 10);
+        sim.run(3).expect("finite");
+        assert!(sim.reference().is_none() && sim.guard_events().is_empty());
+
+        let cases = [
+            (
+                SimOverrides {
+                    method: Some(Method::Dense),
+                    ..batch
+                },
+                "--engine batch --method dense: the batch engine runs the `exact` or `block` solver only",
+            ),
+            (
+                SimOverrides {
+                    accuracy_target: Some(0.02),
+                    ..batch
+                },
+                "--engine batch: an accuracy target chooses a solver per group",
+            ),
+        ];
+        for (overrides, want) in cases {
+            let error = HeadlessSim::new(&style(), overrides).expect_err("refused");
+            assert!(matches!(error, SimError::Conflict { .. }), "{error}");
+            assert!(error.to_string().starts_with(want), "{error}");
+        }
+        // The style's method is Dense: `--engine batch` alone names it.
+        let mut dense = style();
+        dense.sim.method = Method::Dense;
+        let error = HeadlessSim::new(&dense, batch).expect_err("refused");
+        assert!(
+            error
+                .to_string()
+                .starts_with("--engine batch: the style's `sim.method` is `dense`"),
+            "{error}"
+        );
+        // The style asks for the batch engine; `--method iterative:4` cannot run on it.
+        let mut on_batch = style();
+        on_batch.engine = EngineKind::Batch;
+        let iterative = SimOverrides {
+            method: Some(Method::Iterative { iterations: 4 }),
+            ..SimOverrides::default()
+        };
+        let error = HeadlessSim::new(&on_batch, iterative).expect_err("refused");
+        assert!(
+            error
+                .to_string()
+                .starts_with("--method iterative:4: the style's `engine` is `Batch`"),
+            "{error}"
+        );
+        // ...and `--engine reference` lifts it.
+        let reference = SimOverrides {
+            engine: Some(EngineKind::Reference),
+            ..iterative
+        };
+        let sim = HeadlessSim::new(&on_batch, reference).expect("builds");
+        assert_eq!(sim.engine().kind(), EngineKind::Reference);
     }
 }

@@ -36,6 +36,7 @@ pub mod bench;
 pub mod camera_arg;
 pub mod cli;
 pub mod drawn_hair;
+pub mod engine;
 pub mod error_model;
 pub mod field_path;
 pub mod groom;

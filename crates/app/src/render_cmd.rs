@@ -155,13 +155,13 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     let collider = groom
         .collider()
         .context("cannot build the head's collision field")?;
-    sim.system_mut().set_collider(Some(Arc::new(collider)));
+    sim.engine_mut().set_collider(Some(Arc::new(collider)));
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;
     let camera: OrbitCamera = args.camera.camera();
     let mut frame = |sim: &HeadlessSim| -> anyhow::Result<(RgbaImage, FrameCounts, f64)> {
-        let hair = drawn_hair(&groom, &guide_curves(sim.system()));
+        let hair = drawn_hair(&groom, &guide_curves(sim.engine()));
         let scene = Scene {
             hair: &hair,
             head: &groom.head,
@@ -221,7 +221,7 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
         "style `{}` ({style_path}): {} simulated strands, {} frames in {sim_secs:.2} s\n  \
          drew {} strands, {} points at {}x{} on {}: {timing}\n  wrote {}",
         groom.style.name,
-        sim.system().strands().len(),
+        sim.engine().strand_count(),
         args.frames,
         counts.strands,
         counts.points,

@@ -31,6 +31,9 @@ pub struct SimReport {
     pub style_path: String,
     /// The style's `name`.
     pub style_name: String,
+    /// The engine that ran ([`crate::engine::EngineKind::label`]):
+    /// `reference` or `batch`.
+    pub engine: &'static str,
     /// Solver, as `--method` spells it ([`helixhair_physics::Method::label`]:
     /// `exact`, `iterative:4`, …).
     pub method: String,
@@ -46,18 +49,21 @@ pub struct SimReport {
     pub strand_count: usize,
     /// Number of Super-Helix elements over all strands.
     pub element_count: usize,
-    /// Energies of the final state.
+    /// Energies of the final state (the batch engine's reconstructed in
+    /// f64 from its f32 state).
     pub energies: EnergiesReport,
     /// Wall-clock time of the frames.
     pub wall_time: WallTimeReport,
-    /// Stage times of the last frame, summed over strands and substeps.
-    pub last_step_stages: StageTimesReport,
+    /// Stage times of the last frame, summed over strands and substeps;
+    /// `None` (JSON `null`) on the batch engine, which fuses the stages.
+    pub last_step_stages: Option<StageTimesReport>,
     /// Final shape of every strand, in the order of the style's roots.
     pub strands: Vec<StrandReport>,
     /// The automatic choice per group (empty without an accuracy target).
     pub choices: Vec<ChoiceReport>,
-    /// What the physics guard did during the run.
-    pub guard: GuardReport,
+    /// What the physics guard did during the run; `None` (JSON `null`) on
+    /// the batch engine, which has no guard.
+    pub guard: Option<GuardReport>,
 }
 
 /// The solver and element count chosen for one group.
@@ -197,37 +203,36 @@ impl SimReport {
         sim: &HeadlessSim,
         per_step_secs: Vec<f64>,
     ) -> Self {
-        let system = sim.system();
-        let settings = system.settings();
-        let strands = system
-            .strands()
-            .iter()
-            .enumerate()
-            .map(|(i, strand)| StrandReport {
+        let engine = sim.engine();
+        let settings = engine.settings();
+        let strands = (0..engine.strand_count())
+            .map(|i| StrandReport {
                 group: sim.group_name(i).to_owned(),
-                points_m: system
+                points_m: engine
                     .boundary_points_world(i)
                     .iter()
                     .map(|p| p.to_array())
                     .collect(),
-                q_per_m: strand.q().iter().map(|q| q.to_array()).collect(),
+                q_per_m: engine.q(i).iter().map(|q| q.to_array()).collect(),
             })
             .collect();
+        let reference = engine.reference();
         Self {
             format: SIM_REPORT_FORMAT,
             version: SIM_REPORT_VERSION,
             style_path: style_path.to_owned(),
             style_name: style_name.to_owned(),
+            engine: engine.kind().label(),
             method: settings.method.label(),
             dt_secs: settings.dt_secs,
             substeps: settings.substeps,
             steps: per_step_secs.len(),
-            time_secs: system.time_secs(),
-            strand_count: system.strands().len(),
-            element_count: system.element_count(),
-            energies: system.energies().into(),
+            time_secs: engine.time_secs(),
+            strand_count: engine.strand_count(),
+            element_count: engine.element_count(),
+            energies: engine.energies().into(),
             wall_time: WallTimeReport::new(per_step_secs),
-            last_step_stages: system.last_stage_times().into(),
+            last_step_stages: reference.map(|r| r.last_stage_times().into()),
             strands,
             choices: sim
                 .choices()
@@ -238,14 +243,14 @@ impl SimReport {
                     choice: choice.clone(),
                 })
                 .collect(),
-            guard: GuardReport {
-                event_count: system.guard_event_count(),
+            guard: reference.map(|r| GuardReport {
+                event_count: r.guard_event_count(),
                 events: sim
                     .guard_events()
                     .iter()
                     .map(|e| format!("{e} (group {})", sim.group_name(e.strand)))
                     .collect(),
-            },
+            }),
         }
     }
 
@@ -258,8 +263,13 @@ impl SimReport {
         let _ = writeln!(out, "style `{}` ({})", self.style_name, self.style_path);
         let _ = writeln!(
             out,
-            "  {} strands, {} elements; method {}, dt {} s x {} substep(s)",
-            self.strand_count, self.element_count, self.method, self.dt_secs, self.substeps
+            "  {} strands, {} elements; {} engine, method {}, dt {} s x {} substep(s)",
+            self.strand_count,
+            self.element_count,
+            self.engine,
+            self.method,
+            self.dt_secs,
+            self.substeps
         );
         let _ = writeln!(
             out,
@@ -294,12 +304,14 @@ impl SimReport {
                 }
             );
         }
-        if self.guard.event_count > 0 {
+        if let Some(guard) = &self.guard
+            && guard.event_count > 0
+        {
             let _ = writeln!(
                 out,
                 "  warning: the stability guard stepped in {} time(s); first: {}",
-                self.guard.event_count,
-                self.guard.events.first().map_or("", String::as_str)
+                guard.event_count,
+                guard.events.first().map_or("", String::as_str)
             );
         }
         out

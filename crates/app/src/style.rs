@@ -20,6 +20,7 @@ use helixhair_physics::{RootPose, SimSettings, StrandParams};
 use serde::{Deserialize, Serialize};
 
 use crate::atomic_write::write_atomically;
+use crate::engine::EngineKind;
 use crate::field_path::FieldPath;
 use crate::source_map::{SourceMap, TextPosition};
 use crate::style_error::{StyleError, StyleErrorKind, StyleIssue};
@@ -45,6 +46,12 @@ pub struct Style {
     /// Solver, time step, gravity; every field has a default.
     #[serde(default)]
     pub sim: SimSettings,
+    /// The physics engine: `Reference` (the f64 `HairSystem`, every solver,
+    /// guard and collider; the default) or `Batch` (the f32 SIMD
+    /// `BatchSystem` on all cores, `sim.method` `Exact` or `BlockDiagonal`
+    /// only). See [`crate::engine`].
+    #[serde(default)]
+    pub engine: EngineKind,
     /// Accuracy target for the automatic choice of solver and element
     /// count (`crate::auto_choice`): the tip-position RMS error allowed, as
     /// a fraction of each strand's length, in [1e-4, 1]. When set, each

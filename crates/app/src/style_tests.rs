@@ -357,6 +357,51 @@ fn nan_is_reported_after_parsing_at_its_field() {
 }
 
 #[test]
+fn the_engine_field_defaults_to_reference_and_reads_batch() {
+    use crate::engine::EngineKind;
+    assert_eq!(load(VALID).expect("loads").engine, EngineKind::Reference);
+    let src = edit(
+        "    sim: (method: Dense,",
+        "    engine: Batch,\n    sim: (method: Exact,",
+    );
+    let style = load(&src).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(style.engine, EngineKind::Batch);
+    let saved = style.to_ron().expect("serialises");
+    assert!(saved.contains("engine: Batch"), "{saved}");
+    assert_eq!(load(&saved).expect("reloads"), style);
+}
+
+#[test]
+fn the_batch_engine_with_another_solver_is_reported_at_the_engine_field() {
+    // VALID's solver is Dense, which the batch engine does not run.
+    let src = edit(
+        "    sim: (method: Dense,",
+        "    engine: Batch, // <-\n    sim: (method: Dense,",
+    );
+    let error = assert_error(&src, StyleErrorKind::InvalidValue, "engine", "engine");
+    assert!(
+        error.to_string().ends_with(
+            "field `engine`: the batch engine runs `sim.method` `Exact` or `BlockDiagonal` \
+             only, not `Dense`; pick one of those, or `engine: Reference` for every solver"
+        ),
+        "{error}"
+    );
+    let src = edit(
+        "    sim: (method: Dense,",
+        "    engine: Batch, // <-\n    accuracy_target: Some(0.02),\n    sim: (method: Exact,",
+    );
+    let error = assert_error(&src, StyleErrorKind::InvalidValue, "engine", "engine");
+    assert!(error.to_string().contains("accuracy_target"), "{error}");
+    // An unknown engine is a parse error at its value, naming the variants.
+    let src = edit(
+        "    sim: (method: Dense,",
+        "    engine: Fast, // <-\n    sim: (method: Dense,",
+    );
+    let error = assert_error(&src, StyleErrorKind::UnknownVariant, "engine", "Fast");
+    assert!(error.to_string().contains("`Reference`"), "{error}");
+}
+
+#[test]
 fn out_of_range_values_are_reported_at_their_field() {
     let src = edit("length_m: 0.25,", "length_m: 3.0, // <-");
     let error = assert_error(

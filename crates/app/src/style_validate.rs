@@ -8,6 +8,7 @@
 use glam::DVec3;
 use helixhair_physics::ParamError;
 
+use crate::engine::EngineKind;
 use crate::field_path::FieldPath;
 use crate::style::{Root, STYLE_VERSION, Style};
 use crate::style_error::{StyleErrorKind, StyleIssue};
@@ -28,6 +29,7 @@ impl Style {
         check_version(self.version)?;
         let sim = FieldPath::root().field("sim");
         self.sim.validate().map_err(|e| param_issue(&sim, &e))?;
+        check_engine(self)?;
         if let Some(target) = self.accuracy_target {
             check_accuracy_target(target).map_err(|e| param_issue(&FieldPath::root(), &e))?;
         }
@@ -63,6 +65,35 @@ impl Style {
         }
         Ok(())
     }
+}
+
+/// The batch engine runs two solvers and no automatic choice: a style
+/// that asks it for more is refused at its `engine` field.
+fn check_engine(style: &Style) -> Result<(), StyleIssue> {
+    let engine = FieldPath::root().field("engine");
+    if style.engine == EngineKind::Batch && !EngineKind::Batch.runs(style.sim.method) {
+        return Err(invalid(
+            engine,
+            format!(
+                "the batch engine runs `sim.method` `Exact` or `BlockDiagonal` only, not `{}`; \
+                 pick one of those, or `engine: Reference` for every solver",
+                method_spelling(style.sim.method)
+            ),
+        ));
+    }
+    if style.engine == EngineKind::Batch && style.accuracy_target.is_some() {
+        return Err(invalid(
+            engine,
+            "the batch engine cannot run an `accuracy_target` (it may choose any solver per \
+             group); remove the target, or use `engine: Reference`",
+        ));
+    }
+    Ok(())
+}
+
+/// A solver as a style spells it (`Dense`, `Iterative(iterations:4)`).
+pub(crate) fn method_spelling(method: helixhair_physics::Method) -> String {
+    ron::to_string(&method).unwrap_or_else(|_| method.label())
 }
 
 /// Refuses every format version but [`STYLE_VERSION`].

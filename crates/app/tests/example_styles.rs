@@ -132,7 +132,10 @@ fn the_guard_stays_silent_on_every_example_style_under_a_head_shake() {
     for name in ["straight", "wavy", "curly", "coily"] {
         let style = load(name);
         let mut sim = helixhair_app::HeadlessSim::new(&style, Default::default()).expect("builds");
-        let system = sim.system_mut();
+        let system = sim
+            .engine_mut()
+            .reference_mut()
+            .expect("the examples run on the reference engine");
         for _ in 0..120 {
             system.step_frame(&shake);
         }
@@ -143,4 +146,32 @@ fn the_guard_stays_silent_on_every_example_style_under_a_head_shake() {
             "{name}: the guard stepped in"
         );
     }
+}
+
+#[test]
+fn the_full_head_runs_on_the_batch_engine_and_survives_a_head_shake() {
+    // The batch engine has no guard: the full-head example must stay finite
+    // under the same shake on its own.
+    use helixhair_app::engine::EngineKind;
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/groomed/full_head.ron");
+    let style = Style::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(style.engine, EngineKind::Batch);
+    let mut sim = helixhair_app::HeadlessSim::new(&style, Default::default()).expect("builds");
+    let engine = sim.engine_mut();
+    assert_eq!(engine.kind(), EngineKind::Batch);
+    assert!(
+        (2000..=5000).contains(&engine.strand_count()),
+        "a few thousand strands: {}",
+        engine.strand_count()
+    );
+    let shake = helixhair_physics::Oscillation {
+        axis: glam::DVec3::Y,
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    };
+    for _ in 0..120 {
+        engine.step_frame(&shake);
+    }
+    assert!(engine.is_finite());
 }

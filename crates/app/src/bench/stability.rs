@@ -21,6 +21,7 @@
 
 use std::path::Path;
 
+use anyhow::Context as _;
 use glam::DVec3;
 use helixhair_physics::{Method, Oscillation, StrandParams};
 use plotters::prelude::*;
@@ -33,6 +34,7 @@ use super::scenes::{
     CurlClass, RunSetting, Scene, SceneMotion, Trajectory, run_scene, tip_motion_rms,
 };
 use super::table::write_csv;
+use crate::engine::EngineKind;
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::style::Style;
 
@@ -231,13 +233,18 @@ fn curly_style_steps(ctx: &mut BenchContext<'_>, duration_secs: f64) -> anyhow::
                 let mut sim = HeadlessSim::new(
                     &style,
                     SimOverrides {
+                        engine: Some(EngineKind::Reference),
                         method: Some(method),
                         dt_secs: Some(dt),
                         accuracy_target: None,
                     },
                 )?;
-                sim.system_mut().set_guard(None);
-                let stable = style_run_is_stable(&mut sim, &motion, dt, duration_secs);
+                let system = sim
+                    .engine_mut()
+                    .reference_mut()
+                    .context("the stability study runs the reference engine")?;
+                system.set_guard(None);
+                let stable = style_run_is_stable(system, &motion, dt, duration_secs);
                 if stable && largest.is_none() {
                     largest = Some(dt);
                 }
@@ -265,12 +272,11 @@ fn curly_style_steps(ctx: &mut BenchContext<'_>, duration_secs: f64) -> anyhow::
 /// Steps `sim` under `motion`; false at the first non-finite state or tip
 /// faster than the speed limit relative to its root.
 fn style_run_is_stable(
-    sim: &mut HeadlessSim,
+    system: &mut helixhair_physics::HairSystem,
     motion: &SceneMotion,
     dt: f64,
     duration_secs: f64,
 ) -> bool {
-    let system = sim.system_mut();
     let strands = system.strands().len();
     let relative_tips = |s: &helixhair_physics::HairSystem| -> Vec<DVec3> {
         (0..strands)

@@ -140,7 +140,7 @@ fn lane_dense(
     let finite = q.iter().chain(&v).all(|x| {
         [x.x, x.y, x.z]
             .iter()
-            .all(|l| l.0.iter().all(|f| f.is_finite()))
+            .all(|l| l.to_array().iter().all(|f| f.is_finite()))
     });
     let state_bytes = (q.len() + v.len()) * size_of::<V3<Lanes>>();
     let bytes = state_bytes as f64 / roots.len().max(1) as f64 + size_of::<RootPose>() as f64;

@@ -19,6 +19,7 @@ use helixhair_physics::Method;
 use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
 
+use crate::engine::EngineKind;
 use crate::style::Style;
 
 use super::collision::HeadCollider;
@@ -82,7 +83,7 @@ impl AppState {
     /// Starts on `style` (valid), from file `path` if it came from one.
     pub fn new(style: Style, path: Option<&Path>) -> Result<Self, String> {
         let head_mesh = Arc::new(default_head());
-        let mut sim = LiveSim::new(&style, head_mesh.clone(), None)?;
+        let mut sim = LiveSim::new(&style, head_mesh.clone(), None, None)?;
         let mut message = None;
         match HeadCollider::from_head(&head_mesh) {
             Ok(c) => sim.set_collider(Some(c)),
@@ -126,19 +127,27 @@ impl AppState {
     }
 
     /// Turns the compare view on (both runs start from the main run's
-    /// current state) or off.
+    /// current state, on the reference engine: the solvers it compares are
+    /// not all on the batch engine) or off (back to the style's engine).
     pub fn set_compare(&mut self, methods: Option<CompareMethods>) {
-        match methods {
-            Some(m) => {
-                let mut right = self.sim.clone();
-                right.set_method_override(Some(m.right));
-                self.sim.set_method_override(Some(m.left));
-                self.compare = Some((right, m));
-            }
+        let reference = Some(EngineKind::Reference);
+        let result = match methods {
+            Some(m) => self
+                .sim
+                .set_overrides(reference, Some(m.left))
+                .and_then(|()| {
+                    let mut right = self.sim.clone();
+                    right.set_overrides(reference, Some(m.right))?;
+                    self.compare = Some((right, m));
+                    Ok(())
+                }),
             None => {
-                self.sim.set_method_override(None);
                 self.compare = None;
+                self.sim.set_overrides(None, None)
             }
+        };
+        if let Err(e) = result {
+            self.message = Some(e);
         }
     }
 
@@ -206,7 +215,7 @@ impl AppState {
             right.step(&frame);
         }
         let wall_secs = started.elapsed().as_secs_f64();
-        self.head.advance(self.sim.system().settings().dt_secs);
+        self.head.advance(self.sim.engine().settings().dt_secs);
         let difference_m = self
             .compare
             .as_ref()

@@ -10,10 +10,10 @@
 
 use std::sync::Arc;
 
-use helixhair_physics::HairSystem;
 use helixhair_physics::collision::SignedDistanceField;
 use helixhair_render::HeadMesh;
 
+use crate::engine::Engine;
 use crate::groom::head_collider;
 
 /// A collider built from the head mesh, shared by every run.
@@ -37,9 +37,10 @@ impl HeadCollider {
         &self.field
     }
 
-    /// Makes `system` collide its strands with this collider.
-    pub fn attach(&self, system: &mut HairSystem) {
-        system.set_collider(Some(self.field.clone()));
+    /// Makes `engine` collide its strands with this collider (through
+    /// [`Engine::set_collider`]: the batch engine does not collide yet).
+    pub fn attach(&self, engine: &mut Engine) {
+        engine.set_collider(Some(self.field.clone()));
     }
 }
 

@@ -15,6 +15,7 @@ use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
 use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
+use crate::engine::EngineKind;
 use crate::style::{Root, STYLE_VERSION, StrandGroup, Style};
 
 use super::presets::built_in_presets;
@@ -84,6 +85,7 @@ pub fn default_style(guides: usize) -> Style {
             substeps: 2,
             ..SimSettings::default()
         },
+        engine: EngineKind::Reference,
         accuracy_target: None,
         groups: vec![StrandGroup {
             name: "all".into(),

@@ -53,7 +53,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         args: args.clone(),
         look: HairLook::new(&app.head_mesh, args.render_strands),
         drawn: DrawnCache::default(),
-        view: ViewState::new(app.sim.system().strands().len()),
+        view: ViewState::new(app.sim.engine().strand_count()),
         app,
         open: None,
         error: None,
@@ -137,7 +137,7 @@ impl Handler {
                 .record_frame(now.duration_since(last).as_secs_f64());
         }
         self.app.step_frame();
-        let head = self.app.sim.system().head();
+        let head = self.app.sim.engine().head();
         let pose = (head.world_from_body, head.position_m);
         let head_mesh = posed_head(&self.app.head_mesh, pose);
         let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
@@ -199,16 +199,18 @@ impl Handler {
         let r = &self.app.readouts;
         let ms = |s: Option<f64>| s.map_or(f64::NAN, |s| 1e3 * s);
         println!(
-            "helixhair window: {} frames on {adapter}; {} guide strands, {} render strands, {} elements",
+            "helixhair window: {} frames on {adapter}; {} engine, {} guide strands, {} render strands, {} elements",
             self.frames,
-            self.app.sim.system().strands().len(),
+            self.app.sim.kind().label(),
+            self.app.sim.engine().strand_count(),
             self.args.render_strands,
-            self.app.sim.system().element_count()
+            self.app.sim.engine().element_count()
         );
         println!(
-            "last {n} frames: frame time {:.1} ms, physics {:.1} ms per frame, {:.3e} element-steps/s",
+            "last {n} frames: frame time {:.1} ms, physics {:.1} ms per frame (median {:.1} ms), {:.3e} element-steps/s",
             ms(r.mean_frame_secs(n)),
             ms(r.mean_physics_secs(n)),
+            ms(r.median_physics_secs(n)),
             r.element_steps_per_sec(n).unwrap_or(0.0)
         );
     }

@@ -1,28 +1,35 @@
-//! The simulation behind the window: a [`HairSystem`] that follows the
+//! The simulation behind the window: an [`Engine`] (the f64 reference
+//! `HairSystem` or the f32 batch path, [`crate::engine`]) that follows the
 //! style as it is edited, without a reset.
 //!
 //! The physics builds a strand's model (mass, stiffness, rest shape) once,
-//! when the strand is added. A live edit therefore rebuilds the system from
+//! when the strand is added. A live edit therefore rebuilds the engine from
 //! the edited style and carries every strand's state over: strains q and
 //! rates q̇ are copied when the element layout is unchanged, and resampled
 //! by arc length ([`super::resample`]) when the element count or layout
 //! changed, so the hair keeps its shape and motion and then relaxes towards
-//! its new rest shape. A changed solver needs no rebuild at all
-//! ([`HairSystem::set_method`] keeps shapes). Only a change in the number
-//! of roots starts strands afresh, at their rest shape.
+//! its new rest shape. The same carrying-over moves the hair from one
+//! engine to the other when the style's `engine` changes (the batch engine
+//! rounds the state to f32). A changed solver on the reference engine needs
+//! no rebuild at all (`HairSystem::set_method` keeps shapes); the batch
+//! engine has one solver for all strands and is rebuilt. Only a change in
+//! the number of roots starts strands afresh, at their rest shape.
 //!
-//! Simulated time keeps running across rebuilds: the system's clock starts
+//! The compare view runs both sides on the reference engine, whatever the
+//! style says ([`LiveSim::set_overrides`]): it compares solvers the batch
+//! engine does not have.
+//!
+//! Simulated time keeps running across rebuilds: the engine's clock starts
 //! at zero each time, so the head trajectory is read at the app's time
 //! ([`LiveSim::now_secs`]) through a shifted view of it.
 
 use std::sync::Arc;
 
 use glam::DVec3;
-use helixhair_physics::{
-    Energies, GuardEvent, HairSystem, HeadTrajectory, Method, RigidMotion, StageTimes,
-};
+use helixhair_physics::{Energies, GuardEvent, HeadTrajectory, Method, RigidMotion, StageTimes};
 use helixhair_render::{HeadMesh, StrandBuffers};
 
+use crate::engine::{Engine, EngineKind};
 use crate::groom::{grow_scalp_roots, needs_head};
 use crate::style::Style;
 
@@ -33,10 +40,11 @@ use super::resample::resample_per_element;
 /// A hair system kept in step with an edited style.
 #[derive(Clone, Debug)]
 pub struct LiveSim {
-    system: HairSystem,
+    engine: Engine,
     head: Arc<HeadMesh>,
     built: Style,
     built_grown: Style,
+    engine_override: Option<EngineKind>,
     method_override: Option<Method>,
     clock_offset_secs: f64,
     collider: Option<HeadCollider>,
@@ -55,59 +63,91 @@ impl HeadTrajectory for Shifted<'_> {
 }
 
 impl LiveSim {
-    /// Builds the system of `style`, solved by `method_override` instead
-    /// of the style's solver when given (the compare view's second run).
-    /// Groups placed on the scalp (`scalp` in the style) grow their roots on
-    /// `head`.
+    /// Builds the engine of `style` (its `engine`, or `engine_override`),
+    /// solved by `method_override` instead of the style's solver when
+    /// given (the compare view's runs). Groups placed on the scalp
+    /// (`scalp` in the style) grow their roots on `head`.
     pub fn new(
         style: &Style,
         head: Arc<HeadMesh>,
+        engine_override: Option<EngineKind>,
         method_override: Option<Method>,
     ) -> Result<Self, String> {
         let grown = grow(style, &head);
-        let system = build(&grown, method_override)?;
+        let engine = build(&grown, engine_override, method_override)?;
         Ok(Self {
-            system,
+            engine,
             head,
             built: style.clone(),
             built_grown: grown,
+            engine_override,
             method_override,
             clock_offset_secs: 0.0,
             collider: None,
         })
     }
 
-    /// The hair system.
-    pub fn system(&self) -> &HairSystem {
-        &self.system
+    /// The engine and its hair system.
+    pub fn engine(&self) -> &Engine {
+        &self.engine
+    }
+
+    /// Which engine runs.
+    pub fn kind(&self) -> EngineKind {
+        self.engine.kind()
     }
 
     /// Simulated time since the app started, seconds.
     pub fn now_secs(&self) -> f64 {
-        self.clock_offset_secs + self.system.time_secs()
+        self.clock_offset_secs + self.engine.time_secs()
     }
 
     /// The solver in use.
     pub fn method(&self) -> Method {
-        self.system.settings().method
+        self.engine.settings().method
     }
 
     /// Sets the head collider (also kept across rebuilds).
     pub fn set_collider(&mut self, collider: Option<HeadCollider>) {
         if let Some(c) = &collider {
-            c.attach(&mut self.system);
+            c.attach(&mut self.engine);
         }
         self.collider = collider;
     }
 
-    /// Solves with `method` from now on (shapes are kept).
-    pub fn set_method_override(&mut self, method: Option<Method>) {
+    /// Runs on `engine` with `method` from now on instead of the style's
+    /// (both `None`: the style's own), keeping every strand's shape and
+    /// motion. Fails, changing nothing, if the engine cannot run the
+    /// solver.
+    pub fn set_overrides(
+        &mut self,
+        engine: Option<EngineKind>,
+        method: Option<Method>,
+    ) -> Result<(), String> {
+        let kind = engine.unwrap_or(self.built.engine);
+        let solver = method.unwrap_or(self.built.sim.method);
+        if !kind.runs(solver) {
+            return Err(format!(
+                "the {} engine cannot run the `{}` solver",
+                kind.label(),
+                solver.label()
+            ));
+        }
+        let (old_engine, old_method) = (self.engine_override, self.method_override);
+        self.engine_override = engine;
         self.method_override = method;
-        self.system
-            .set_method(method.unwrap_or(self.built.sim.method));
+        if let (EngineKind::Reference, Engine::Reference(system)) = (kind, &mut self.engine) {
+            system.set_method(solver);
+            return Ok(());
+        }
+        let style = self.built.clone();
+        self.rebuild(&style).inspect_err(|_| {
+            self.engine_override = old_engine;
+            self.method_override = old_method;
+        })
     }
 
-    /// Brings the system in line with `style` (which must be valid),
+    /// Brings the engine in line with `style` (which must be valid),
     /// keeping the strands' state; returns whether anything changed.
     pub fn sync(&mut self, style: &Style) -> Result<bool, String> {
         if *style == self.built {
@@ -115,14 +155,22 @@ impl LiveSim {
         }
         let mut only_method = self.built.clone();
         only_method.sim.method = style.sim.method;
-        if only_method == *style {
+        if only_method == *style
+            && let Engine::Reference(system) = &mut self.engine
+        {
             self.built = style.clone();
-            self.system
-                .set_method(self.method_override.unwrap_or(style.sim.method));
+            system.set_method(self.method_override.unwrap_or(style.sim.method));
             return Ok(true);
         }
+        self.rebuild(style)?;
+        Ok(true)
+    }
+
+    /// A new engine for `style`, every strand's state carried over from the
+    /// current one when the root counts match.
+    fn rebuild(&mut self, style: &Style) -> Result<(), String> {
         let grown = grow(style, &self.head);
-        let mut system = build(&grown, self.method_override)?;
+        let mut engine = build(&grown, self.engine_override, self.method_override)?;
         let old = &self.built_grown;
         let same_roots = grown.groups.len() == old.groups.len()
             && grown
@@ -136,28 +184,28 @@ impl LiveSim {
                 let old_lengths = old_group.params.element_lengths();
                 let new_lengths = new_group.params.element_lengths();
                 for _ in &new_group.roots {
-                    let old = &self.system.strands()[index];
+                    let (old_q, old_v) = (self.engine.q(index), self.engine.v(index));
                     let (q, v) = if old_lengths == new_lengths {
-                        (old.q().to_vec(), old.v().to_vec())
+                        (old_q, old_v)
                     } else {
                         (
-                            resample_per_element(old.q(), &old_lengths, &new_lengths),
-                            resample_per_element(old.v(), &old_lengths, &new_lengths),
+                            resample_per_element(&old_q, &old_lengths, &new_lengths),
+                            resample_per_element(&old_v, &old_lengths, &new_lengths),
                         )
                     };
-                    system.strands_mut()[index].set_state(&q, &v);
+                    engine.set_state(index, &q, &v);
                     index += 1;
                 }
             }
         }
-        self.clock_offset_secs += self.system.time_secs();
-        self.system = system;
+        self.clock_offset_secs += self.engine.time_secs();
+        self.engine = engine;
         if let Some(c) = &self.collider {
-            c.attach(&mut self.system);
+            c.attach(&mut self.engine);
         }
         self.built = style.clone();
         self.built_grown = grown;
-        Ok(true)
+        Ok(())
     }
 
     /// Steps one frame with the head moving as `head` says (read at the
@@ -167,36 +215,41 @@ impl LiveSim {
             head,
             offset_secs: self.clock_offset_secs,
         };
-        self.system.step_frame(&shifted);
+        self.engine.step_frame(&shifted);
     }
 
-    /// Stage times of the last frame.
-    pub fn stage_times(&self) -> StageTimes {
-        self.system.last_stage_times()
+    /// Stage times of the last frame; `None` on the batch engine, whose
+    /// stages are fused into sweeps and not timed apart.
+    pub fn stage_times(&self) -> Option<StageTimes> {
+        self.engine.reference().map(|s| s.last_stage_times())
     }
 
-    /// What the guard did in the last frame.
+    /// What the guard did in the last frame (nothing on the batch engine,
+    /// which has no guard).
     pub fn guard_events(&self) -> &[GuardEvent] {
-        self.system.last_guard_events()
+        self.engine
+            .reference()
+            .map_or(&[], |s| s.last_guard_events())
     }
 
-    /// Energies of the current state.
-    pub fn energies(&self) -> Energies {
-        self.system.energies()
+    /// Energies of the current state; `None` on the batch engine (they
+    /// would cost about a reference frame each displayed frame).
+    pub fn energies(&self) -> Option<Energies> {
+        self.engine.reference().map(|s| s.energies())
     }
 
     /// Element steps one frame takes: elements × substeps.
     pub fn element_steps_per_frame(&self) -> usize {
-        self.system.element_count() * self.system.settings().substeps as usize
+        self.engine.element_count() * self.engine.settings().substeps as usize
     }
 
     /// Every strand's boundary points in world coordinates, as `f32`
     /// polylines for the renderer.
     pub fn strand_buffers(&self) -> StrandBuffers {
         let mut out = StrandBuffers::default();
-        for i in 0..self.system.strands().len() {
+        for i in 0..self.engine.strand_count() {
             out.push_strand(
-                self.system
+                self.engine
                     .boundary_points_world(i)
                     .into_iter()
                     .map(|p| p.as_vec3()),
@@ -207,8 +260,8 @@ impl LiveSim {
 
     /// Tip positions, world coordinates (for the compare view).
     pub fn tips_m(&self) -> Vec<DVec3> {
-        (0..self.system.strands().len())
-            .filter_map(|i| self.system.boundary_points_world(i).last().copied())
+        (0..self.engine.strand_count())
+            .filter_map(|i| self.engine.boundary_points_world(i).last().copied())
             .collect()
     }
 }
@@ -235,12 +288,17 @@ fn grow(style: &Style, head: &HeadMesh) -> Style {
     }
 }
 
-fn build(style: &Style, method_override: Option<Method>) -> Result<HairSystem, String> {
+fn build(
+    style: &Style,
+    engine_override: Option<EngineKind>,
+    method_override: Option<Method>,
+) -> Result<Engine, String> {
     let mut settings = style.sim.clone();
     if let Some(method) = method_override {
         settings.method = method;
     }
-    let mut system = HairSystem::new(settings).map_err(|e| format!("sim: {e}"))?;
+    let kind = engine_override.unwrap_or(style.engine);
+    let mut system = Engine::new(kind, settings).map_err(|e| format!("sim: {e}"))?;
     for (i, group) in style.groups.iter().enumerate() {
         system
             .add_group(&group.params, &group.root_poses())
@@ -268,7 +326,7 @@ mod tests {
     #[test]
     fn edits_keep_the_state_and_the_clock() {
         let mut style = default_style(12);
-        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
         run(&mut sim, 10);
         let before = sim.strand_buffers();
         let t = sim.now_secs();
@@ -297,18 +355,18 @@ mod tests {
     fn a_new_curl_is_reached_without_a_reset() {
         let mut style = default_style(4);
         style.groups[0].params.natural_shape = NaturalShape::Straight;
-        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
         style.groups[0].params.natural_shape = NaturalShape::Helix {
             radius_m: 0.01,
             step_m: 0.02,
         };
         sim.sync(&style).unwrap();
         // Still straight right after the edit...
-        let k0 = sim.system().strands()[0].q()[0];
+        let k0 = sim.engine().q(0)[0];
         assert!(k0.length() < 1e-9);
         // ...and curling towards the helix's curvature R/(R² + c²) after.
         run(&mut sim, 120);
-        let kappa = sim.system().strands()[0].q()[0].y;
+        let kappa = sim.engine().q(0)[0].y;
         let c = 0.02 / std::f64::consts::TAU;
         let want = 0.01 / (0.01f64.powi(2) + c * c);
         assert!(kappa > 0.5 * want, "κ₁ = {kappa}, rest {want}");
@@ -318,19 +376,68 @@ mod tests {
     fn scalp_placed_groups_grow_once_and_keep_their_state_on_edits() {
         let src = include_str!("../../../../assets/styles/groomed/curly.ron");
         let mut style = Style::from_ron(src, std::path::Path::new("curly.ron")).unwrap();
-        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
         // The placements' counts, grown into strands (the file lists none).
         let placed: usize = style
             .groups
             .iter()
             .filter_map(|g| g.scalp.as_ref().map(|p| p.count as usize))
             .sum();
-        assert_eq!(sim.system().strands().len(), placed);
+        assert_eq!(sim.engine().strand_count(), placed);
         run(&mut sim, 5);
         let before = sim.strand_buffers();
         style.groups[0].params.air_drag *= 2.0;
         sim.sync(&style).unwrap();
         assert_eq!(sim.strand_buffers(), before);
+    }
+
+    /// Moving the hair between engines rounds its state to f32 and back:
+    /// tips move by at most this, metres (f32 round-off on 20 cm strands is
+    /// about 1e-8 m per element; a reset would move them centimetres).
+    const ENGINE_SWITCH_TOL_M: f64 = 1e-6;
+
+    #[test]
+    fn switching_engines_keeps_the_shape_and_the_compare_view_runs_the_reference() {
+        let mut style = default_style(10);
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
+        run(&mut sim, 10);
+        let before = sim.tips_m();
+        let t = sim.now_secs();
+        style.engine = EngineKind::Batch;
+        assert!(sim.sync(&style).unwrap());
+        assert_eq!(sim.kind(), EngineKind::Batch);
+        assert_eq!(sim.now_secs(), t);
+        let (_, max) = tip_difference_m(&before, &sim.tips_m());
+        assert!(max < ENGINE_SWITCH_TOL_M, "tips moved {max} m");
+        assert!(sim.stage_times().is_none() && sim.energies().is_none());
+        run(&mut sim, 10);
+        assert!(sim.engine().is_finite());
+        // The batch engine's solver change rebuilds, keeping the shape.
+        let before = sim.tips_m();
+        style.sim.method = Method::BlockDiagonal;
+        sim.sync(&style).unwrap();
+        assert_eq!(
+            (sim.kind(), sim.method()),
+            (EngineKind::Batch, Method::BlockDiagonal)
+        );
+        assert!(tip_difference_m(&before, &sim.tips_m()).1 < ENGINE_SWITCH_TOL_M);
+        // The compare view's override: the reference engine with Dense...
+        sim.set_overrides(Some(EngineKind::Reference), Some(Method::Dense))
+            .unwrap();
+        assert_eq!(
+            (sim.kind(), sim.method()),
+            (EngineKind::Reference, Method::Dense)
+        );
+        assert!(tip_difference_m(&before, &sim.tips_m()).1 < ENGINE_SWITCH_TOL_M);
+        // ...and back to the style's own.
+        sim.set_overrides(None, None).unwrap();
+        assert_eq!(sim.kind(), EngineKind::Batch);
+        // The batch engine cannot run Dense: refused, nothing changes.
+        assert!(sim.set_overrides(None, Some(Method::Dense)).is_err());
+        assert_eq!(
+            (sim.kind(), sim.method()),
+            (EngineKind::Batch, Method::BlockDiagonal)
+        );
     }
 
     #[test]

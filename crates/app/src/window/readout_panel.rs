@@ -1,14 +1,23 @@
 //! The readout panel: timings, throughput, the energy plot, the compare
 //! view's difference and the guard's messages.
 //!
+//! Stage times, energies and the guard exist on the reference engine only;
+//! on the batch engine their places say so ([`NOT_ON_BATCH`]) rather than
+//! showing zeros that would read as measurements.
+//!
 //! The plot is drawn with egui's painter: two polylines over the history,
 //! each scaled to its own largest value (kinetic and elastic energies
 //! differ by orders of magnitude), labelled with that value.
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2};
 
+use crate::engine::EngineKind;
+
 use super::app_state::AppState;
 use super::readouts::PhysicsSample;
+
+/// What a readout the batch engine does not have says instead.
+pub const NOT_ON_BATCH: &str = "not on the batch engine";
 
 /// Frames averaged for the numbers shown.
 const AVERAGE_FRAMES: usize = 30;
@@ -26,8 +35,10 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
         "physics {} per frame",
         ms(r.mean_physics_secs(AVERAGE_FRAMES))
     ));
-    if let Some(last) = r.last() {
-        let s = &last.stages;
+    let batch = app.sim.kind() == EngineKind::Batch;
+    if batch {
+        ui.label(format!("stages: {NOT_ON_BATCH} (its stages are fused)"));
+    } else if let Some(s) = r.last().and_then(|last| last.stages) {
         ui.label(format!(
             "stages (CPU, all threads): reconstruct {:.2}, forces {:.2}, mass {:.2}, solve {:.2}, integrate {:.2} ms",
             1e3 * s.reconstruct_secs,
@@ -40,26 +51,40 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
     ui.label(format!(
         "{:.3e} element-steps/s; {} strands, {} elements",
         r.element_steps_per_sec(AVERAGE_FRAMES).unwrap_or(0.0),
-        app.sim.system().strands().len(),
-        app.sim.system().element_count()
+        app.sim.engine().strand_count(),
+        app.sim.engine().element_count()
+    ));
+    ui.label(format!(
+        "engine: {} ({})",
+        app.sim.kind().label(),
+        if batch {
+            "f32 SIMD, all cores; no head collision yet"
+        } else {
+            "f64"
+        }
     ));
     ui.separator();
-    ui.label("energy: kinetic (orange), elastic (blue)");
     let history: Vec<&PhysicsSample> = r.history().collect();
-    plot(
-        ui,
-        &[
-            (
-                history.iter().map(|s| s.energies.kinetic_j).collect(),
-                Color32::from_rgb(240, 150, 40),
-            ),
-            (
-                history.iter().map(|s| s.energies.elastic_j).collect(),
-                Color32::from_rgb(80, 150, 255),
-            ),
-        ],
-        "J",
-    );
+    if batch {
+        ui.label(format!("energy: {NOT_ON_BATCH}"));
+    } else {
+        ui.label("energy: kinetic (orange), elastic (blue)");
+        let energies: Vec<_> = history.iter().filter_map(|s| s.energies).collect();
+        plot(
+            ui,
+            &[
+                (
+                    energies.iter().map(|e| e.kinetic_j).collect(),
+                    Color32::from_rgb(240, 150, 40),
+                ),
+                (
+                    energies.iter().map(|e| e.elastic_j).collect(),
+                    Color32::from_rgb(80, 150, 255),
+                ),
+            ],
+            "J",
+        );
+    }
     if let Some((_, m)) = &app.compare {
         ui.separator();
         let last = r.last().and_then(|s| s.difference_m);
@@ -86,7 +111,11 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
     }
     ui.separator();
     let (log, total) = r.guard_log();
-    ui.label(format!("guard: {total} interventions"));
+    if batch {
+        ui.label(format!("guard: {NOT_ON_BATCH}"));
+    } else {
+        ui.label(format!("guard: {total} interventions"));
+    }
     egui::ScrollArea::vertical()
         .id_salt("guard log")
         .max_height(120.0)

@@ -21,12 +21,14 @@ pub struct PhysicsSample {
     pub time_secs: f64,
     /// Wall time of the step, seconds.
     pub wall_secs: f64,
-    /// Stage times, summed over strands (CPU seconds over all threads).
-    pub stages: StageTimes,
+    /// Stage times, summed over strands (CPU seconds over all threads);
+    /// `None` on the batch engine, which does not time stages apart.
+    pub stages: Option<StageTimes>,
     /// Elements × substeps stepped.
     pub element_steps: usize,
-    /// Energies at the end of the frame.
-    pub energies: Energies,
+    /// Energies at the end of the frame; `None` on the batch engine (too
+    /// costly to reconstruct every frame).
+    pub energies: Option<Energies>,
     /// Compare view: RMS tip distance between the two runs, metres.
     pub difference_m: Option<(f64, f64)>,
 }
@@ -81,6 +83,19 @@ impl Readouts {
     /// Mean physics wall time per frame over the last `n` frames, seconds.
     pub fn mean_physics_secs(&self, n: usize) -> Option<f64> {
         mean(self.physics.iter().rev().take(n).map(|s| s.wall_secs))
+    }
+
+    /// Median physics wall time per frame over the last `n` frames,
+    /// seconds.
+    pub fn median_physics_secs(&self, n: usize) -> Option<f64> {
+        let recent: Vec<f64> = self
+            .physics
+            .iter()
+            .rev()
+            .take(n)
+            .map(|s| s.wall_secs)
+            .collect();
+        (!recent.is_empty()).then(|| crate::sim_report::median(&recent))
     }
 
     /// Element steps per wall second over the last `n` frames.

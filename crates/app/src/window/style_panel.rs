@@ -11,15 +11,23 @@
 use egui::{DragValue, Slider, Ui};
 use helixhair_physics::{Method, NaturalShape, StrandParams};
 
+use crate::engine::EngineKind;
 use crate::style::Style;
 
-/// Draws the simulation settings.
+/// Draws the simulation settings: engine, solver, time step, forces.
+///
+/// The solver list shows only what the chosen engine runs, and choosing
+/// the batch engine while the solver is one it lacks switches the solver
+/// to Exact (which equals Dense, the reference solver, to round-off), so
+/// the panel never makes the style invalid.
 pub fn sim_settings(ui: &mut Ui, style: &mut Style) {
+    engine_selector(ui, style);
+    let engine = style.engine;
     let sim = &mut style.sim;
     egui::ComboBox::from_label("solver")
         .selected_text(sim.method.label())
         .show_ui(ui, |ui| {
-            for m in Method::ALL {
+            for m in Method::ALL.into_iter().filter(|m| engine.runs(*m)) {
                 ui.selectable_value(&mut sim.method, m, m.label());
             }
         });
@@ -43,6 +51,42 @@ pub fn sim_settings(ui: &mut Ui, style: &mut Style) {
             .text("wind (x)")
             .suffix(" m/s"),
     );
+}
+
+/// The engine combo: reference (f64, every solver) or batch (f32 SIMD).
+fn engine_selector(ui: &mut Ui, style: &mut Style) {
+    let before = style.engine;
+    egui::ComboBox::from_label("engine")
+        .selected_text(style.engine.label())
+        .show_ui(ui, |ui| {
+            for kind in EngineKind::ALL {
+                ui.selectable_value(&mut style.engine, kind, kind.label())
+                    .on_hover_text(match kind {
+                        EngineKind::Reference => {
+                            "f64: every solver, stability guard, head collision, energies"
+                        }
+                        EngineKind::Batch => {
+                            "f32 SIMD on all cores: Exact or Block-diagonal, thousands of strands"
+                        }
+                    });
+            }
+        });
+    if style.engine != before {
+        select_engine(style, style.engine);
+    }
+}
+
+/// Sets `style`'s engine, switching its solver to Exact when the engine
+/// cannot run the current one, and dropping an accuracy target the batch
+/// engine cannot honour.
+pub fn select_engine(style: &mut Style, engine: EngineKind) {
+    style.engine = engine;
+    if !engine.runs(style.sim.method) {
+        style.sim.method = Method::Exact;
+    }
+    if engine == EngineKind::Batch {
+        style.accuracy_target = None;
+    }
 }
 
 /// Draws one group's parameters.
