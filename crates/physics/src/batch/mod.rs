@@ -39,10 +39,12 @@
 //! `tests/batch_parity.rs` with named tolerances.
 
 pub mod block_diagonal;
+pub mod contact;
 pub mod dense;
 pub mod exact;
 pub mod forward;
 pub mod geometry;
+pub mod guard;
 pub mod lanes;
 pub mod layout;
 pub mod suffix;
