@@ -11,12 +11,12 @@ use common::sphere::{RADIUS_M, icosphere, sphere_field};
 use common::*;
 use glam::DVec3;
 use helixhair_physics::batch::BatchSystem;
-use helixhair_physics::batch::contact::{EndPointForce, add_end_point_force};
+use helixhair_physics::batch::contact::{EndPointForce, NearCells, add_end_point_force};
 use helixhair_physics::batch::forward::{FrameState, forward_with};
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use helixhair_physics::batch::suffix::{Beyond, element_terms};
 use helixhair_physics::batch::vec::V3;
-use helixhair_physics::collision::SignedDistanceField;
+use helixhair_physics::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use helixhair_physics::{
     Bounce, ElementLayout, HairSystem, HeadTrajectory, Method, Oscillation, RigidMotion, RootPose,
     SimSettings, StrandParams,
@@ -360,4 +360,37 @@ fn without_a_collider_in_reach_the_step_is_bit_identical() {
         assert_eq!(states(&plain), states(&removed), "{method:?}");
         assert_eq!(states(&plain), states(&far), "{method:?}");
     }
+}
+
+#[test]
+fn a_point_in_a_cell_that_is_not_near_feels_exactly_no_force() {
+    // The cull of `batch::contact` must skip only points whose force is
+    // zero; and it must skip most points a few cells off the surface.
+    let (field, _) = sphere_field();
+    let settings = ContactSettings::default();
+    let near = NearCells::new(&field, settings.skin_m);
+    let head = RigidMotion::default();
+    let inputs = ContactInputs {
+        collider: &field,
+        head: &head,
+        settings,
+        h_secs: 1.0 / 240.0,
+    };
+    let mut rng = Rng::new(23);
+    let (mut skipped, mut touching) = (0, 0);
+    for _ in 0..20_000 {
+        let dir = rng.vec3(1.0).normalize_or(DVec3::X);
+        let p = dir * (RADIUS_M + 0.02 * rng.next());
+        let v = rng.vec3(1.0);
+        let force = inputs.force(p, v, 5e-6);
+        let g = (p - field.origin_m) / field.cell_m;
+        let cell = [g.x, g.y, g.z].map(|x| x as usize);
+        if !near.contains(cell[0], cell[1], cell[2]) {
+            assert_eq!(force, DVec3::ZERO, "skipped a point in contact at {p}");
+            skipped += 1;
+        }
+        touching += usize::from(force != DVec3::ZERO);
+    }
+    println!("skipped {skipped}, touching {touching} of 20000");
+    assert!(touching > 1000 && skipped > 5000, "{skipped}, {touching}");
 }

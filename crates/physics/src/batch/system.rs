@@ -8,7 +8,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 use super::block_diagonal::step_block_diagonal_with;
-use super::contact::{EndPointForce, LaneContact, NoContact};
+use super::contact::{EndPointForce, LaneContact, NearCells, NoContact};
 use super::exact::{Elimination, step_exact_with};
 use super::forward::{FrameState, advance};
 use super::guard::{check_and_reset, speed_bound_m_per_s};
@@ -70,7 +70,7 @@ pub struct BatchSystem {
     time_secs: f64,
     head: RigidMotion,
     parallel: bool,
-    collider: Option<Arc<SignedDistanceField>>,
+    collider: Option<(Arc<SignedDistanceField>, NearCells)>,
     contact: ContactSettings,
     guard: Option<Guard>,
     last_resets: Vec<usize>,
@@ -173,17 +173,22 @@ impl BatchSystem {
     /// or removes it with `None`. Contact acts at element end points
     /// ([`super::contact`]).
     pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
-        self.collider = collider;
+        self.collider = collider.map(|field| {
+            let near = NearCells::new(&field, self.contact.skin_m);
+            (field, near)
+        });
     }
 
     /// The head's collider, if any.
     pub fn collider(&self) -> Option<&Arc<SignedDistanceField>> {
-        self.collider.as_ref()
+        self.collider.as_ref().map(|(field, _)| field)
     }
 
     /// Sets how hair meets the collider.
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
         self.contact = settings;
+        let field = self.collider.take().map(|(field, _)| field);
+        self.set_collider(field);
     }
 
     /// Sets the guard (`None`: no checks). Default: [`Guard::default`]; a
@@ -224,11 +229,14 @@ impl BatchSystem {
         };
         for _ in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
-            let contact = self.collider.as_deref().map(|collider| ContactInputs {
-                collider,
-                head: &motion,
-                settings: self.contact,
-                h_secs: h,
+            let contact = self.collider.as_ref().map(|(collider, near)| {
+                let inputs = ContactInputs {
+                    collider,
+                    head: &motion,
+                    settings: self.contact,
+                    h_secs: h,
+                };
+                (inputs, near)
             });
             for group in &mut self.groups {
                 group.step(&motion, &env, exact, contact, self.parallel);
@@ -408,7 +416,7 @@ impl Group {
         motion: &RigidMotion,
         env: &StepEnv,
         exact: bool,
-        contact: Option<ContactInputs<'_>>,
+        contact: Option<(ContactInputs<'_>, &NearCells)>,
         parallel: bool,
     ) {
         let n = self.model.elements();
@@ -420,9 +428,9 @@ impl Group {
             // One branch per batch: without a collider, the sweep has no
             // contact stage at all.
             match contact {
-                Some(inputs) => {
-                    let positions = motions.map(|m| m.position_m);
-                    let mut end_force = LaneContact::new(inputs, model, positions);
+                Some((inputs, near)) => {
+                    let positions = std::array::from_fn(|i| motions[i].position_m);
+                    let mut end_force = LaneContact::new(inputs, near, model, positions);
                     step_batch_with(model, env, &root, exact, q, v, scratch, &mut end_force);
                 }
                 None => step_batch_with(model, env, &root, exact, q, v, scratch, &mut NoContact),
