@@ -5,7 +5,8 @@
 //! (s M_QQ + D) Δv = rhs and integrates. Two passes over the strand, no
 //! third: each element's block needs only the sums past it.
 
-use super::forward::forward;
+use super::contact::{EndPointForce, NoContact};
+use super::forward::forward_with;
 use super::lanes::Real;
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
@@ -21,7 +22,22 @@ pub fn step_block_diagonal<T: Real>(
     v: &mut [V3<T>],
     scratch: &mut [ElementData<T>],
 ) {
-    forward::<T, false>(model, env, root, q, v, scratch);
+    step_block_diagonal_with(model, env, root, q, v, scratch, &mut NoContact);
+}
+
+/// [`step_block_diagonal`] with a force at each element's end point
+/// ([`super::contact`]).
+#[inline(always)]
+pub fn step_block_diagonal_with<T: Real, H: EndPointForce<T>>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &mut [V3<T>],
+    v: &mut [V3<T>],
+    scratch: &mut [ElementData<T>],
+    end_force: &mut H,
+) {
+    forward_with::<T, false, H>(model, env, root, q, v, scratch, end_force);
     let s = T::splat(mass_scale(model, env));
     let mut beyond = Beyond::zero();
     for e in (0..q.len()).rev() {

@@ -11,7 +11,8 @@
 //! integrate. Three passes against Block-diagonal's two, and about twice the
 //! arithmetic in the second.
 
-use super::forward::forward;
+use super::contact::{EndPointForce, NoContact};
+use super::forward::forward_with;
 use super::lanes::Real;
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
@@ -54,7 +55,27 @@ pub fn step_exact<T: Real>(
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
 ) {
-    forward::<T, true>(model, env, root, q, v, scratch);
+    step_exact_with(model, env, root, q, v, scratch, elimination, &mut NoContact);
+}
+
+/// [`step_exact`] with a force at each element's end point
+/// ([`super::contact`]).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's buffers, as in `step_exact`, plus the hook"
+)]
+#[inline(always)]
+pub fn step_exact_with<T: Real, H: EndPointForce<T>>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &mut [V3<T>],
+    v: &mut [V3<T>],
+    scratch: &mut [ElementData<T>],
+    elimination: &mut [Elimination<T>],
+    end_force: &mut H,
+) {
+    forward_with::<T, true, H>(model, env, root, q, v, scratch, end_force);
     let s = T::splat(mass_scale(model, env));
     let mut beyond = Beyond::zero();
     let (mut h_aa, mut h_ab, mut h_ba, mut h_bb) = (M3::zero(), M3::zero(), M3::zero(), M3::zero());

@@ -17,6 +17,7 @@
 //! every sample, the two agree to round-off, and this form needs no
 //! matrix-free product M q̇ (one sweep fewer).
 
+use super::contact::{EndPointForce, NoContact};
 use super::geometry::{local_end, local_point};
 use super::lanes::Real;
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
@@ -210,12 +211,28 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
     v: &[V3<T>],
     out: &mut [ElementData<T>],
 ) {
+    forward_with::<T, OFF_DIAGONAL, _>(model, env, root, q, v, out, &mut NoContact);
+}
+
+/// [`forward`] with a force at each element's end point (stage "collide",
+/// [`super::contact`]).
+#[inline(always)]
+pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &[V3<T>],
+    v: &[V3<T>],
+    out: &mut [ElementData<T>],
+    end_force: &mut H,
+) {
     let mut s = FrameState::at_root(root);
     for (e, el) in out.iter_mut().enumerate() {
         own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &s, q[e], v[e], el);
         let (next, a, b) = advance(&s, model.lengths_m[e], q[e], v[e]);
         el.a = a;
         el.b = b;
+        end_force.at_end(e, &next, el);
         s = next;
     }
 }

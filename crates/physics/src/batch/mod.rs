@@ -31,6 +31,18 @@
 //!   a step.
 //! - **Threads**: rayon over batches; a batch's arithmetic does not depend
 //!   on which thread runs it, so serial and parallel runs are bit-identical.
+//! - **Collide** ([`contact`], optional): the head's collider
+//!   ([`BatchSystem::set_collider`]) pushes on each element's END point
+//!   (looked up once per lane, against every quadrature sample in the f64
+//!   reference), and the point force enters the suffix sums of the
+//!   tip-to-root sweep; the module derives where. Without a collider the
+//!   sweep has no such stage at all.
+//! - **Guard** ([`guard`], on by default): after each frame, each strand is
+//!   checked (finite; the speed bound of [`crate::guard`]), and one that
+//!   fails is reset to its natural shape at rest and reported
+//!   ([`BatchSystem::last_guard_resets`]). No retry with another solver:
+//!   this is the interactive path, and the f64 [`crate::HairSystem`] is the
+//!   careful one.
 //!
 //! The quadrature is the settings' (`SimSettings::quadrature_points`), so a
 //! comparison with the f64 reference is like with like. External forces
@@ -42,13 +54,17 @@
 //! Exact (Exact gives Dense's answer in O(N)).
 //!
 //! Accuracy: f32 against the f64 reference, pinned by
-//! `tests/batch_parity.rs` with named tolerances.
+//! `tests/batch_parity.rs` with named tolerances; contact by
+//! `tests/batch_contact.rs` (a drape over a sphere within 1 mm of the f64
+//! drape) and the guard by `tests/batch_guard.rs`.
 
 pub mod block_diagonal;
+pub mod contact;
 pub mod dense;
 pub mod exact;
 pub mod forward;
 pub mod geometry;
+pub mod guard;
 pub mod lanes;
 pub mod layout;
 pub mod suffix;

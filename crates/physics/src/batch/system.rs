@@ -2,17 +2,22 @@
 //! frame like a [`crate::HairSystem`].
 
 use std::ops::Range;
+use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use super::block_diagonal::step_block_diagonal;
-use super::exact::{Elimination, step_exact};
+use super::block_diagonal::step_block_diagonal_with;
+use super::contact::{EndPointForce, LaneContact, NearCells, NoContact};
+use super::exact::{Elimination, step_exact_with};
 use super::forward::{FrameState, advance};
+use super::guard::{check_and_reset, speed_bound_m_per_s};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::vec::V3;
+use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
+use crate::guard::Guard;
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -65,6 +70,11 @@ pub struct BatchSystem {
     time_secs: f64,
     head: RigidMotion,
     parallel: bool,
+    collider: Option<(Arc<SignedDistanceField>, NearCells)>,
+    contact: ContactSettings,
+    guard: Option<Guard>,
+    last_resets: Vec<usize>,
+    reset_count: usize,
 }
 
 impl BatchSystem {
@@ -89,6 +99,11 @@ impl BatchSystem {
             time_secs: 0.0,
             head: RigidMotion::default(),
             parallel: true,
+            collider: None,
+            contact: ContactSettings::default(),
+            guard: Some(Guard::default()),
+            last_resets: Vec::new(),
+            reset_count: 0,
         })
     }
 
@@ -154,8 +169,52 @@ impl BatchSystem {
         &self.head
     }
 
+    /// Sets the head's collider (head coordinates; it moves with the head),
+    /// or removes it with `None`. Contact acts at element end points
+    /// ([`super::contact`]).
+    pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
+        self.collider = collider.map(|field| {
+            let near = NearCells::new(&field, self.contact.skin_m);
+            (field, near)
+        });
+    }
+
+    /// The head's collider, if any.
+    pub fn collider(&self) -> Option<&Arc<SignedDistanceField>> {
+        self.collider.as_ref().map(|(field, _)| field)
+    }
+
+    /// Sets how hair meets the collider.
+    pub fn set_contact_settings(&mut self, settings: ContactSettings) {
+        self.contact = settings;
+        let field = self.collider.take().map(|(field, _)| field);
+        self.set_collider(field);
+    }
+
+    /// Sets the guard (`None`: no checks). Default: [`Guard::default`]; a
+    /// failing strand is reset at rest ([`super::guard`]).
+    pub fn set_guard(&mut self, guard: Option<Guard>) {
+        self.guard = guard;
+    }
+
+    /// The guard, if on.
+    pub fn guard(&self) -> Option<&Guard> {
+        self.guard.as_ref()
+    }
+
+    /// Indices of the strands the guard reset in the last frame, ascending.
+    pub fn last_guard_resets(&self) -> &[usize] {
+        &self.last_resets
+    }
+
+    /// How many strand resets the guard made since the system was built.
+    pub fn guard_reset_count(&self) -> usize {
+        self.reset_count
+    }
+
     /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
-    /// along `head`, root motion sampled at the start of each substep.
+    /// along `head`, root motion sampled at the start of each substep. With
+    /// the guard on, strands that fail its checks are reset at rest.
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
         let h = self.settings.substep_secs();
         let env = StepEnv {
@@ -164,14 +223,34 @@ impl BatchSystem {
             air_velocity_m_per_s: self.settings.air_velocity_m_per_s.as_vec3().to_array(),
         };
         let exact = self.settings.method == Method::Exact;
+        let start_speeds: Vec<Vec<Lanes>> = match self.guard {
+            Some(_) => self.groups.iter().map(Group::speed_bounds).collect(),
+            None => Vec::new(),
+        };
         for _ in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
+            let contact = self.collider.as_ref().map(|(collider, near)| {
+                let inputs = ContactInputs {
+                    collider,
+                    head: &motion,
+                    settings: self.contact,
+                    h_secs: h,
+                };
+                (inputs, near)
+            });
             for group in &mut self.groups {
-                group.step(&motion, &env, exact, self.parallel);
+                group.step(&motion, &env, exact, contact, self.parallel);
             }
             self.time_secs += h;
         }
         self.head = head.motion_at(self.time_secs);
+        self.last_resets.clear();
+        if let Some(guard) = &self.guard {
+            for (group, start) in self.groups.iter_mut().zip(&start_speeds) {
+                group.guard(guard, start, &mut self.last_resets);
+            }
+        }
+        self.reset_count += self.last_resets.len();
     }
 
     fn locate(&self, index: usize) -> (&Group, usize, usize) {
@@ -279,26 +358,82 @@ impl BatchSystem {
     }
 }
 
+/// One step of one batch with `end_force` at the element end points.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's inputs and buffers, passed through"
+)]
+#[inline(always)]
+fn step_batch_with<H: EndPointForce<Lanes>>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<Lanes>,
+    exact: bool,
+    q: &mut [V3<Lanes>],
+    v: &mut [V3<Lanes>],
+    scratch: &mut Scratch,
+    end_force: &mut H,
+) {
+    if exact {
+        let Scratch {
+            elements,
+            elimination,
+        } = scratch;
+        step_exact_with(model, env, root, q, v, elements, elimination, end_force);
+    } else {
+        step_block_diagonal_with(model, env, root, q, v, &mut scratch.elements, end_force);
+    }
+}
+
 impl Group {
-    fn step(&mut self, motion: &RigidMotion, env: &StepEnv, exact: bool, parallel: bool) {
+    /// Per batch, the guard's speed bound (see [`super::guard`]).
+    fn speed_bounds(&self) -> Vec<Lanes> {
+        let n = self.model.elements();
+        self.v
+            .chunks(n)
+            .map(|v| speed_bound_m_per_s(&self.model, v))
+            .collect()
+    }
+
+    /// The guard's end-of-frame check; appends the reset strands' indices.
+    fn guard(&mut self, guard: &Guard, start: &[Lanes], resets: &mut Vec<usize>) {
+        let n = self.model.elements();
+        let batches = self.q.chunks_mut(n).zip(self.v.chunks_mut(n)).zip(start);
+        for (batch, ((q, v), start)) in batches.enumerate() {
+            let failed = check_and_reset(guard, &self.model, q, v, *start);
+            for (lane, _) in failed.iter().enumerate().filter(|(_, f)| **f) {
+                let local = batch * LANES + lane;
+                // Padding lanes are reset too, but name no strand.
+                if local < self.roots.len() {
+                    resets.push(self.first_strand + local);
+                }
+            }
+        }
+    }
+
+    fn step(
+        &mut self,
+        motion: &RigidMotion,
+        env: &StepEnv,
+        exact: bool,
+        contact: Option<(ContactInputs<'_>, &NearCells)>,
+        parallel: bool,
+    ) {
         let n = self.model.elements();
         let model = &self.model;
         let step_batch = |scratch: &mut Scratch, ((q, v), roots): BatchRef<'_>| {
             let motions: [RigidMotion; LANES] =
                 std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
             let root = RootMotion::<Lanes>::gather(&motions);
-            if exact {
-                step_exact(
-                    model,
-                    env,
-                    &root,
-                    q,
-                    v,
-                    &mut scratch.elements,
-                    &mut scratch.elimination,
-                );
-            } else {
-                step_block_diagonal(model, env, &root, q, v, &mut scratch.elements);
+            // One branch per batch: without a collider, the sweep has no
+            // contact stage at all.
+            match contact {
+                Some((inputs, near)) => {
+                    let positions = std::array::from_fn(|i| motions[i].position_m);
+                    let mut end_force = LaneContact::new(inputs, near, model, positions);
+                    step_batch_with(model, env, &root, exact, q, v, scratch, &mut end_force);
+                }
+                None => step_batch_with(model, env, &root, exact, q, v, scratch, &mut NoContact),
             }
         };
         if parallel {

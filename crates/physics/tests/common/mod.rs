@@ -1,6 +1,8 @@
 //! Builders shared by the physics tests.
 #![allow(dead_code, missing_docs)] // each test file uses a different subset
 
+pub mod sphere;
+
 use std::sync::Arc;
 
 use glam::{DMat3, DVec3};

@@ -1,0 +1,257 @@
+//! Stage "collide" on the fast path: the head collider's penalty force at
+//! each element's end point, folded into the suffix sums.
+//!
+//! # How it works
+//!
+//! The f64 reference ([`crate::HairSystem`]) adds the contact force per
+//! unit length of [`ContactInputs::force`] at every quadrature sample.
+//! Here the signed distance field is looked up once per lane at each
+//! element's END point only: the lookup is scalar (one grid cell per lane),
+//! so it is kept to N lookups per strand and step instead of N × points,
+//! and the end points are already computed by the forward sweep
+//! ([`super::forward::advance`]: `point_m` relative to the root point, and
+//! `point_velocity`). The world position is the lane's root position plus
+//! `point_m`; the head's motion is the one at the step's start, as in the
+//! reference.
+//!
+//! **From N/m to N.** The end point of element Q stands for the half of
+//! each element beside it: it carries f · (ℓ_Q + ℓ_{Q+1})/2, and the tip
+//! f · ℓ_{N−1}/2. (The half of element 0 next to the root is left out: a
+//! force on the clamped root does no work.)
+//!
+//! **Where a point force enters the step.** Write p = p_{Q+1} for the end
+//! point of element Q (relative to the root, like every sample's r) and F
+//! for the force on it, in newtons. Its generalized force on element P is
+//! (∂p/∂q_P)ᵀ F, and
+//!
+//! - P > Q: zero (moving a later element does not move p);
+//! - P < Q: p lies beyond P, so ∂p/∂q_P = A_P − \[p\]×B_P, the "beyond"
+//!   Jacobian every sample past P has (see [`super::suffix`]);
+//! - P = Q: ∂p/∂q_Q = a_Q = R_Q ∂h(ℓ_Q, k)/∂k, the element's own end
+//!   Jacobian. [`super::forward::advance`] builds A_Q = R_Q·J_end + \[p\]×B_Q
+//!   with this same p, so a_Q = A_Q − \[p\]×B_Q: the beyond formula, read at
+//!   r = p.
+//!
+//! So the end point acts exactly as a sample "beyond" every element up to
+//! and including Q. The suffix sweep gives element P the terms
+//! A_PᵀF_b + B_Pᵀτ_b over the samples strictly beyond P, with
+//! (A_P − \[r\]×B_P)ᵀF = A_PᵀF + B_Pᵀ(r × F); hence [`add_end_point_force`]
+//! adds, to element Q's data:
+//!
+//! - F to `force_sum` and p × F to `torque_sum`: the suffix sums carry it
+//!   to every P < Q (they are added after element Q's own terms are read);
+//! - a_QᵀF = A_QᵀF + B_Qᵀ(p × F) to `own_force`: element Q's own share.
+//!
+//! This is one rule for every element, the tip included (nothing lies
+//! beyond the tip, so no element Q + 1 could carry its sums). Adding F and
+//! p × F to element Q + 1's suffix sums instead, as a sample at σ = 0 of
+//! element Q + 1 whose own Jacobian is zero, gives the same generalized
+//! forces for Q < N − 1. `tests/batch_contact.rs` checks the result
+//! against central differences of the f64 reconstruction.
+//!
+//! The force is explicit (its Jacobian is not in the step matrix), as in
+//! the reference: the penalty's stiffness k = α ρS / h² is what keeps it
+//! stable ([`crate::collision::contact`]).
+//!
+//! **Cost.** With no collider, [`super::BatchSystem`] branches once per
+//! batch to the sweep without this stage ([`NoContact`], which compiles to
+//! nothing). With one, each lane's end point is first taken into the
+//! field's grid and tested against [`NearCells`], one bit per grid cell
+//! that says whether any point of the cell can be within the skin; only
+//! points that pass pay for the full lookup (eight grid values, the
+//! gradient, the force). The test is exact: a point it skips has a force
+//! of exactly zero, so results do not depend on it. The three SIMD
+//! products above run only when some lane of the batch is in contact.
+//! Measured (docs/gpu.md): about a third of the step's time with 6% of
+//! end points in contact.
+
+use glam::{DMat3, DVec3, Vec3};
+
+use super::forward::FrameState;
+use super::lanes::{LANES, Real};
+use super::layout::{BatchModel, ElementData};
+use super::vec::V3;
+use crate::collision::{ContactInputs, SignedDistanceField};
+
+/// The eight corners of a grid cell, as offsets.
+const CELL_CORNERS: [(usize, usize, usize); 8] = [
+    (0, 0, 0),
+    (1, 0, 0),
+    (0, 1, 0),
+    (1, 1, 0),
+    (0, 0, 1),
+    (1, 0, 1),
+    (0, 1, 1),
+    (1, 1, 1),
+];
+
+/// Slack of the cell test, metres: far above the rounding of a trilinear
+/// lookup (1e-18 m on centimetre distances), far below anything physical.
+const CORNER_MARGIN_M: f64 = 1e-12;
+
+/// Which cells of a field's grid can hold a point within the contact skin:
+/// one bit per cell, set where the lowest of its eight corner values is
+/// within the skin (the lookup interpolates between them, so a point of a
+/// cell with every corner beyond the skin feels no force). A skipped point
+/// costs one bit instead of eight grid values and the gradient: most
+/// points of a head of hair are nowhere near the scalp. 1 bit per cell:
+/// 256 KiB for the largest field ([`MAX_CELLS`](crate::collision::sdf::MAX_CELLS)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NearCells {
+    bits: Vec<u64>,
+    cells: [usize; 3],
+}
+
+impl NearCells {
+    /// The cells of `field` that may be within `skin_m` of its surface.
+    pub fn new(field: &SignedDistanceField, skin_m: f64) -> Self {
+        let cells = field.dims.map(|d| d.saturating_sub(1));
+        let count = cells[0] * cells[1] * cells[2];
+        let mut bits = vec![0u64; count.div_ceil(64)];
+        for z in 0..cells[2] {
+            for y in 0..cells[1] {
+                for x in 0..cells[0] {
+                    let corners = CELL_CORNERS.map(|(dx, dy, dz)| field.at(x + dx, y + dy, z + dz));
+                    let lowest = corners.iter().copied().fold(f64::INFINITY, f64::min);
+                    // An interpolated value can round below its lowest
+                    // corner by an ulp or so: the margin keeps the test on
+                    // the safe side. A NaN corner counts as near (the
+                    // lookup would give a NaN force, not none).
+                    if corners.iter().any(|c| c.is_nan()) || lowest <= skin_m + CORNER_MARGIN_M {
+                        let i = x + cells[0] * (y + cells[1] * z);
+                        bits[i / 64] |= 1 << (i % 64);
+                    }
+                }
+            }
+        }
+        Self { bits, cells }
+    }
+
+    /// Whether cell (x, y, z) may be within the skin.
+    #[inline(always)]
+    pub fn contains(&self, x: usize, y: usize, z: usize) -> bool {
+        let i = x + self.cells[0] * (y + self.cells[1] * z);
+        self.bits
+            .get(i / 64)
+            .is_some_and(|word| word & (1 << (i % 64)) != 0)
+    }
+}
+
+/// A force applied at each element's end point during the forward sweep.
+pub trait EndPointForce<T> {
+    /// Called once element `e`'s data `el` is complete (own sums, A_Q,
+    /// B_Q), with `end` the state at its end point.
+    fn at_end(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>);
+}
+
+/// No collider: nothing happens at the end points.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoContact;
+
+impl<T> EndPointForce<T> for NoContact {
+    #[inline(always)]
+    fn at_end(&mut self, _e: usize, _end: &FrameState<T>, _el: &mut ElementData<T>) {}
+}
+
+/// Adds the point force `force_n` (newtons, world axes) at `point_m` (the
+/// end point of the element `el` describes, relative to the root) to the
+/// element's generalized force and suffix sums; see the module docs.
+#[inline(always)]
+pub fn add_end_point_force<T: Real>(el: &mut ElementData<T>, point_m: V3<T>, force_n: V3<T>) {
+    let torque = point_m.cross(force_n);
+    el.own_force += el.a.t_mul_vec(force_n) + el.b.t_mul_vec(torque);
+    el.force_sum += force_n;
+    el.torque_sum += torque;
+}
+
+/// The head collider for one batch during one step: the contact inputs and
+/// each lane's root position.
+#[derive(Clone, Copy, Debug)]
+pub struct LaneContact<'a> {
+    inputs: ContactInputs<'a>,
+    near: &'a NearCells,
+    root_positions_m: [DVec3; LANES],
+    lengths_m: &'a [f32],
+    mass_per_length: f64,
+    /// The head's frame transposed: world offsets to head coordinates.
+    body_from_world: DMat3,
+}
+
+impl<'a> LaneContact<'a> {
+    /// Contact for a batch of `model`'s strands whose lane i is rooted at
+    /// `root_positions_m[i]` (world, metres, at the step's start).
+    /// `near` must be [`NearCells::new`] of the inputs' collider and skin.
+    pub fn new(
+        inputs: ContactInputs<'a>,
+        near: &'a NearCells,
+        model: &'a BatchModel,
+        root_positions_m: [DVec3; LANES],
+    ) -> Self {
+        Self {
+            inputs,
+            near,
+            root_positions_m,
+            lengths_m: &model.lengths_m,
+            mass_per_length: f64::from(model.mass_per_length),
+            body_from_world: inputs.head.world_from_body.transpose(),
+        }
+    }
+
+    /// Whether the point at `point_m` (world) can feel the collider: false
+    /// only where [`ContactInputs::force`] is exactly zero, because the
+    /// point is outside the field's grid or in a cell that is not
+    /// [`NearCells`]. The position is computed with the same operations as
+    /// in the full lookup, so the cell is the one the lookup would use.
+    #[inline(always)]
+    fn may_touch(&self, point_m: DVec3) -> bool {
+        let field = self.inputs.collider;
+        let local = self.body_from_world * (point_m - self.inputs.head.position_m);
+        let g = (local - field.origin_m) / field.cell_m;
+        let max = |d: usize| d.saturating_sub(1) as f64;
+        if g.min_element() < 0.0
+            || g.x > max(field.dims[0])
+            || g.y > max(field.dims[1])
+            || g.z > max(field.dims[2])
+        {
+            return false;
+        }
+        let cell = |a: usize| (g[a] as usize).min(field.dims[a].saturating_sub(2));
+        self.near.contains(cell(0), cell(1), cell(2))
+    }
+
+    /// The length element `e`'s end point stands for, metres.
+    fn point_length_m(&self, e: usize) -> f64 {
+        let next = self.lengths_m.get(e + 1).copied().unwrap_or(0.0);
+        0.5 * f64::from(self.lengths_m[e] + next)
+    }
+}
+
+impl<T: Real> EndPointForce<T> for LaneContact<'_> {
+    #[inline(always)]
+    fn at_end(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>) {
+        let length_m = self.point_length_m(e);
+        let lane_vec = |x: &V3<T>, i: usize| Vec3::new(x.x.lane(i), x.y.lane(i), x.z.lane(i));
+        let mut forces_n = [Vec3::ZERO; LANES];
+        let mut touching = false;
+        for (i, force) in forces_n.iter_mut().enumerate().take(T::WIDTH) {
+            let point_m = self.root_positions_m[i] + lane_vec(&end.point_m, i).as_dvec3();
+            if !self.may_touch(point_m) {
+                continue;
+            }
+            let velocity = lane_vec(&end.point_velocity, i).as_dvec3();
+            let f = self.inputs.force(point_m, velocity, self.mass_per_length);
+            if f != DVec3::ZERO {
+                *force = (f * length_m).as_vec3();
+                touching = true;
+            }
+        }
+        if touching {
+            let force_n = V3::new(
+                T::from_fn(|i| forces_n[i].x),
+                T::from_fn(|i| forces_n[i].y),
+                T::from_fn(|i| forces_n[i].z),
+            );
+            add_end_point_force(el, end.point_m, force_n);
+        }
+    }
+}

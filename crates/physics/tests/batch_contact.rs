@@ -1,0 +1,396 @@
+//! The head collider on the f32 batch path (`batch::contact`): the point
+//! force's generalized force against central differences, a strand draped
+//! over a sphere against the sphere and against the f64 reference, and the
+//! collider changing nothing when it is absent or out of reach.
+
+mod common;
+
+use std::sync::Arc;
+
+use common::sphere::{RADIUS_M, icosphere, sphere_field};
+use common::*;
+use glam::DVec3;
+use helixhair_physics::batch::BatchSystem;
+use helixhair_physics::batch::contact::{EndPointForce, NearCells, add_end_point_force};
+use helixhair_physics::batch::forward::{FrameState, forward_with};
+use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use helixhair_physics::batch::suffix::{Beyond, element_terms};
+use helixhair_physics::batch::vec::V3;
+use helixhair_physics::collision::{ContactInputs, ContactSettings, SignedDistanceField};
+use helixhair_physics::{
+    Bounce, ElementLayout, HairSystem, HeadTrajectory, Method, Oscillation, RigidMotion, RootPose,
+    SimSettings, StrandParams,
+};
+
+/// The generalized force of a point force at an end point, f32 sweep
+/// against f64 central differences of the end point: max |ΔQ| / max |Q|.
+/// f32 round-off (6e-8) in the frames and in A, B over a few elements,
+/// plus the differences' truncation (δ² ≈ 1e-12 relative). Measured: see
+/// the test's output.
+const END_FORCE_TOL: f64 = 1e-5;
+
+/// Forces exactly one end point, of element `at`, in the forward sweep.
+struct OnePoint {
+    at: usize,
+    force_n: V3<f32>,
+}
+
+impl EndPointForce<f32> for OnePoint {
+    fn at_end(&mut self, e: usize, end: &FrameState<f32>, el: &mut ElementData<f32>) {
+        if e == self.at {
+            add_end_point_force(el, end.point_m, self.force_n);
+        }
+    }
+}
+
+#[test]
+fn an_end_point_force_gives_its_jacobian_transpose_times_the_force() {
+    let mut p = params(0.15, 6);
+    p.natural_shape = helix_shape();
+    p.layout = ElementLayout::Graded {
+        tip_to_root_ratio: 2.0,
+    };
+    let m = model(&p, 2);
+    let batch_model = BatchModel::new(&m);
+    let n = p.elements;
+    let mut rng = Rng::new(17);
+    // Round to f32 so both sides reconstruct the same strand.
+    let q: Vec<DVec3> = m
+        .natural
+        .iter()
+        .map(|k| (*k + rng.vec3(10.0)).as_vec3().as_dvec3())
+        .collect();
+    let world_from_root = rng.rotation().as_mat3().as_dmat3();
+    let motion = RigidMotion::at_rest(DVec3::ZERO, world_from_root);
+    let force = rng.vec3(1e-3).as_vec3().as_dvec3();
+    // At rest, with no gravity and no air, every sample's force is zero:
+    // the point force is all the sweep sees.
+    let env = StepEnv {
+        h_secs: 1.0 / 60.0,
+        gravity_m_per_s2: [0.0; 3],
+        air_velocity_m_per_s: [0.0; 3],
+    };
+    let root = RootMotion::<f32>::gather(&[motion]);
+    let q32: Vec<V3<f32>> = q
+        .iter()
+        .map(|k| V3::new(k.x as f32, k.y as f32, k.z as f32))
+        .collect();
+    let v32 = vec![V3::new(0.0f32, 0.0, 0.0); n];
+    // The end point of element `at` in f64, relative to the root.
+    let end_point = |q: &[DVec3], at: usize| {
+        let mut s = strand(&p, Method::Exact);
+        s.set_state(q, &vec![DVec3::ZERO; n]);
+        let points = s.boundary_points_world(&motion);
+        points[at + 1] - points[0]
+    };
+    let mut worst: f64 = 0.0;
+    for at in 0..n {
+        let mut hook = OnePoint {
+            at,
+            force_n: V3::new(force.x as f32, force.y as f32, force.z as f32),
+        };
+        let mut data = vec![ElementData::<f32>::zero(); n];
+        forward_with::<f32, false, _>(&batch_model, &env, &root, &q32, &v32, &mut data, &mut hook);
+        let mut beyond = Beyond::zero();
+        let mut sweep = vec![DVec3::ZERO; n];
+        for e in (0..n).rev() {
+            let f = element_terms(&data[e], &beyond).force;
+            sweep[e] = DVec3::new(f.x.into(), f.y.into(), f.z.into());
+            beyond.add(&data[e]);
+        }
+        let delta = 1e-4;
+        let mut reference = vec![DVec3::ZERO; n];
+        for (e, generalized) in reference.iter_mut().enumerate() {
+            for axis in 0..3 {
+                let mut plus = q.clone();
+                let mut minus = q.clone();
+                plus[e][axis] += delta;
+                minus[e][axis] -= delta;
+                let jacobian = (end_point(&plus, at) - end_point(&minus, at)) / (2.0 * delta);
+                generalized[axis] = jacobian.dot(force);
+            }
+        }
+        assert!(reference[at].length() > 0.0, "the test force does no work");
+        assert!(reference[at + 1..].iter().all(|x| *x == DVec3::ZERO));
+        let err = max_diff(&sweep, &reference) / max_abs(&reference);
+        println!("end of element {at}: {err:.2e}");
+        worst = worst.max(err);
+    }
+    println!("worst: {worst:.2e}");
+    assert!(worst < END_FORCE_TOL, "{worst:.2e}");
+}
+
+fn max_abs(a: &[DVec3]) -> f64 {
+    a.iter().map(|x| x.abs().max_element()).fold(0.0, f64::max)
+}
+
+/// The drape of `collision.rs`: 15 cm strands rooted on top of the sphere,
+/// growing sideways, Exact at 240 Hz, light friction and drag.
+fn drape_settings() -> (SimSettings, StrandParams) {
+    let settings = SimSettings {
+        method: Method::Exact,
+        substeps: 4,
+        ..SimSettings::default()
+    };
+    let mut p = params(0.15, 10);
+    p.internal_friction = 2e-10;
+    p.air_drag = 1e-5;
+    (settings, p)
+}
+
+fn top_root() -> RootPose {
+    RootPose::from_direction(DVec3::new(0.0, RADIUS_M, 0.0), DVec3::X, DVec3::Y)
+}
+
+/// Lowest analytic signed distance to the sphere (centred on the head) of
+/// boundary points 2.. (the root and the first end point sit on the scalp).
+fn lowest_above_sphere(points: &[DVec3], centre: DVec3) -> f64 {
+    points[2..]
+        .iter()
+        .map(|q| (*q - centre).length() - RADIUS_M)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// How far the batch path's resting drape may lie from the f64 path's,
+/// metres. Contact at end points (the batch) and at every quadrature
+/// sample (the reference) carry the same load at different places: the
+/// samples between end points hold the chord up where the end points let
+/// it sag (ℓ²/8R = 0.35 mm for ℓ = 1.5 cm on R = 8 cm), and both sink
+/// g h²/α = 0.7 mm into the skin. 1 mm, half the 2 mm skin, bounds that.
+/// Measured 0.44 mm.
+const DRAPE_SHAPE_TOL_M: f64 = 0.001;
+
+#[test]
+fn a_strand_draped_over_a_sphere_rests_on_it_near_the_f64_drape() {
+    let (settings, p) = drape_settings();
+    let field = Arc::new(sphere_field().0);
+    let still = RigidMotion::default();
+    let mut batch = BatchSystem::new(settings.clone()).expect("valid settings");
+    batch.add_group(&p, &[top_root()]).expect("valid params");
+    let mut falls = batch.clone();
+    batch.set_collider(Some(field.clone()));
+    assert!(batch.collider().is_some());
+    let mut reference = HairSystem::new(settings).expect("valid settings");
+    reference.set_guard(None);
+    reference
+        .add_group(&p, &[top_root()])
+        .expect("valid params");
+    reference.set_collider(Some(field));
+    for _ in 0..180 {
+        batch.step_frame(&still);
+        falls.step_frame(&still);
+        reference.step_frame(&still);
+    }
+    assert!(batch.is_finite());
+    assert_eq!(batch.guard_reset_count(), 0);
+    let through = lowest_above_sphere(
+        &falls
+            .boundary_points_world(0)
+            .iter()
+            .map(|x| x.as_dvec3())
+            .collect::<Vec<_>>(),
+        DVec3::ZERO,
+    );
+    assert!(through < -0.01, "without the collider it falls: {through}");
+    let points: Vec<DVec3> = batch
+        .boundary_points_world(0)
+        .iter()
+        .map(|x| x.as_dvec3())
+        .collect();
+    // Each end point sinks g h² / α = 0.7 mm into the 2 mm skin, and the
+    // mesh lies up to 0.3 mm inside the sphere: the points rest above the
+    // true sphere, within the skin.
+    let resting = lowest_above_sphere(&points, DVec3::ZERO);
+    println!("resting {resting:.2e} m above the sphere");
+    assert!(resting > 0.0, "rests {resting} m from the sphere");
+    assert!(resting < 0.002, "floats {resting} m above the sphere");
+    let shape_gap = points
+        .iter()
+        .zip(reference.boundary_points_world(0))
+        .map(|(a, b)| (*a - b).length())
+        .fold(0.0, f64::max);
+    println!("largest gap to the f64 drape: {shape_gap:.2e} m");
+    assert!(shape_gap < DRAPE_SHAPE_TOL_M, "{shape_gap} m");
+    // At rest: the speed bound of the settled strand is small.
+    let v = batch.v(0);
+    let speed = helixhair_physics::guard::speed_bound_m_per_s(&model(&p, 4), &v);
+    assert!(speed < 1e-2, "still moving at up to {speed} m/s");
+}
+
+/// How deep a strand pressed by a moving head may go below the true
+/// sphere: 1 cm, a tenth of the head's radius (as `collision.rs`).
+const PRESSED_PENETRATION_M: f64 = 0.01;
+
+#[test]
+fn a_jumping_head_pushes_hair_aside_without_flinging_it() {
+    let (settings, p) = drape_settings();
+    let bounce = Bounce {
+        direction: DVec3::Y,
+        amplitude_m: 0.04,
+        frequency_hz: 4.0,
+    };
+    let field = Arc::new(sphere_field().0);
+    let mut batch = BatchSystem::new(settings.clone()).expect("valid settings");
+    batch.add_group(&p, &[top_root()]).expect("valid params");
+    batch.set_collider(Some(field.clone()));
+    let mut reference = HairSystem::new(settings).expect("valid settings");
+    reference.set_guard(None);
+    reference
+        .add_group(&p, &[top_root()])
+        .expect("valid params");
+    reference.set_collider(Some(field));
+    let (mut lowest, mut lowest_reference) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..120 {
+        batch.step_frame(&bounce);
+        reference.step_frame(&bounce);
+        let centre = bounce.motion_at(batch.time_secs()).position_m;
+        let points: Vec<DVec3> = batch
+            .boundary_points_world(0)
+            .iter()
+            .map(|x| x.as_dvec3())
+            .collect();
+        lowest = lowest.min(lowest_above_sphere(&points, centre));
+        let points = reference.boundary_points_world(0);
+        lowest_reference = lowest_reference.min(lowest_above_sphere(&points, centre));
+    }
+    // For comparison only: the f64 path, contact at every sample.
+    println!("lowest {lowest:.2e} m (f64 reference {lowest_reference:.2e} m)");
+    assert_eq!(batch.guard_reset_count(), 0);
+    assert!(batch.is_finite());
+    assert!(
+        lowest > -PRESSED_PENETRATION_M,
+        "sank {lowest} m into the moving sphere"
+    );
+    let speed = helixhair_physics::guard::speed_bound_m_per_s(&model(&p, 4), &batch.v(0));
+    assert!(speed < 20.0, "flung at {speed} m/s");
+}
+
+/// 21 roots spread over the sphere's upper half (three batches, the last
+/// padded), growing outward and down.
+fn scalp_roots() -> Vec<RootPose> {
+    (0..21)
+        .map(|i| {
+            let a = i as f64 * 2.399963;
+            let up = 0.3 + 0.7 * (i as f64 / 21.0);
+            let normal = DVec3::new(a.cos() * (1.0 - up * up).sqrt(), up, a.sin()).normalize();
+            let grow = (normal + DVec3::new(0.0, -0.8, 0.0)).normalize();
+            RootPose::from_direction(normal * RADIUS_M, grow, DVec3::Y)
+        })
+        .collect()
+}
+
+fn shake() -> Oscillation {
+    Oscillation {
+        axis: DVec3::new(0.2, 1.0, 0.1),
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    }
+}
+
+fn states(system: &BatchSystem) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
+    (0..system.strand_count())
+        .map(|i| (system.q(i), system.v(i)))
+        .collect()
+}
+
+#[test]
+fn serial_and_parallel_are_bit_identical_with_a_collider() {
+    for method in [Method::BlockDiagonal, Method::Exact] {
+        let settings = SimSettings {
+            method,
+            substeps: 10,
+            ..SimSettings::default()
+        };
+        let mut serial = BatchSystem::new(settings).expect("valid settings");
+        serial
+            .add_group(&StrandParams::default(), &scalp_roots())
+            .expect("valid params");
+        serial.set_parallel(false);
+        let mut no_collider = serial.clone();
+        serial.set_collider(Some(Arc::new(sphere_field().0)));
+        let mut parallel = serial.clone();
+        parallel.set_parallel(true);
+        for _ in 0..60 {
+            serial.step_frame(&shake());
+            parallel.step_frame(&shake());
+            no_collider.step_frame(&shake());
+        }
+        assert!(serial.is_finite(), "{method:?}");
+        assert_eq!(states(&serial), states(&parallel), "{method:?}");
+        assert_ne!(
+            states(&serial),
+            states(&no_collider),
+            "{method:?}: the collider never touched the hair"
+        );
+    }
+}
+
+/// The sphere's field moved `offset_m` away from the head's centre.
+fn field_at(offset_m: DVec3) -> SignedDistanceField {
+    let (v, f) = icosphere(RADIUS_M, 2);
+    let v: Vec<DVec3> = v.iter().map(|p| *p + offset_m).collect();
+    SignedDistanceField::from_triangles(&v, &f, 0.004).expect("a valid mesh")
+}
+
+#[test]
+fn without_a_collider_in_reach_the_step_is_bit_identical() {
+    for method in [Method::BlockDiagonal, Method::Exact] {
+        let settings = SimSettings {
+            method,
+            substeps: 10,
+            ..SimSettings::default()
+        };
+        let mut plain = BatchSystem::new(settings).expect("valid settings");
+        plain
+            .add_group(&StrandParams::default(), &scalp_roots())
+            .expect("valid params");
+        // A collider set and taken away again.
+        let mut removed = plain.clone();
+        removed.set_collider(Some(Arc::new(sphere_field().0)));
+        removed.set_collider(None);
+        assert!(removed.collider().is_none());
+        // A collider 5 m away: every end point's lookup misses the grid.
+        let mut far = plain.clone();
+        far.set_collider(Some(Arc::new(field_at(DVec3::new(5.0, 0.0, 0.0)))));
+        for _ in 0..60 {
+            plain.step_frame(&shake());
+            removed.step_frame(&shake());
+            far.step_frame(&shake());
+        }
+        assert_eq!(states(&plain), states(&removed), "{method:?}");
+        assert_eq!(states(&plain), states(&far), "{method:?}");
+    }
+}
+
+#[test]
+fn a_point_in_a_cell_that_is_not_near_feels_exactly_no_force() {
+    // The cull of `batch::contact` must skip only points whose force is
+    // zero; and it must skip most points a few cells off the surface.
+    let (field, _) = sphere_field();
+    let settings = ContactSettings::default();
+    let near = NearCells::new(&field, settings.skin_m);
+    let head = RigidMotion::default();
+    let inputs = ContactInputs {
+        collider: &field,
+        head: &head,
+        settings,
+        h_secs: 1.0 / 240.0,
+    };
+    let mut rng = Rng::new(23);
+    let (mut skipped, mut touching) = (0, 0);
+    for _ in 0..20_000 {
+        let dir = rng.vec3(1.0).normalize_or(DVec3::X);
+        let p = dir * (RADIUS_M + 0.02 * rng.next());
+        let v = rng.vec3(1.0);
+        let force = inputs.force(p, v, 5e-6);
+        let g = (p - field.origin_m) / field.cell_m;
+        let cell = [g.x, g.y, g.z].map(|x| x as usize);
+        if !near.contains(cell[0], cell[1], cell[2]) {
+            assert_eq!(force, DVec3::ZERO, "skipped a point in contact at {p}");
+            skipped += 1;
+        }
+        touching += usize::from(force != DVec3::ZERO);
+    }
+    println!("skipped {skipped}, touching {touching} of 20000");
+    assert!(touching > 1000 && skipped > 5000, "{skipped}, {touching}");
+}

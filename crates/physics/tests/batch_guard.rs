@@ -1,0 +1,138 @@
+//! The guard on the f32 batch path (`batch::guard`): the Block-diagonal
+//! blow-up of `guards.rs` is caught, reset and reported by strand index,
+//! the strands around it are left alone, and a healthy run is bit-identical
+//! with and without the guard.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use helixhair_physics::batch::BatchSystem;
+use helixhair_physics::guard::speed_bound_m_per_s;
+use helixhair_physics::{
+    Guard, Method, NaturalShape, Oscillation, RootPose, SimSettings, StrandParams,
+};
+
+/// The hanging curl on which Block-diagonal blows up at 60 Hz from N = 8
+/// (`guards.rs`).
+fn hanging_curl(n: usize) -> StrandParams {
+    let mut p = params(0.2, n);
+    p.natural_shape = NaturalShape::Helix {
+        radius_m: 0.02,
+        step_m: 0.05,
+    };
+    p.internal_friction = 2e-10;
+    p.air_drag = 1e-5;
+    p
+}
+
+/// Straight strands growing sideways from the origin, in a few directions.
+fn straight_roots(count: usize) -> Vec<RootPose> {
+    (0..count)
+        .map(|i| {
+            let a = i as f64;
+            RootPose::from_direction(DVec3::ZERO, DVec3::new(a.cos(), 0.2, a.sin()), DVec3::Y)
+        })
+        .collect()
+}
+
+/// Three straight strands (indices 0..3), then two hanging curls (3..5),
+/// stepped with `method` at 60 Hz, one substep.
+fn mixed(method: Method, guard: Option<Guard>) -> BatchSystem {
+    let settings = SimSettings {
+        method,
+        ..SimSettings::default()
+    };
+    let mut system = BatchSystem::new(settings).expect("valid settings");
+    system.set_guard(guard);
+    system
+        .add_group(&StrandParams::default(), &straight_roots(3))
+        .expect("valid params");
+    system
+        .add_group(&hanging_curl(10), &[horizontal_root(), horizontal_root()])
+        .expect("valid params");
+    system
+}
+
+fn states(system: &BatchSystem, strands: std::ops::Range<usize>) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
+    strands.map(|i| (system.q(i), system.v(i))).collect()
+}
+
+#[test]
+fn a_block_diagonal_blow_up_on_a_hanging_curl_is_reset_and_reported() {
+    let still = at_rest(glam::DMat3::IDENTITY);
+    let mut raw = mixed(Method::BlockDiagonal, None);
+    let blew_up = (0..120).any(|_| {
+        raw.step_frame(&still);
+        !raw.is_finite()
+    });
+    assert!(blew_up, "the raw f32 Block-diagonal should blow up");
+    let guard = Guard::default();
+    let mut guarded = mixed(Method::BlockDiagonal, Some(guard));
+    let mut unguarded_straight = mixed(Method::BlockDiagonal, None);
+    let curl_model = model(&hanging_curl(10), 4);
+    let mut resets = Vec::new();
+    for _ in 0..240 {
+        guarded.step_frame(&still);
+        unguarded_straight.step_frame(&still);
+        assert!(guarded.is_finite(), "the guarded run went non-finite");
+        for i in 3..5 {
+            let speed = speed_bound_m_per_s(&curl_model, &guarded.v(i));
+            assert!(
+                speed <= guard.speed_limit_m_per_s,
+                "strand {i}: {speed} m/s"
+            );
+        }
+        resets.extend_from_slice(guarded.last_guard_resets());
+    }
+    println!(
+        "{} resets, first frames: {:?}",
+        resets.len(),
+        &resets[..resets.len().min(8)]
+    );
+    assert!(!resets.is_empty(), "the guard never stepped in");
+    assert!(
+        resets.iter().all(|i| (3..5).contains(i)),
+        "only the curls may be reset: {resets:?}"
+    );
+    assert_eq!(guarded.guard_reset_count(), resets.len());
+    // The straight strands of the other group never noticed.
+    assert_eq!(states(&guarded, 0..3), states(&unguarded_straight, 0..3));
+}
+
+#[test]
+fn a_reset_strand_is_at_its_natural_shape_at_rest() {
+    // A 1 mm/s speed limit fails every strand falling from rest.
+    let strict = Guard {
+        speed_limit_m_per_s: 1e-3,
+        ..Guard::default()
+    };
+    let mut system = mixed(Method::Exact, Some(strict));
+    system.step_frame(&at_rest(glam::DMat3::IDENTITY));
+    assert_eq!(system.last_guard_resets(), &[0, 1, 2, 3, 4]);
+    let natural = model(&hanging_curl(10), 4).natural;
+    let natural_f32: Vec<DVec3> = natural.iter().map(|k| k.as_vec3().as_dvec3()).collect();
+    assert_eq!(system.q(4), natural_f32);
+    assert!(system.v(4).iter().all(|v| *v == DVec3::ZERO));
+}
+
+#[test]
+fn a_healthy_run_is_left_alone_and_matches_the_unguarded_one() {
+    // Exact on the hanging curl and straight strands under a head shake at
+    // 60 Hz is finite and slow: the guard must not step in, nor change a bit.
+    let shake = Oscillation {
+        axis: DVec3::new(0.2, 1.0, 0.1),
+        amplitude_rad: 0.3,
+        frequency_hz: 1.0,
+    };
+    let mut guarded = mixed(Method::Exact, Some(Guard::default()));
+    let mut unguarded = mixed(Method::Exact, None);
+    assert!(unguarded.guard().is_none());
+    for _ in 0..120 {
+        guarded.step_frame(&shake);
+        unguarded.step_frame(&shake);
+        assert!(guarded.last_guard_resets().is_empty());
+    }
+    assert_eq!(guarded.guard_reset_count(), 0);
+    assert_eq!(states(&guarded, 0..5), states(&unguarded, 0..5));
+}
