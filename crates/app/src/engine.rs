@@ -37,9 +37,9 @@
 //! # The head collider
 //!
 //! [`Engine::set_collider`] is the one place a collider reaches the
-//! physics. The batch engine does not collide yet: `BatchSystem` gains a
-//! collider on another branch, and this call site is where it will be
-//! wired.
+//! physics. Both engines collide with it: the reference at every
+//! quadrature sample, the batch engine at element end points
+//! (`helixhair_physics::batch::contact`).
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -182,16 +182,11 @@ impl Engine {
     /// Makes the strands collide with `collider` (or with nothing).
     ///
     /// The single call site through which a head collider reaches either
-    /// engine. The batch engine ignores it for now: `BatchSystem` has no
-    /// collider on this branch (`BatchSystem::set_collider` arrives with
-    /// branch `batch-contact`); wire it here after that merge.
+    /// engine.
     pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
         match self {
             Self::Reference(system) => system.set_collider(collider),
-            // TODO(batch-contact): `system.set_collider(collider)` once
-            // BatchSystem has it. Until then the batch engine does not
-            // collide with the head.
-            Self::Batch { .. } => {}
+            Self::Batch { system, .. } => system.set_collider(collider),
         }
     }
 

@@ -87,6 +87,49 @@ impl Real for f32 {
     }
 }
 
+/// The step's arithmetic in f64 on the f32 constants: a diagnostic twin
+/// (does a difference from the f64 reference come from f32 round-off in
+/// the arithmetic, or from the algorithm?).
+impl Real for f64 {
+    const WIDTH: usize = 1;
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        x as f64
+    }
+    #[inline(always)]
+    fn from_fn(f: impl Fn(usize) -> f32) -> Self {
+        f(0) as f64
+    }
+    #[inline(always)]
+    fn lane(self, _i: usize) -> f32 {
+        self as f32
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn sin_cos(self) -> (Self, Self) {
+        f64::sin_cos(self)
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        f64::max(self, o)
+    }
+    #[inline(always)]
+    fn all_below(self, limit: f32) -> bool {
+        self < limit as f64
+    }
+    #[inline(always)]
+    fn select_below(self, limit: f32, if_below: Self, otherwise: Self) -> Self {
+        if self < limit as f64 {
+            if_below
+        } else {
+            otherwise
+        }
+    }
+}
+
 /// One f32 per strand of a batch: a [`wide::f32x8`], which is one AVX
 /// register where the build enables AVX (see `.cargo/config.toml`) and two
 /// SSE registers otherwise. Its operators are explicit SIMD instructions,
