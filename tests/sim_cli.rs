@@ -397,23 +397,42 @@ fn bad_options_fail_with_a_clear_message() {
 }
 
 /// After one second (60 frames) the batch engine's tips lie within this of
-/// the reference engine's, both with Exact (which equals Dense to
-/// round-off), metres. The two differ only by f32 against f64 arithmetic:
-/// measured 8.6e-8 m on curly.ron and 2.0e-8 m on coily.ron; 1e-6 m keeps a
-/// margin of ten, and a wrong root, element or solver would be millimetres
-/// off.
-///
-/// Not every example is this close: on wavy.ron (30 cm, weakly curled) the
-/// batch engine's tips end up to 1.4 mm from the reference's, and on
-/// straight.ron its Exact step blows up after 37 frames where the
-/// reference's stays quiet (its guard never steps in). Both are the f32
-/// batch path's, not this app's; they are reported to its owner rather
-/// than hidden behind a looser tolerance here.
+/// the reference engine's on the curled examples, both with Exact (which
+/// equals Dense to round-off), metres. The two differ only by f32 against
+/// f64 arithmetic: measured 8.6e-8 m on curly.ron and 2.0e-8 m on
+/// coily.ron; 1e-6 m keeps a margin of ten, and a wrong root, element or
+/// solver would be millimetres off.
 const ENGINE_TIP_TOL_M: f64 = 1e-6;
+
+/// The same for the 30 cm straight and wavy examples, which fall from
+/// upright through large motions, metres. A straight strand's step matrix
+/// is far worse conditioned (twist moves no centreline point while the
+/// strand is straight, so its twist "mass" is tiny next to its bending
+/// one), and f32 round-off grows by that condition number: measured
+/// 3.7e-4 m on straight.ron and 2.7e-5 m on wavy.ron (before the batch
+/// path took its moments about each element's own points, 5% speed errors
+/// in the first frame and a blow-up at frame 27:
+/// `examples/f32_precision.rs`). Block-diagonal instead of Exact would be
+/// centimetres off.
+const ENGINE_TIP_TOL_STRAIGHT_M: f64 = 1e-3;
+
+/// Total energies of the two engines after one second differ by less than
+/// this times the reference's gravitational energy on the curled examples
+/// (the batch engine's rebuilt in f64 from its f32 state).
+const ENGINE_ENERGY_TOL: f64 = 1e-4;
+
+/// The same on straight and wavy hair, for the conditioning above:
+/// measured 1.3e-4 on straight.ron.
+const ENGINE_ENERGY_TOL_STRAIGHT: f64 = 1e-3;
 
 #[test]
 fn the_batch_engine_matches_the_reference_after_one_second() {
-    for style in ["assets/styles/curly.ron", "assets/styles/coily.ron"] {
+    for style in [
+        "assets/styles/straight.ron",
+        "assets/styles/wavy.ron",
+        "assets/styles/curly.ron",
+        "assets/styles/coily.ron",
+    ] {
         let common = ["--style", style, "--steps", "60"];
         let mut batch_args = common.to_vec();
         batch_args.extend(["--engine", "batch"]);
@@ -444,12 +463,18 @@ fn the_batch_engine_matches_the_reference_after_one_second() {
             worst = worst.max(distance(*tips.0, *tips.1));
         }
         println!("{style}: largest tip distance {worst:.2e} m");
-        assert!(worst < ENGINE_TIP_TOL_M, "{style}: {worst:.2e} m");
+        let straight = style.contains("straight") || style.contains("wavy");
+        let (tip_tol, energy_tol) = if straight {
+            (ENGINE_TIP_TOL_STRAIGHT_M, ENGINE_ENERGY_TOL_STRAIGHT)
+        } else {
+            (ENGINE_TIP_TOL_M, ENGINE_ENERGY_TOL)
+        };
+        assert!(worst < tip_tol, "{style}: {worst:.2e} m");
         // The energies (the batch engine's rebuilt in f64) agree too.
         let (ea, eb) = (&batch["energies"], &reference["energies"]);
         let scale = num(eb, "gravity_j").abs();
         assert!(
-            (num(ea, "total_j") - num(eb, "total_j")).abs() < 1e-4 * scale,
+            (num(ea, "total_j") - num(eb, "total_j")).abs() < energy_tol * scale,
             "{style}: {ea} vs {eb}"
         );
     }

@@ -36,9 +36,14 @@ struct OnePoint {
 }
 
 impl EndPointForce<f32> for OnePoint {
-    fn at_end(&mut self, e: usize, end: &FrameState<f32>, el: &mut ElementData<f32>) {
+    fn at_end<const LOCAL: bool>(
+        &mut self,
+        e: usize,
+        end: &FrameState<f32>,
+        el: &mut ElementData<f32>,
+    ) {
         if e == self.at {
-            add_end_point_force(el, end.point_m, self.force_n);
+            add_end_point_force::<f32, LOCAL>(el, end.point_m, self.force_n);
         }
     }
 }
@@ -90,7 +95,15 @@ fn an_end_point_force_gives_its_jacobian_transpose_times_the_force() {
             force_n: V3::new(force.x as f32, force.y as f32, force.z as f32),
         };
         let mut data = vec![ElementData::<f32>::zero(); n];
-        forward_with::<f32, false, _>(&batch_model, &env, &root, &q32, &v32, &mut data, &mut hook);
+        forward_with::<f32, false, false, _>(
+            &batch_model,
+            &env,
+            &root,
+            &q32,
+            &v32,
+            &mut data,
+            &mut hook,
+        );
         let mut beyond = Beyond::zero();
         let mut sweep = vec![DVec3::ZERO; n];
         for e in (0..n).rev() {

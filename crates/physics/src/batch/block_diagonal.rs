@@ -22,13 +22,15 @@ pub fn step_block_diagonal<T: Real>(
     v: &mut [V3<T>],
     scratch: &mut [ElementData<T>],
 ) {
-    step_block_diagonal_with(model, env, root, q, v, scratch, &mut NoContact);
+    step_block_diagonal_with::<T, false, _>(model, env, root, q, v, scratch, &mut NoContact);
 }
 
 /// [`step_block_diagonal`] with a force at each element's end point
-/// ([`super::contact`]).
+/// ([`super::contact`]), and with moments about the root or, with `LOCAL`,
+/// about each element's own points ([`super::forward::forward_with`]; the
+/// suffix sums then move by −span from each element to the next).
 #[inline(always)]
-pub fn step_block_diagonal_with<T: Real, H: EndPointForce<T>>(
+pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     model: &BatchModel,
     env: &StepEnv,
     root: &RootMotion<T>,
@@ -37,7 +39,7 @@ pub fn step_block_diagonal_with<T: Real, H: EndPointForce<T>>(
     scratch: &mut [ElementData<T>],
     end_force: &mut H,
 ) {
-    forward_with::<T, false, H>(model, env, root, q, v, scratch, end_force);
+    forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, end_force);
     let s = T::splat(mass_scale(model, env));
     let mut beyond = Beyond::zero();
     for e in (0..q.len()).rev() {
@@ -47,6 +49,9 @@ pub fn step_block_diagonal_with<T: Real, H: EndPointForce<T>>(
         let step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
         let delta_v = step_matrix.inverse() * rhs;
         integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
+        if LOCAL {
+            beyond.shift(-el.span);
+        }
         beyond.add(el);
     }
 }

@@ -141,7 +141,9 @@ impl NearCells {
 pub trait EndPointForce<T> {
     /// Called once element `e`'s data `el` is complete (own sums, A_Q,
     /// B_Q), with `end` the state at its end point.
-    fn at_end(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>);
+    /// `LOCAL`: `el` holds local moments (see
+    /// [`super::forward::forward_with`]).
+    fn at_end<const LOCAL: bool>(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>);
 }
 
 /// No collider: nothing happens at the end points.
@@ -150,18 +152,38 @@ pub struct NoContact;
 
 impl<T> EndPointForce<T> for NoContact {
     #[inline(always)]
-    fn at_end(&mut self, _e: usize, _end: &FrameState<T>, _el: &mut ElementData<T>) {}
+    fn at_end<const LOCAL: bool>(
+        &mut self,
+        _e: usize,
+        _end: &FrameState<T>,
+        _el: &mut ElementData<T>,
+    ) {
+    }
 }
 
 /// Adds the point force `force_n` (newtons, world axes) at `point_m` (the
 /// end point of the element `el` describes, relative to the root) to the
 /// element's generalized force and suffix sums; see the module docs.
 #[inline(always)]
-pub fn add_end_point_force<T: Real>(el: &mut ElementData<T>, point_m: V3<T>, force_n: V3<T>) {
-    let torque = point_m.cross(force_n);
-    el.own_force += el.a.t_mul_vec(force_n) + el.b.t_mul_vec(torque);
+///
+/// With `LOCAL` moments A_Q is about the end point itself, so the
+/// generalized force is A_QᵀF alone (the same number:
+/// (A − [p]×B)ᵀF = AᵀF + Bᵀ(p × F) about the root), and the torque is
+/// about the element's start, `span` × F.
+pub fn add_end_point_force<T: Real, const LOCAL: bool>(
+    el: &mut ElementData<T>,
+    point_m: V3<T>,
+    force_n: V3<T>,
+) {
+    if LOCAL {
+        el.own_force += el.a.t_mul_vec(force_n);
+        el.torque_sum += el.span.cross(force_n);
+    } else {
+        let torque = point_m.cross(force_n);
+        el.own_force += el.a.t_mul_vec(force_n) + el.b.t_mul_vec(torque);
+        el.torque_sum += torque;
+    }
     el.force_sum += force_n;
-    el.torque_sum += torque;
 }
 
 /// The head collider for one batch during one step: the contact inputs and
@@ -228,7 +250,12 @@ impl<'a> LaneContact<'a> {
 
 impl<T: Real> EndPointForce<T> for LaneContact<'_> {
     #[inline(always)]
-    fn at_end(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>) {
+    fn at_end<const LOCAL: bool>(
+        &mut self,
+        e: usize,
+        end: &FrameState<T>,
+        el: &mut ElementData<T>,
+    ) {
         let length_m = self.point_length_m(e);
         let lane_vec = |x: &V3<T>, i: usize| Vec3::new(x.x.lane(i), x.y.lane(i), x.z.lane(i));
         let mut forces_n = [Vec3::ZERO; LANES];
@@ -251,7 +278,7 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
                 T::from_fn(|i| forces_n[i].y),
                 T::from_fn(|i| forces_n[i].z),
             );
-            add_end_point_force(el, end.point_m, force_n);
+            add_end_point_force::<T, LOCAL>(el, end.point_m, force_n);
         }
     }
 }

@@ -55,17 +55,39 @@ pub fn step_exact<T: Real>(
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
 ) {
-    step_exact_with(model, env, root, q, v, scratch, elimination, &mut NoContact);
+    step_exact_with::<T, false, _>(model, env, root, q, v, scratch, elimination, &mut NoContact);
+}
+
+/// The articulated inertia H (twists to wrenches, as four 3×3 blocks) and
+/// the carried wrench, moved to an origin `delta` from the current one:
+/// with S = [δ]×, a twist about the new origin is (a − Sb, b) and a wrench
+/// (f, τ − δ × f), so H′ = XᵀHX with X = [[𝟙, S], [0, 𝟙]].
+#[inline(always)]
+fn shift_articulated<T: Real>(h: &mut [M3<T>; 4], carried: &mut [V3<T>; 2], delta: V3<T>) {
+    let [h_aa, h_ab, h_ba, h_bb] = *h;
+    let skew = M3::skew(delta);
+    let h_aa_s = h_aa.mul_mat(&skew);
+    *h = [
+        h_aa,
+        h_aa_s + h_ab,
+        h_ba - skew.mul_mat(&h_aa),
+        h_bb + h_ba.mul_mat(&skew) - skew.mul_mat(&h_ab) - skew.mul_mat(&h_aa_s),
+    ];
+    carried[1] = carried[1] - delta.cross(carried[0]);
 }
 
 /// [`step_exact`] with a force at each element's end point
-/// ([`super::contact`]).
+/// ([`super::contact`]), and with moments about the root or, with
+/// `LOCAL`, about each element's own points (see
+/// [`super::forward::forward_with`]): then the suffix sums, H and the
+/// carried wrench move by −span from each element to the next towards the
+/// root, and the moved twist of sweep 3 by +span towards the tip.
 #[expect(
     clippy::too_many_arguments,
     reason = "the step's buffers, as in `step_exact`, plus the hook"
 )]
 #[inline(always)]
-pub fn step_exact_with<T: Real, H: EndPointForce<T>>(
+pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     model: &BatchModel,
     env: &StepEnv,
     root: &RootMotion<T>,
@@ -75,44 +97,60 @@ pub fn step_exact_with<T: Real, H: EndPointForce<T>>(
     elimination: &mut [Elimination<T>],
     end_force: &mut H,
 ) {
-    forward_with::<T, true, H>(model, env, root, q, v, scratch, end_force);
+    forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force);
     let s = T::splat(mass_scale(model, env));
     let mut beyond = Beyond::zero();
-    let (mut h_aa, mut h_ab, mut h_ba, mut h_bb) = (M3::zero(), M3::zero(), M3::zero(), M3::zero());
-    let (mut carried_a, mut carried_b) = (V3::zero(), V3::zero());
+    let mut h = [M3::zero(); 4];
+    let mut carried = [V3::zero(); 2];
     for e in (0..q.len()).rev() {
         let el = &scratch[e];
         let terms = element_terms(el, &beyond);
+        // V_Q about the point A_Q refers to (its end, with LOCAL).
+        let own_v = if LOCAL {
+            el.v - M3::cross_cols(el.span, &el.u)
+        } else {
+            el.v
+        };
+        let [h_aa, h_ab, h_ba, h_bb] = &mut h;
+        let [carried_a, carried_b] = &mut carried;
         let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);
         let hu_top = h_aa.mul_mat(&el.a) + h_ab.mul_mat(&el.b);
         let hu_bottom = h_ba.mul_mat(&el.a) + h_bb.mul_mat(&el.b);
         let w_top = (el.u + terms.x_beyond).scale(s) - hu_top;
-        let w_bottom = (el.v + terms.y_beyond).scale(s) - hu_bottom;
+        let w_bottom = (own_v + terms.y_beyond).scale(s) - hu_bottom;
         let s_tilde = terms.mass_block.scale(s).add_diagonal(diagonal)
             - (el.a.t_mul_mat(&hu_top) + el.b.t_mul_mat(&hu_bottom));
         let s_inv = s_tilde.inverse();
         let p_top = w_top.mul_mat(&s_inv);
         let p_bottom = w_bottom.mul_mat(&s_inv);
-        h_aa += p_top.mul_mat_t(&w_top);
-        h_ab += p_top.mul_mat_t(&w_bottom);
-        h_ba += p_bottom.mul_mat_t(&w_top);
-        h_bb += p_bottom.mul_mat_t(&w_bottom);
-        let r = rhs - (el.a.t_mul_vec(carried_a) + el.b.t_mul_vec(carried_b));
+        *h_aa += p_top.mul_mat_t(&w_top);
+        *h_ab += p_top.mul_mat_t(&w_bottom);
+        *h_ba += p_bottom.mul_mat_t(&w_top);
+        *h_bb += p_bottom.mul_mat_t(&w_bottom);
+        let r = rhs - (el.a.t_mul_vec(*carried_a) + el.b.t_mul_vec(*carried_b));
         let y = s_inv * r;
-        carried_a += w_top * y;
-        carried_b += w_bottom * y;
+        *carried_a += w_top * y;
+        *carried_b += w_bottom * y;
         elimination[e] = Elimination {
             w_top,
             w_bottom,
             s_inv,
             rhs: r,
         };
+        if LOCAL {
+            let delta = -el.span;
+            shift_articulated(&mut h, &mut carried, delta);
+            beyond.shift(delta);
+        }
         beyond.add(el);
     }
     let (mut moved_a, mut moved_b) = (V3::zero(), V3::zero());
     for e in 0..q.len() {
         let el = &scratch[e];
         let x = &elimination[e];
+        if LOCAL {
+            moved_a = moved_a - el.span.cross(moved_b);
+        }
         let delta_v =
             x.s_inv * (x.rhs - (x.w_top.t_mul_vec(moved_a) + x.w_bottom.t_mul_vec(moved_b)));
         moved_a += el.a * delta_v;

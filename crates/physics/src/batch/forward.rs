@@ -83,13 +83,29 @@ pub fn advance<T: Real>(
     k: V3<T>,
     k_dot: V3<T>,
 ) -> (FrameState<T>, M3<T>, M3<T>) {
+    let (next, a_local, b, _) = advance_local(s, length_m, k, k_dot);
+    let a = a_local + M3::cross_cols(next.point_m, &b);
+    (next, a, b)
+}
+
+/// [`advance`] with A_Q taken about the element's end point instead of the
+/// root: a_Q = R J_end (so J = a_Q − [r − p_end]×B_Q beyond the element);
+/// the last value is the span R h(ℓ), end point minus start point, metres
+/// (computed, not differenced, so it keeps f32's relative precision).
+#[inline(always)]
+pub fn advance_local<T: Real>(
+    s: &FrameState<T>,
+    length_m: f32,
+    k: V3<T>,
+    k_dot: V3<T>,
+) -> (FrameState<T>, M3<T>, M3<T>, V3<T>) {
     let (end, turn) = local_end(length_m, k, k_dot);
     let [p, pv, pa] = s.carry(end.h, end.h_dot, end.h_ddot);
     let b = s
         .frame
         .mul_mat(&turn.left_jacobian)
         .scale(T::splat(length_m));
-    let a = s.frame.mul_mat(&end.jacobian) + M3::cross_cols(p, &b);
+    let a = s.frame.mul_mat(&end.jacobian);
     let spin = s.frame * turn.spin;
     let next = FrameState {
         frame: s.frame.mul_mat(&turn.rotation),
@@ -101,7 +117,8 @@ pub fn advance<T: Real>(
         point_velocity: pv,
         point_acceleration: pa,
     };
-    (next, a, b)
+    let span = s.frame * end.h;
+    (next, a, b, span)
 }
 
 /// Element `e`'s own sums from its start state `s`; `a` and `b` are left
@@ -211,13 +228,28 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
     v: &[V3<T>],
     out: &mut [ElementData<T>],
 ) {
-    forward_with::<T, OFF_DIAGONAL, _>(model, env, root, q, v, out, &mut NoContact);
+    forward_with::<T, OFF_DIAGONAL, false, _>(model, env, root, q, v, out, &mut NoContact);
 }
 
 /// [`forward`] with a force at each element's end point (stage "collide",
-/// [`super::contact`]).
+/// [`super::contact`]), and with moments about the root (`LOCAL = false`,
+/// as the GPU kernels take them) or about each element's own points
+/// (`LOCAL = true`).
+///
+/// # Local moments
+///
+/// About the root, the suffix sums of an element 30 cm out are terms of
+/// size m|p|² whose small difference is its mass block; in f32 that loses
+/// the small entries (a straight strand's twist ones first:
+/// `examples/f32_precision.rs` measured 5% in one frame). With `LOCAL`,
+/// element Q's own moments (first moment, inertia, torque, V_Q) are taken
+/// about its start point, A_Q about its end point (so the suffix sums past
+/// Q must be about that end point too), and `span` is end minus start: the
+/// tip-to-root sweeps shift the sums by −span from one element to the next
+/// ([`super::suffix::Beyond::shift`]), so every product involves only
+/// distances of the size of what it describes.
 #[inline(always)]
-pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
+pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: EndPointForce<T>>(
     model: &BatchModel,
     env: &StepEnv,
     root: &RootMotion<T>,
@@ -228,11 +260,25 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
 ) {
     let mut s = FrameState::at_root(root);
     for (e, el) in out.iter_mut().enumerate() {
+        if LOCAL {
+            let start = FrameState {
+                point_m: V3::zero(),
+                ..s
+            };
+            own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &start, q[e], v[e], el);
+            let (next, a, b, span) = advance_local(&s, model.lengths_m[e], q[e], v[e]);
+            el.a = a;
+            el.b = b;
+            el.span = span;
+            end_force.at_end::<LOCAL>(e, &next, el);
+            s = next;
+            continue;
+        }
         own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &s, q[e], v[e], el);
         let (next, a, b) = advance(&s, model.lengths_m[e], q[e], v[e]);
         el.a = a;
         el.b = b;
-        end_force.at_end(e, &next, el);
+        end_force.at_end::<LOCAL>(e, &next, el);
         s = next;
     }
 }

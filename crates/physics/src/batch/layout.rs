@@ -150,6 +150,9 @@ pub struct ElementData<T> {
     pub u: M3<T>,
     /// V_Q = Σ_own wρS [r]×G (Exact only), kg·m².
     pub v: M3<T>,
+    /// The element's end point minus its start point, metres (set by the
+    /// sweep with local moments, see [`super::forward::forward_with`]).
+    pub span: V3<T>,
 }
 
 impl<T: Real> ElementData<T> {
@@ -167,6 +170,7 @@ impl<T: Real> ElementData<T> {
             torque_sum: V3::zero(),
             u: M3::zero(),
             v: M3::zero(),
+            span: V3::zero(),
         }
     }
 }

@@ -44,6 +44,22 @@ impl<T: Real> Beyond<T> {
         }
     }
 
+    /// Moves the moments' origin by `delta` (new origin minus old): the
+    /// parallel-axis rule, c′ = c − mδ,
+    /// I′ = I − 2(c·δ)𝟙 + m|δ|²𝟙 + cδᵀ + δcᵀ − mδδᵀ, τ′ = τ − δ × F.
+    #[inline(always)]
+    pub fn shift(&mut self, delta: V3<T>) {
+        let c = self.first_moment;
+        let m = self.mass;
+        let m_delta = delta.scale(m);
+        let diagonal = m_delta.dot(delta) - (c.dot(delta) + c.dot(delta));
+        self.inertia = (self.inertia + M3::outer(c, delta) + M3::outer(delta, c)
+            - M3::outer(m_delta, delta))
+        .add_diagonal(V3::new(diagonal, diagonal, diagonal));
+        self.first_moment = c - m_delta;
+        self.torque = self.torque - delta.cross(self.force);
+    }
+
     /// Adds an element's own sums (moving one element towards the root).
     #[inline(always)]
     pub fn add(&mut self, el: &ElementData<T>) {

@@ -379,9 +379,17 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
             elements,
             elimination,
         } = scratch;
-        step_exact_with(model, env, root, q, v, elements, elimination, end_force);
+        step_exact_with::<_, true, _>(model, env, root, q, v, elements, elimination, end_force);
     } else {
-        step_block_diagonal_with(model, env, root, q, v, &mut scratch.elements, end_force);
+        step_block_diagonal_with::<_, true, _>(
+            model,
+            env,
+            root,
+            q,
+            v,
+            &mut scratch.elements,
+            end_force,
+        );
     }
 }
 
