@@ -9,7 +9,7 @@
 //! | --- | --- | --- |
 //! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`helixhair_physics::batch::LANES`] strands per SIMD batch, rayon over batches |
 //! | solvers | every [`Method`], per strand | Exact and Block-diagonal, one for all strands |
-//! | extras | stability guard with retries, head collider, stage timings, energies every frame | none yet (see below) |
+//! | extras | stability guard with retries, head collider, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points |
 //! | speed on this 2-core machine | about 1e6 element-steps/s per core | about 2.5e7 element-steps/s per core |
 //!
 //! The reference is what every solver study and the guard were built on,
@@ -30,9 +30,10 @@
 //!   and [`Engine::energies`] answer for both (the batch engine's energies
 //!   are reconstructed in f64 from its f32 state, on demand: too slow to do
 //!   every frame for thousands of strands, cheap once for a report).
-//! - **What only the reference has** (stage timings, guard events) is
-//!   reached through [`Engine::reference`], so a caller must say what it
-//!   shows when the engine is the batch one.
+//! - **What only one engine has** (the reference's stage timings and guard
+//!   events, the batch guard's resets) is reached through
+//!   [`Engine::reference`] and [`Engine::batch`], so a caller must say what
+//!   it shows for the other.
 //!
 //! # The head collider
 //!
@@ -158,6 +159,14 @@ impl Engine {
         match self {
             Self::Reference(system) => Some(system),
             Self::Batch { .. } => None,
+        }
+    }
+
+    /// The batch system, when this is the batch engine.
+    pub fn batch(&self) -> Option<&BatchSystem> {
+        match self {
+            Self::Reference(_) => None,
+            Self::Batch { system, .. } => Some(system),
         }
     }
 

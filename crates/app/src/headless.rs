@@ -10,7 +10,9 @@
 //! The engine ([`crate::engine`]) is the style's `engine` or `--engine`:
 //! the f64 reference (whose guard normally prevents a blow-up; what it did
 //! is kept, [`HeadlessSim::guard_events`], for the report) or the f32
-//! batch path, which runs only Exact and Block-diagonal and has no guard.
+//! batch path, which runs only Exact and Block-diagonal and whose guard
+//! resets a failing strand to rest (its resets are kept as sentences,
+//! [`HeadlessSim::batch_resets`]).
 //! A combination the engine cannot run is refused before anything is
 //! built, naming the option or field that asked for it
 //! ([`SimError::Conflict`]).
@@ -114,6 +116,7 @@ pub struct HeadlessSim {
     head: RigidMotion,
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
+    batch_resets: Vec<String>,
 }
 
 impl HeadlessSim {
@@ -224,6 +227,7 @@ impl HeadlessSim {
             head: RigidMotion::default(),
             choices,
             guard_events: Vec::new(),
+            batch_resets: Vec::new(),
         })
     }
 
@@ -278,7 +282,25 @@ impl HeadlessSim {
             self.guard_events
                 .extend_from_slice(&events[..events.len().min(room)]);
         }
+        if let Some(batch) = self.engine.batch() {
+            let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
+            let time_secs = batch.time_secs();
+            let resets = batch.last_guard_resets().iter().take(room).map(|&strand| {
+                format!(
+                    "strand {strand} (group {}) failed the guard's checks at t = {time_secs:.4} s \
+                     and was reset to its rest shape",
+                    self.group_name(strand)
+                )
+            });
+            self.batch_resets.extend(resets.collect::<Vec<_>>());
+        }
         secs
+    }
+
+    /// The first [`MAX_KEPT_GUARD_EVENTS`] resets of the batch engine's
+    /// guard, as sentences (empty on the reference engine).
+    pub fn batch_resets(&self) -> &[String] {
+        &self.batch_resets
     }
 
     /// Advances `steps` frames, checking the state after each; returns the

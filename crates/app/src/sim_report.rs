@@ -61,8 +61,8 @@ pub struct SimReport {
     pub strands: Vec<StrandReport>,
     /// The automatic choice per group (empty without an accuracy target).
     pub choices: Vec<ChoiceReport>,
-    /// What the physics guard did during the run; `None` (JSON `null`) on
-    /// the batch engine, which has no guard.
+    /// What the physics guard did during the run (on the batch engine: its
+    /// resets of failing strands to rest).
     pub guard: Option<GuardReport>,
 }
 
@@ -243,14 +243,21 @@ impl SimReport {
                     choice: choice.clone(),
                 })
                 .collect(),
-            guard: reference.map(|r| GuardReport {
-                event_count: r.guard_event_count(),
-                events: sim
-                    .guard_events()
-                    .iter()
-                    .map(|e| format!("{e} (group {})", sim.group_name(e.strand)))
-                    .collect(),
-            }),
+            guard: reference
+                .map(|r| GuardReport {
+                    event_count: r.guard_event_count(),
+                    events: sim
+                        .guard_events()
+                        .iter()
+                        .map(|e| format!("{e} (group {})", sim.group_name(e.strand)))
+                        .collect(),
+                })
+                .or_else(|| {
+                    sim.engine().batch().map(|b| GuardReport {
+                        event_count: b.guard_reset_count(),
+                        events: sim.batch_resets().to_vec(),
+                    })
+                }),
         }
     }
 
