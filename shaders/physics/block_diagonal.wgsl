@@ -49,7 +49,7 @@ fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
         frames[i] = Frame(s.frame, vec4<f32>(s.w, 0.0), vec4<f32>(s.alpha, 0.0), vec4<f32>(s.p, 0.0),
             vec4<f32>(s.pv, 0.0), vec4<f32>(s.pa, 0.0));
         let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
-        jacobians[i] = Jacobians(adv.a, adv.b);
+        jacobians[i] = Jacobians(adv.a_local, adv.b, vec4<f32>(adv.span, 0.0));
         s = adv.next;
     }
 }
@@ -61,7 +61,10 @@ fn stage_elements(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         return;
     }
     let e = i % params.elements;
-    own[i] = own_sums(e, load_frame(i), q[i].xyz, v[i].xyz, false).own;
+    // Moments about the element's start (local moments).
+    var s = load_frame(i);
+    s.p = vec3<f32>(0.0);
+    own[i] = own_sums(e, s, q[i].xyz, v[i].xyz, false).own;
 }
 
 @compute @workgroup_size(64)
@@ -75,6 +78,7 @@ fn stage_suffix(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
     for (var k = 0u; k < n; k++) {
         let i = strand * n + (n - 1u - k);
         beyond[i] = b;
+        shift_beyond(&b, -jacobians[i].span.xyz);
         add_beyond(&b, own[i]);
     }
 }

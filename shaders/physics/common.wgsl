@@ -47,6 +47,7 @@ struct Frame {
 struct Jacobians {
     a: mat3x3<f32>,
     b: mat3x3<f32>,
+    span: vec4<f32>,
 }
 
 struct Own {
@@ -244,10 +245,14 @@ fn carry(s: FrameState, h: vec3<f32>, h_dot: vec3<f32>, h_ddot: vec3<f32>) -> ma
     );
 }
 
+// a about the root (Dense), a_local about the end point and span = end
+// minus start (Block-diagonal and Exact: batch::forward::advance_local).
 struct Advanced {
     next: FrameState,
     a: mat3x3<f32>,
     b: mat3x3<f32>,
+    a_local: mat3x3<f32>,
+    span: vec3<f32>,
 }
 
 fn advance(s: FrameState, length_m: f32, k: vec3<f32>, k_dot: vec3<f32>) -> Advanced {
@@ -271,7 +276,9 @@ fn advance(s: FrameState, length_m: f32, k: vec3<f32>, k_dot: vec3<f32>) -> Adva
     let moved = carry(s, end.h, end.h_dot, end.h_ddot);
     var out: Advanced;
     out.b = (s.frame * left_jacobian) * length_m;
-    out.a = s.frame * end.jacobian + cross_cols(moved[0], out.b);
+    out.a_local = s.frame * end.jacobian;
+    out.a = out.a_local + cross_cols(moved[0], out.b);
+    out.span = s.frame * end.h;
     let spin = s.frame * spin_local;
     out.next.frame = s.frame * rotation;
     out.next.w = s.w + spin;
@@ -392,6 +399,19 @@ fn add_beyond(b: ptr<function, Beyond>, own: Own) {
     (*b).moment += own.moment;
     (*b).force += own.force_sum;
     (*b).torque += own.torque_sum;
+}
+
+// Moves the sums' origin by delta (new minus old): the parallel-axis rule,
+// as batch::suffix::Beyond::shift.
+fn shift_beyond(b: ptr<function, Beyond>, delta: vec3<f32>) {
+    let c = (*b).moment.xyz;
+    let m = (*b).moment.w;
+    let m_delta = delta * m;
+    let diagonal = dot(m_delta, delta) - (dot(c, delta) + dot(c, delta));
+    (*b).inertia = add_diagonal((*b).inertia + outer(c, delta) + outer(delta, c)
+        - outer(m_delta, delta), vec3<f32>(diagonal));
+    (*b).moment = vec4<f32>(c - m_delta, m);
+    (*b).torque = vec4<f32>((*b).torque.xyz - cross(delta, (*b).force.xyz), 0.0);
 }
 
 fn zero_beyond() -> Beyond {

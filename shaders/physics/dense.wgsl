@@ -3,7 +3,7 @@
 // per strand. The arithmetic is crates/physics/src/batch/dense.rs; the CPU
 // twins are crates/physics/src/gpu/dense_twin.rs. Three stages per step:
 //   stage_frames   one invocation per strand: the root-to-tip frame chain
-//                  and A_Q, B_Q (the same code as block_diagonal.wgsl's)
+//                  and A_Q (about the root: Dense keeps root moments), B_Q
 //   stage_elements one invocation per element: own sums, with U_Q and V_Q
 //   stage_dense    one workgroup (DENSE_WORKGROUP invocations) per strand:
 //                  (1) invocation 0 runs the tip-to-root suffix: X_Q, Y_Q
@@ -79,7 +79,7 @@ fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
         frames[i] = Frame(s.frame, vec4<f32>(s.w, 0.0), vec4<f32>(s.alpha, 0.0), vec4<f32>(s.p, 0.0),
             vec4<f32>(s.pv, 0.0), vec4<f32>(s.pa, 0.0));
         let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
-        jacobians[i] = Jacobians(adv.a, adv.b);
+        jacobians[i] = Jacobians(adv.a, adv.b, vec4<f32>(0.0));
         s = adv.next;
     }
 }

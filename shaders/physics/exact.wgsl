@@ -42,11 +42,13 @@ fn stage_exact(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
     var s = root_state(strand);
     for (var e = 0u; e < n; e++) {
         let i = base + e;
-        let sums = own_sums(e, s, q[i].xyz, v[i].xyz, true);
+        var start = s;
+        start.p = vec3<f32>(0.0);
+        let sums = own_sums(e, start, q[i].xyz, v[i].xyz, true);
         own[i] = sums.own;
         off_diagonal[i] = OffDiagonal(sums.u, sums.v);
         let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
-        jacobians[i] = Jacobians(adv.a, adv.b);
+        jacobians[i] = Jacobians(adv.a_local, adv.b, vec4<f32>(adv.span, 0.0));
         s = adv.next;
     }
     let zero3 = mat3x3<f32>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
@@ -69,7 +71,9 @@ fn stage_exact(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
         let hu_top = h_aa * jac.a + h_ab * jac.b;
         let hu_bottom = h_ba * jac.a + h_bb * jac.b;
         let w_top = (uv.u + terms.x_beyond) * sc - hu_top;
-        let w_bottom = (uv.v + terms.y_beyond) * sc - hu_bottom;
+        let span = jac.span.xyz;
+        let own_v = uv.v - cross_cols(span, uv.u);
+        let w_bottom = (own_v + terms.y_beyond) * sc - hu_bottom;
         let s_tilde = add_diagonal(terms.mass_block * sc, st[0])
             - (transpose(jac.a) * hu_top + transpose(jac.b) * hu_bottom);
         let s_inv = inverse3(s_tilde);
@@ -84,6 +88,16 @@ fn stage_exact(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
         carried_a += w_top * y;
         carried_b += w_bottom * y;
         elimination[i] = Elimination(w_top, w_bottom, s_inv, vec4<f32>(r, 0.0));
+        // Move H, the carried wrench and the sums to the element's start.
+        let delta = -span;
+        let sk = skew(delta);
+        let h_aa_s = h_aa * sk;
+        let h_ab_old = h_ab;
+        h_ab = h_aa_s + h_ab;
+        h_bb = h_bb + h_ba * sk - sk * h_ab_old - sk * h_aa_s;
+        h_ba = h_ba - sk * h_aa;
+        carried_b = carried_b - cross(delta, carried_a);
+        shift_beyond(&b, delta);
         add_beyond(&b, el);
     }
     var moved_a = vec3<f32>(0.0);
@@ -92,6 +106,7 @@ fn stage_exact(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
         let i = base + e;
         let x = elimination[i];
         let jac = jacobians[i];
+        moved_a = moved_a - cross(jac.span.xyz, moved_b);
         let dv = x.s_inv * (x.rhs.xyz - (transpose(x.w_top) * moved_a + transpose(x.w_bottom) * moved_b));
         moved_a += jac.a * dv;
         moved_b += jac.b * dv;

@@ -37,7 +37,7 @@ const FRAMES: usize = 45;
 const SUBSTEPS: usize = 4;
 
 /// max |q̇| after each frame of the batch Exact arithmetic in `T`, with
-/// moments about the root (as the GPU kernels take them).
+/// moments about the root (as the Dense kernel takes them).
 fn batch_speeds<T: Real>(model: &BatchModel, env: &StepEnv, root: &RigidMotion) -> Vec<f64> {
     let n = model.elements();
     let mut q: Vec<V3<T>> = model.natural.iter().map(|k| V3::splat(*k)).collect();

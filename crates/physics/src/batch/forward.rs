@@ -233,7 +233,7 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
 
 /// [`forward`] with a force at each element's end point (stage "collide",
 /// [`super::contact`]), and with moments about the root (`LOCAL = false`,
-/// as the GPU kernels take them) or about each element's own points
+/// as the Dense kernel takes them) or about each element's own points
 /// (`LOCAL = true`).
 ///
 /// # Local moments

@@ -1,7 +1,10 @@
 //! CPU twins of the Dense kernel (`shaders/physics/dense.wgsl`): one
 //! function per entry point, same name, bindings in binding order, with the
-//! f32 arithmetic of [`crate::batch::dense`] at width 1. `stage_frames` is
-//! Block-diagonal's ([`super::twin::stage_frames`]): the kernels share it.
+//! f32 arithmetic of [`crate::batch::dense`] at width 1. Dense still takes
+//! its moments about the root (A_P must be paired with X_Q, Y_Q of every
+//! Q > P, so local moments would move A_P to each Q's end point); its
+//! `stage_frames` stores the root-based A_Q and a zero span, unlike
+//! Block-diagonal's ([`super::twin::stage_frames`]).
 
 use crate::batch::dense::{DenseScratch, assemble, columns, ldlt_solve};
 use crate::batch::forward::own_sums;
@@ -10,11 +13,23 @@ use crate::batch::suffix::{integrate, mass_scale, step_terms};
 use crate::batch::vec::V3;
 
 use super::layout::{
-    DenseOwnGpu, ElementConstGpu, FrameGpu, JacobiansGpu, ParamsGpu, m3, m4, v3, v4,
+    DenseOwnGpu, ElementConstGpu, FrameGpu, JacobiansGpu, ParamsGpu, RootPoseGpu, m3, m4, v3, v4,
 };
-use super::twin::{element_of, frame_of, model_of, own_of};
+use super::twin::{element_of, frame_chain, frame_of, model_of, own_of};
 
-pub use super::twin::stage_frames;
+/// Twin of Dense's `stage_frames`: per strand, the frame chain and A_Q
+/// (about the root), B_Q.
+pub fn stage_frames(
+    params: &ParamsGpu,
+    elements: &[ElementConstGpu],
+    roots: &[RootPoseGpu],
+    q: &[[f32; 4]],
+    v: &[[f32; 4]],
+    frames: &mut [FrameGpu],
+    jacobians: &mut [JacobiansGpu],
+) {
+    frame_chain(params, elements, roots, (q, v), frames, jacobians, false);
+}
 
 /// Twin of `stage_elements`: per element, its own sums with U_Q and V_Q.
 pub fn stage_elements(

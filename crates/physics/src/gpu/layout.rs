@@ -90,14 +90,17 @@ pub struct FrameGpu {
     pub point_acceleration: [f32; 4],
 }
 
-/// A_Q and B_Q (WGSL `Jacobians`).
+/// A_Q and B_Q (WGSL `Jacobians`), and the element's span.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct JacobiansGpu {
-    /// A_Q, m².
+    /// A_Q, m²: about the element's end point for Block-diagonal and
+    /// Exact (local moments), about the root for Dense.
     pub a: Mat3Gpu,
     /// B_Q, m.
     pub b: Mat3Gpu,
+    /// End point minus start point, m (zero for Dense).
+    pub span: [f32; 4],
 }
 
 /// An element's own sums (WGSL `Own`).
@@ -175,7 +178,7 @@ pub mod size_asserts {
     const _: () = assert!(std::mem::size_of::<ElementConstGpu>() == 32);
     const _: () = assert!(std::mem::size_of::<RootPoseGpu>() == 64);
     const _: () = assert!(std::mem::size_of::<FrameGpu>() == 128);
-    const _: () = assert!(std::mem::size_of::<JacobiansGpu>() == 96);
+    const _: () = assert!(std::mem::size_of::<JacobiansGpu>() == 112);
     const _: () = assert!(std::mem::size_of::<OwnGpu>() == 160);
     const _: () = assert!(std::mem::size_of::<BeyondGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<OffDiagonalGpu>() == 96);

@@ -4,11 +4,12 @@
 //! ([`crate::batch`], at width 1). The parity tests run a step both ways and
 //! compare; a twin is also the reference when a kernel is changed.
 
-use crate::batch::exact::{Elimination, step_exact};
-use crate::batch::forward::{FrameState, advance, own_sums};
+use crate::batch::contact::NoContact;
+use crate::batch::exact::{Elimination, step_exact_with};
+use crate::batch::forward::{FrameState, advance_local, own_sums};
 use crate::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
-use crate::batch::vec::V3;
+use crate::batch::vec::{M3, V3};
 
 use super::layout::{
     BeyondGpu, ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu, m3, m4, v3,
@@ -87,7 +88,9 @@ pub(crate) fn frame_of(f: &FrameGpu) -> FrameState<f32> {
     }
 }
 
-/// Twin of `stage_frames`: per strand, the frame chain and A_Q, B_Q.
+/// Twin of `stage_frames`: per strand, the frame chain and A_Q (about
+/// each element's end point), B_Q and the span (local moments, as
+/// [`crate::batch::forward::forward_with`]).
 pub fn stage_frames(
     params: &ParamsGpu,
     elements: &[ElementConstGpu],
@@ -96,6 +99,20 @@ pub fn stage_frames(
     v: &[[f32; 4]],
     frames: &mut [FrameGpu],
     jacobians: &mut [JacobiansGpu],
+) {
+    frame_chain(params, elements, roots, (q, v), frames, jacobians, true);
+}
+
+/// The frame chain of `stage_frames`, with A_Q about each element's end
+/// point and its span (`local`), or about the root and a zero span (Dense).
+pub(crate) fn frame_chain(
+    params: &ParamsGpu,
+    elements: &[ElementConstGpu],
+    roots: &[RootPoseGpu],
+    (q, v): (&[[f32; 4]], &[[f32; 4]]),
+    frames: &mut [FrameGpu],
+    jacobians: &mut [JacobiansGpu],
+    local: bool,
 ) {
     let n = params.elements as usize;
     for (strand, pose) in roots.iter().enumerate() {
@@ -110,17 +127,28 @@ pub fn stage_frames(
                 point_velocity: v4(s.point_velocity),
                 point_acceleration: v4(s.point_acceleration),
             };
-            let (next, a, b) = advance(&s, element.stiffness_length[3], v3(q[i]), v3(v[i]));
-            jacobians[i] = JacobiansGpu {
-                a: m4(&a),
-                b: m4(&b),
+            let (next, a, b, span) =
+                advance_local(&s, element.stiffness_length[3], v3(q[i]), v3(v[i]));
+            jacobians[i] = if local {
+                JacobiansGpu {
+                    a: m4(&a),
+                    b: m4(&b),
+                    span: v4(span),
+                }
+            } else {
+                JacobiansGpu {
+                    a: m4(&(a + M3::cross_cols(next.point_m, &b))),
+                    b: m4(&b),
+                    span: [0.0; 4],
+                }
             };
             s = next;
         }
     }
 }
 
-/// Twin of `stage_elements`: per element, its own sums.
+/// Twin of `stage_elements`: per element, its own sums, about its start
+/// point (local moments).
 pub fn stage_elements(
     params: &ParamsGpu,
     elements: &[ElementConstGpu],
@@ -132,14 +160,11 @@ pub fn stage_elements(
     let (model, env) = model_of(params, elements);
     let n = params.elements as usize;
     for (i, out) in own.iter_mut().enumerate() {
-        let el = own_sums::<f32, false>(
-            &model,
-            &env,
-            i % n,
-            &frame_of(&frames[i]),
-            v3(q[i]),
-            v3(v[i]),
-        );
+        let start = FrameState {
+            point_m: V3::zero(),
+            ..frame_of(&frames[i])
+        };
+        let el = own_sums::<f32, false>(&model, &env, i % n, &start, v3(q[i]), v3(v[i]));
         *out = own_of(&el);
     }
 }
@@ -162,6 +187,7 @@ pub(crate) fn element_of(jac: &JacobiansGpu, own: &OwnGpu) -> ElementData<f32> {
     ElementData {
         a: m3(&jac.a),
         b: m3(&jac.b),
+        span: v3(jac.span),
         own_mass_block: m3(&own.mass_block),
         own_force: v3(own.force),
         mass: own.moment[3],
@@ -173,10 +199,20 @@ pub(crate) fn element_of(jac: &JacobiansGpu, own: &OwnGpu) -> ElementData<f32> {
     }
 }
 
-/// Twin of `stage_suffix`: per strand, the sums past each element.
-pub fn stage_suffix(params: &ParamsGpu, own: &[OwnGpu], beyond: &mut [BeyondGpu]) {
+/// Twin of `stage_suffix`: per strand, the sums past each element, about
+/// its end point (moved by −span from element to element).
+pub fn stage_suffix(
+    params: &ParamsGpu,
+    jacobians: &[JacobiansGpu],
+    own: &[OwnGpu],
+    beyond: &mut [BeyondGpu],
+) {
     let n = params.elements as usize;
-    for (own, beyond) in own.chunks(n).zip(beyond.chunks_mut(n)) {
+    for ((own, beyond), jacobians) in own
+        .chunks(n)
+        .zip(beyond.chunks_mut(n))
+        .zip(jacobians.chunks(n))
+    {
         let mut b = Beyond::<f32>::zero();
         for e in (0..n).rev() {
             let mut moment = v4(b.first_moment);
@@ -187,6 +223,7 @@ pub fn stage_suffix(params: &ParamsGpu, own: &[OwnGpu], beyond: &mut [BeyondGpu]
                 force: v4(b.force),
                 torque: v4(b.torque),
             };
+            b.shift(-v3(jacobians[e].span));
             b.add(&element_of(&bytemuck::Zeroable::zeroed(), &own[e]));
         }
     }
@@ -253,7 +290,7 @@ pub fn stage_exact(
         let range = strand * n..(strand + 1) * n;
         let mut qs: Vec<V3<f32>> = q[range.clone()].iter().map(|x| v3(*x)).collect();
         let mut vs: Vec<V3<f32>> = v[range.clone()].iter().map(|x| v3(*x)).collect();
-        step_exact(
+        step_exact_with::<f32, true, _>(
             &model,
             &env,
             &root,
@@ -261,6 +298,7 @@ pub fn stage_exact(
             &mut vs,
             &mut scratch,
             &mut elimination,
+            &mut NoContact,
         );
         for (k, i) in range.enumerate() {
             q[i] = v4(qs[k]);

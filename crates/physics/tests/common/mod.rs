@@ -148,3 +148,27 @@ pub fn curl_on_oblique_root() -> (StrandParams, RigidMotion) {
     );
     (p, root)
 }
+
+/// `straight.ron`'s crown strand: 30 cm, 12 graded elements, 40 µm, the
+/// example's moduli; and a root on a 10 cm head growing out of the vertical
+/// plane through its centre, where f32 moments about the root failed
+/// (`examples/f32_precision.rs`).
+#[allow(dead_code, reason = "not every test binary uses it")]
+pub fn straight_strand_out_of_plane() -> (StrandParams, RootPose) {
+    let params = StrandParams {
+        length_m: 0.3,
+        elements: 12,
+        layout: helixhair_physics::params::ElementLayout::Graded {
+            tip_to_root_ratio: 3.0,
+        },
+        radius_m: 40e-6,
+        youngs_modulus_pa: 3.9e9,
+        shear_modulus_pa: 0.9e9,
+        ..StrandParams::default()
+    };
+    let direction = DVec3::new(0.7698, 0.5736, 0.2802);
+    (
+        params,
+        RootPose::from_direction(direction * 0.1, direction, DVec3::Y),
+    )
+}
