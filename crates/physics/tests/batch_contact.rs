@@ -18,8 +18,8 @@ use helixhair_physics::batch::suffix::{Beyond, element_terms};
 use helixhair_physics::batch::vec::V3;
 use helixhair_physics::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use helixhair_physics::{
-    Bounce, ElementLayout, HairSystem, HeadTrajectory, Method, Oscillation, RigidMotion, RootPose,
-    SimSettings, StrandParams,
+    Bounce, ElementLayout, HairSystem, HeadTrajectory, Method, RigidMotion, RootPose, SimSettings,
+    StrandParams,
 };
 
 /// The generalized force of a point force at an end point, f32 sweep
@@ -290,14 +290,6 @@ fn scalp_roots() -> Vec<RootPose> {
             RootPose::from_direction(normal * RADIUS_M, grow, DVec3::Y)
         })
         .collect()
-}
-
-fn shake() -> Oscillation {
-    Oscillation {
-        axis: DVec3::new(0.2, 1.0, 0.1),
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    }
 }
 
 fn states(system: &BatchSystem) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {

@@ -3,12 +3,10 @@
 
 mod common;
 
-use common::Rng;
+use common::{Rng, shake};
 use glam::DVec3;
 use helixhair_physics::batch::BatchSystem;
-use helixhair_physics::{
-    HairSystem, Method, NaturalShape, Oscillation, RootPose, SimSettings, StrandParams,
-};
+use helixhair_physics::{HairSystem, Method, NaturalShape, RootPose, SimSettings, StrandParams};
 
 /// One step from the same random state (strains ±5 m⁻¹ off the rest shape,
 /// rates ±20 m⁻¹/s, a head shake): max |v_f32 − v_f64| over max |v_f64|.
@@ -28,14 +26,6 @@ fn roots(count: usize, rng: &mut Rng) -> Vec<RootPose> {
             RootPose::from_direction(position, direction, DVec3::Y)
         })
         .collect()
-}
-
-fn shake() -> Oscillation {
-    Oscillation {
-        axis: DVec3::new(0.2, 1.0, 0.1),
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    }
 }
 
 fn systems(

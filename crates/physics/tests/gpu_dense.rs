@@ -10,7 +10,8 @@
 
 mod common;
 
-use common::Rng;
+use common::gpu::context;
+use common::{Rng, curl, outward_roots as roots, shake};
 use glam::DVec3;
 use helixhair_physics::batch::dense::{DenseScratch, step_dense};
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
@@ -22,8 +23,8 @@ use helixhair_physics::gpu::twin::stage_exact;
 use helixhair_physics::gpu::{GpuContext, GpuError, GpuSystem, Stepper};
 use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::{
-    HairSystem, HeadTrajectory, Method, NaturalShape, Oscillation, RigidMotion, RootPose,
-    SimSettings, StrandModel, StrandParams,
+    HairSystem, HeadTrajectory, Method, RigidMotion, RootPose, SimSettings, StrandModel,
+    StrandParams,
 };
 
 /// GPU Dense against its CPU twins over [`SHAKE_STEPS`] steps of a head
@@ -65,48 +66,6 @@ const DENSE_EQUALS_EXACT_TOL: f32 = 5e-5;
 /// and Exact paths assemble their blocks from the same sums; the step they
 /// give is pinned by `F64_ONE_STEP_TOL`.
 const MASS_MATRIX_TOL: f64 = 1e-4;
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new_headless() {
-        Ok(ctx) => Some(ctx),
-        Err(e) if std::env::var("HELIXHAIR_REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("HELIXHAIR_REQUIRE_GPU=1 but {e}")
-        }
-        Err(e) => {
-            eprintln!("skipping GPU test: {e}");
-            None
-        }
-    }
-}
-
-fn roots(count: usize) -> Vec<RootPose> {
-    let mut rng = Rng::new(9);
-    (0..count)
-        .map(|_| {
-            let p = rng.vec3(0.1);
-            RootPose::from_direction(p, p.normalize() + rng.vec3(0.3), DVec3::Y)
-        })
-        .collect()
-}
-
-fn curl(n: usize) -> StrandParams {
-    StrandParams {
-        elements: n,
-        natural_shape: NaturalShape::Helix {
-            radius_m: 0.02,
-            step_m: 0.05,
-        },
-        ..StrandParams::default()
-    }
-}
-
-fn shake() -> Oscillation {
-    Oscillation {
-        axis: DVec3::new(0.2, 1.0, 0.1),
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    }
-}
 
 fn settings(method: Method, points: usize) -> SimSettings {
     SimSettings {

@@ -7,7 +7,8 @@
 
 mod common;
 
-use common::Rng;
+use common::gpu::context;
+use common::{Rng, curl, outward_roots as roots, shake};
 use glam::DVec3;
 use helixhair_physics::gpu::kernels::GpuState;
 use helixhair_physics::gpu::layout::{BeyondGpu, FrameGpu, JacobiansGpu, OwnGpu};
@@ -15,9 +16,7 @@ use helixhair_physics::gpu::twin::{
     stage_elements, stage_exact, stage_frames, stage_solve, stage_suffix,
 };
 use helixhair_physics::gpu::{GpuContext, GpuSystem};
-use helixhair_physics::{
-    HeadTrajectory, Method, NaturalShape, Oscillation, RootPose, SimSettings, StrandParams,
-};
+use helixhair_physics::{HeadTrajectory, Method, SimSettings};
 
 /// GPU against CPU twin after one step (Exact) or one frame of 10
 /// substeps (Block-diagonal) from a random state: max |Δ| over max |value|,
@@ -27,48 +26,6 @@ const ONE_STEP_TOL: f32 = 5e-5;
 /// After 30 steps of a head shake, the same measure. Measured on lavapipe:
 /// Block-diagonal 3.3e-7, Exact 2.2e-6.
 const TRAJECTORY_TOL: f32 = 5e-5;
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new_headless() {
-        Ok(ctx) => Some(ctx),
-        Err(e) if std::env::var("HELIXHAIR_REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("HELIXHAIR_REQUIRE_GPU=1 but {e}")
-        }
-        Err(e) => {
-            eprintln!("skipping GPU test: {e}");
-            None
-        }
-    }
-}
-
-fn roots(count: usize) -> Vec<RootPose> {
-    let mut rng = Rng::new(9);
-    (0..count)
-        .map(|_| {
-            let p = rng.vec3(0.1);
-            RootPose::from_direction(p, p.normalize() + rng.vec3(0.3), DVec3::Y)
-        })
-        .collect()
-}
-
-fn curl(n: usize) -> StrandParams {
-    StrandParams {
-        elements: n,
-        natural_shape: NaturalShape::Helix {
-            radius_m: 0.02,
-            step_m: 0.05,
-        },
-        ..StrandParams::default()
-    }
-}
-
-fn shake() -> Oscillation {
-    Oscillation {
-        axis: DVec3::new(0.2, 1.0, 0.1),
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    }
-}
 
 /// Runs `steps` steps (Block-diagonal: 10 substeps a frame, so a multiple
 /// of 10) on the GPU and on the twins from a random start; returns the

@@ -8,21 +8,9 @@ use common::*;
 use glam::DVec3;
 use helixhair_physics::guard::speed_bound_m_per_s;
 use helixhair_physics::{
-    Guard, GuardAction, GuardCause, HairSystem, Method, NaturalShape, Oscillation, RootPose,
-    SimSettings, StrandParams,
+    Guard, GuardAction, GuardCause, HairSystem, Method, Oscillation, RootPose, SimSettings,
+    StrandParams,
 };
-
-/// The hanging curl on which Block-diagonal blows up at 60 Hz from N = 8.
-fn hanging_curl(n: usize) -> StrandParams {
-    let mut p = params(0.2, n);
-    p.natural_shape = NaturalShape::Helix {
-        radius_m: 0.02,
-        step_m: 0.05,
-    };
-    p.internal_friction = 2e-10;
-    p.air_drag = 1e-5;
-    p
-}
 
 fn system(method: Method, p: &StrandParams, guard: Option<Guard>) -> HairSystem {
     let settings = SimSettings {

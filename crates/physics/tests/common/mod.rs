@@ -1,6 +1,8 @@
 //! Builders shared by the physics tests.
 #![allow(dead_code, missing_docs)] // each test file uses a different subset
 
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod sphere;
 
 use std::sync::Arc;
@@ -8,7 +10,7 @@ use std::sync::Arc;
 use glam::{DMat3, DVec3};
 use helixhair_physics::reconstruct::{Kinematics, reconstruct};
 use helixhair_physics::{
-    Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
+    Method, NaturalShape, Oscillation, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
 };
 
 /// A small deterministic generator (xorshift) so tests need no rand crate.
@@ -153,7 +155,6 @@ pub fn curl_on_oblique_root() -> (StrandParams, RigidMotion) {
 /// example's moduli; and a root on a 10 cm head growing out of the vertical
 /// plane through its centre, where f32 moments about the root failed
 /// (`examples/f32_precision.rs`).
-#[allow(dead_code, reason = "not every test binary uses it")]
 pub fn straight_strand_out_of_plane() -> (StrandParams, RootPose) {
     let params = StrandParams {
         length_m: 0.3,
@@ -171,4 +172,51 @@ pub fn straight_strand_out_of_plane() -> (StrandParams, RootPose) {
         params,
         RootPose::from_direction(direction * 0.1, direction, DVec3::Y),
     )
+}
+
+/// The hanging curl on which Block-diagonal blows up at 60 Hz from N = 8
+/// (`guards.rs`): 20 cm, a 2 cm helix, little friction.
+pub fn hanging_curl(n: usize) -> StrandParams {
+    let mut p = params(0.2, n);
+    p.natural_shape = NaturalShape::Helix {
+        radius_m: 0.02,
+        step_m: 0.05,
+    };
+    p.internal_friction = 2e-10;
+    p.air_drag = 1e-5;
+    p
+}
+
+/// Default strands with N elements curled into a 2 cm helix of 5 cm step.
+pub fn curl(n: usize) -> StrandParams {
+    StrandParams {
+        elements: n,
+        natural_shape: NaturalShape::Helix {
+            radius_m: 0.02,
+            step_m: 0.05,
+        },
+        ..StrandParams::default()
+    }
+}
+
+/// The head shake of the parity tests: 0.5 rad at 1.5 Hz about a tilted
+/// vertical axis.
+pub fn shake() -> Oscillation {
+    Oscillation {
+        axis: DVec3::new(0.2, 1.0, 0.1),
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    }
+}
+
+/// `count` roots within 10 cm of the head's centre, growing roughly
+/// outwards (seed 9).
+pub fn outward_roots(count: usize) -> Vec<RootPose> {
+    let mut rng = Rng::new(9);
+    (0..count)
+        .map(|_| {
+            let p = rng.vec3(0.1);
+            RootPose::from_direction(p, p.normalize() + rng.vec3(0.3), DVec3::Y)
+        })
+        .collect()
 }
