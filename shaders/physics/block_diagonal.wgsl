@@ -20,22 +20,6 @@
 @group(0) @binding(7) var<storage, read_write> own: array<Own>;
 @group(0) @binding(8) var<storage, read_write> beyond: array<Beyond>;
 
-fn flat_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
-    return id.x + id.y * groups.x * 64u;
-}
-
-fn load_frame(i: u32) -> FrameState {
-    let f = frames[i];
-    var s: FrameState;
-    s.frame = f.frame;
-    s.w = f.angular_velocity.xyz;
-    s.alpha = f.angular_acceleration.xyz;
-    s.p = f.point_m.xyz;
-    s.pv = f.point_velocity.xyz;
-    s.pa = f.point_acceleration.xyz;
-    return s;
-}
-
 @compute @workgroup_size(64)
 fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let strand = flat_index(id, groups);
@@ -46,8 +30,7 @@ fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
     var s = root_state(strand);
     for (var e = 0u; e < n; e++) {
         let i = strand * n + e;
-        frames[i] = Frame(s.frame, vec4<f32>(s.w, 0.0), vec4<f32>(s.alpha, 0.0), vec4<f32>(s.p, 0.0),
-            vec4<f32>(s.pv, 0.0), vec4<f32>(s.pa, 0.0));
+        frames[i] = frame_record(s);
         let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
         jacobians[i] = Jacobians(adv.a_local, adv.b, vec4<f32>(adv.span, 0.0));
         s = adv.next;
@@ -62,7 +45,7 @@ fn stage_elements(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     }
     let e = i % params.elements;
     // Moments about the element's start (local moments).
-    var s = load_frame(i);
+    var s = frame_state(frames[i]);
     s.p = vec3<f32>(0.0);
     own[i] = own_sums(e, s, q[i].xyz, v[i].xyz, false).own;
 }

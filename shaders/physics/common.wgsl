@@ -234,6 +234,29 @@ struct FrameState {
 }
 
 // p + R h with its velocity and acceleration: returns (r, ṙ, r̈) as columns.
+// The flat invocation index of a 2D dispatch of 64-wide workgroups (the
+// host splits large counts over y).
+fn flat_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
+    return id.x + id.y * groups.x * 64u;
+}
+
+// A stored Frame as the sweep's FrameState, and back.
+fn frame_state(f: Frame) -> FrameState {
+    var s: FrameState;
+    s.frame = f.frame;
+    s.w = f.angular_velocity.xyz;
+    s.alpha = f.angular_acceleration.xyz;
+    s.p = f.point_m.xyz;
+    s.pv = f.point_velocity.xyz;
+    s.pa = f.point_acceleration.xyz;
+    return s;
+}
+
+fn frame_record(s: FrameState) -> Frame {
+    return Frame(s.frame, vec4<f32>(s.w, 0.0), vec4<f32>(s.alpha, 0.0), vec4<f32>(s.p, 0.0),
+        vec4<f32>(s.pv, 0.0), vec4<f32>(s.pa, 0.0));
+}
+
 fn carry(s: FrameState, h: vec3<f32>, h_dot: vec3<f32>, h_ddot: vec3<f32>) -> mat3x3<f32> {
     let d = s.frame * h;
     let rel_v = s.frame * h_dot;

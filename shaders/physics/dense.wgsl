@@ -50,22 +50,6 @@ var<workgroup> column_y: array<mat3x3<f32>, MAX_DENSE_ELEMENTS>;
 var<workgroup> solution: array<f32, 192>;
 var<workgroup> delta_v: array<f32, 192>;
 
-fn flat_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
-    return id.x + id.y * groups.x * 64u;
-}
-
-fn load_frame(i: u32) -> FrameState {
-    let f = frames[i];
-    var s: FrameState;
-    s.frame = f.frame;
-    s.w = f.angular_velocity.xyz;
-    s.alpha = f.angular_acceleration.xyz;
-    s.p = f.point_m.xyz;
-    s.pv = f.point_velocity.xyz;
-    s.pa = f.point_acceleration.xyz;
-    return s;
-}
-
 @compute @workgroup_size(64)
 fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let strand = flat_index(id, groups);
@@ -76,8 +60,7 @@ fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
     var s = root_state(strand);
     for (var e = 0u; e < n; e++) {
         let i = strand * n + e;
-        frames[i] = Frame(s.frame, vec4<f32>(s.w, 0.0), vec4<f32>(s.alpha, 0.0), vec4<f32>(s.p, 0.0),
-            vec4<f32>(s.pv, 0.0), vec4<f32>(s.pa, 0.0));
+        frames[i] = frame_record(s);
         let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
         jacobians[i] = Jacobians(adv.a, adv.b, vec4<f32>(0.0));
         s = adv.next;
@@ -91,7 +74,7 @@ fn stage_elements(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
         return;
     }
     let e = i % params.elements;
-    let sums = own_sums(e, load_frame(i), q[i].xyz, v[i].xyz, true);
+    let sums = own_sums(e, frame_state(frames[i]), q[i].xyz, v[i].xyz, true);
     own[i] = DenseOwn(sums.own, sums.u, sums.v);
 }
 

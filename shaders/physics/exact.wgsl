@@ -33,7 +33,7 @@ fn mul_mat_t(a: mat3x3<f32>, b: mat3x3<f32>) -> mat3x3<f32> {
 
 @compute @workgroup_size(64)
 fn stage_exact(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let strand = id.x + id.y * groups.x * 64u;
+    let strand = flat_index(id, groups);
     if strand >= params.strand_count {
         return;
     }

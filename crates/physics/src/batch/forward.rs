@@ -84,8 +84,15 @@ pub fn advance<T: Real>(
     k_dot: V3<T>,
 ) -> (FrameState<T>, M3<T>, M3<T>) {
     let (next, a_local, b, _) = advance_local(s, length_m, k, k_dot);
-    let a = a_local + M3::cross_cols(next.point_m, &b);
-    (next, a, b)
+    (next, root_jacobian(a_local, next.point_m, &b), b)
+}
+
+/// A_Q about the root from A_Q about the element's end point `end_m`
+/// (relative to the root): moving the origin back by p_end gives
+/// A = A_end + [p_end]×B.
+#[inline(always)]
+pub fn root_jacobian<T: Real>(a_local: M3<T>, end_m: V3<T>, b: &M3<T>) -> M3<T> {
+    a_local + M3::cross_cols(end_m, b)
 }
 
 /// [`advance`] with A_Q taken about the element's end point instead of the
@@ -260,24 +267,24 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
 ) {
     let mut s = FrameState::at_root(root);
     for (e, el) in out.iter_mut().enumerate() {
-        if LOCAL {
-            let start = FrameState {
+        // Own moments about the element's start (LOCAL) or the root.
+        let moments_origin = if LOCAL {
+            FrameState {
                 point_m: V3::zero(),
                 ..s
-            };
-            own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &start, q[e], v[e], el);
-            let (next, a, b, span) = advance_local(&s, model.lengths_m[e], q[e], v[e]);
-            el.a = a;
-            el.b = b;
-            el.span = span;
-            end_force.at_end::<LOCAL>(e, &next, el);
-            s = next;
-            continue;
-        }
-        own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &s, q[e], v[e], el);
-        let (next, a, b) = advance(&s, model.lengths_m[e], q[e], v[e]);
-        el.a = a;
+            }
+        } else {
+            s
+        };
+        own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &moments_origin, q[e], v[e], el);
+        let (next, a_local, b, span) = advance_local(&s, model.lengths_m[e], q[e], v[e]);
+        el.a = if LOCAL {
+            a_local
+        } else {
+            root_jacobian(a_local, next.point_m, &b)
+        };
         el.b = b;
+        el.span = span;
         end_force.at_end::<LOCAL>(e, &next, el);
         s = next;
     }

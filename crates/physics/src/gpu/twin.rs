@@ -6,10 +6,10 @@
 
 use crate::batch::contact::NoContact;
 use crate::batch::exact::{Elimination, step_exact_with};
-use crate::batch::forward::{FrameState, advance_local, own_sums};
+use crate::batch::forward::{FrameState, advance_local, own_sums, root_jacobian};
 use crate::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
-use crate::batch::vec::{M3, V3};
+use crate::batch::vec::V3;
 
 use super::layout::{
     BeyondGpu, ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu, m3, m4, v3,
@@ -137,7 +137,7 @@ pub(crate) fn frame_chain(
                 }
             } else {
                 JacobiansGpu {
-                    a: m4(&(a + M3::cross_cols(next.point_m, &b))),
+                    a: m4(&root_jacobian(a, next.point_m, &b)),
                     b: m4(&b),
                     span: [0.0; 4],
                 }
