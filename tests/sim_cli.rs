@@ -427,11 +427,27 @@ const ENGINE_ENERGY_TOL_STRAIGHT: f64 = 1e-3;
 
 #[test]
 fn the_batch_engine_matches_the_reference_after_one_second() {
-    for style in [
-        "assets/styles/straight.ron",
-        "assets/styles/wavy.ron",
-        "assets/styles/curly.ron",
-        "assets/styles/coily.ron",
+    for (style, tip_tol, energy_tol) in [
+        (
+            "assets/styles/straight.ron",
+            ENGINE_TIP_TOL_STRAIGHT_M,
+            ENGINE_ENERGY_TOL_STRAIGHT,
+        ),
+        (
+            "assets/styles/wavy.ron",
+            ENGINE_TIP_TOL_STRAIGHT_M,
+            ENGINE_ENERGY_TOL_STRAIGHT,
+        ),
+        (
+            "assets/styles/curly.ron",
+            ENGINE_TIP_TOL_M,
+            ENGINE_ENERGY_TOL,
+        ),
+        (
+            "assets/styles/coily.ron",
+            ENGINE_TIP_TOL_M,
+            ENGINE_ENERGY_TOL,
+        ),
     ] {
         let common = ["--style", style, "--steps", "60"];
         let mut batch_args = common.to_vec();
@@ -463,12 +479,6 @@ fn the_batch_engine_matches_the_reference_after_one_second() {
             worst = worst.max(distance(*tips.0, *tips.1));
         }
         println!("{style}: largest tip distance {worst:.2e} m");
-        let straight = style.contains("straight") || style.contains("wavy");
-        let (tip_tol, energy_tol) = if straight {
-            (ENGINE_TIP_TOL_STRAIGHT_M, ENGINE_ENERGY_TOL_STRAIGHT)
-        } else {
-            (ENGINE_TIP_TOL_M, ENGINE_ENERGY_TOL)
-        };
         assert!(worst < tip_tol, "{style}: {worst:.2e} m");
         // The energies (the batch engine's rebuilt in f64) agree too.
         let (ea, eb) = (&batch["energies"], &reference["energies"]);
