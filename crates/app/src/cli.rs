@@ -8,12 +8,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
-use helixhair_physics::Method;
 use helixhair_physics::settings::MAX_ITERATIONS;
+use helixhair_physics::{Method, StepScheme};
 
 use crate::atomic_write::write_atomically;
 use crate::bench::{BenchArgs, run_bench};
 use crate::engine::EngineKind;
+use crate::head_clip::Clip;
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;
@@ -74,6 +75,16 @@ pub struct SimArgs {
     /// Frame time step in seconds, instead of the style's (1e-6 to 0.1).
     #[arg(long, value_name = "SECS", allow_negative_numbers = true)]
     pub dt: Option<f64>,
+    /// How the reference engine's step treats the centrifugal and Coriolis
+    /// terms, instead of the style's `sim.scheme`: implicit (the default:
+    /// in the step matrix) or explicit (frozen at the step's start, as the
+    /// batch engine and the GPU kernels step; for comparisons).
+    #[arg(long, value_name = "TERMS", value_parser = parse_velocity_terms)]
+    pub velocity_terms: Option<StepScheme>,
+    /// Move the head with one of the window's clips (nod, shake, turn or
+    /// jerk) from time zero, then hold it still, instead of a still head.
+    #[arg(long, value_name = "CLIP", value_parser = parse_clip)]
+    pub play: Option<Clip>,
     /// Accuracy target, instead of the style's `accuracy_target`: the
     /// tip-position RMS error allowed as a fraction of strand length (1e-4
     /// to 1); each group's solver and element count are then chosen from
@@ -88,6 +99,28 @@ pub struct SimArgs {
     /// needed; `-` writes it to stdout, and the summary then goes to stderr.
     #[arg(long, value_name = "OUT")]
     pub json: Option<PathBuf>,
+}
+
+/// Parses `--play`: a clip's name.
+pub fn parse_clip(name: &str) -> Result<Clip, String> {
+    Clip::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Clip::ALL.iter().map(|c| c.name()).collect();
+        format!(
+            "unknown clip `{name}`; expected one of {}",
+            names.join(", ")
+        )
+    })
+}
+
+/// Parses `--velocity-terms`: `implicit` or `explicit`.
+pub fn parse_velocity_terms(name: &str) -> Result<StepScheme, String> {
+    match name {
+        "implicit" => Ok(StepScheme::default()),
+        "explicit" => Ok(StepScheme::VelocityExplicit),
+        _ => Err(format!(
+            "unknown velocity terms `{name}`; expected implicit or explicit"
+        )),
+    }
 }
 
 /// Parses a solver name as [`Method::label`] spells it (`exact`,
@@ -139,9 +172,13 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         method: args.method,
         dt_secs: args.dt,
         accuracy_target: args.accuracy,
+        scheme: args.velocity_terms,
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;
+    if let Some(clip) = args.play {
+        sim.play(clip);
+    }
     let steps = usize::try_from(args.steps).context("--steps does not fit this machine")?;
     let per_step_secs = sim
         .run(steps)

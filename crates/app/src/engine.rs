@@ -357,7 +357,13 @@ mod tests {
     }
 
     fn engine(kind: EngineKind) -> Engine {
-        let mut engine = Engine::new(kind, SimSettings::default()).expect("valid settings");
+        // The batch engine steps velocity-explicit (docs/gpu.md): the
+        // reference runs the same scheme for the comparison.
+        let settings = SimSettings {
+            scheme: helixhair_physics::StepScheme::VelocityExplicit,
+            ..SimSettings::default()
+        };
+        let mut engine = Engine::new(kind, settings).expect("valid settings");
         engine
             .add_group(&StrandParams::default(), &roots())
             .expect("valid params");

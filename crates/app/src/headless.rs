@@ -24,7 +24,7 @@
 use std::ops::Range;
 use std::time::Instant;
 
-use helixhair_physics::{GuardEvent, HairSystem, Method, ParamError, RigidMotion};
+use helixhair_physics::{GuardEvent, HairSystem, Method, ParamError, RigidMotion, StepScheme};
 use thiserror::Error;
 
 use helixhair_render::head_generate::default_head;
@@ -34,6 +34,7 @@ use crate::engine::{Engine, EngineKind};
 use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
 use crate::groom::{grow_scalp_roots, needs_head};
+use crate::head_clip::{Clip, ClipTrajectory};
 use crate::style::Style;
 use crate::style_error::StyleIssue;
 use crate::style_validate::{check_accuracy_target, param_issue};
@@ -50,6 +51,9 @@ pub struct SimOverrides {
     /// Accuracy target instead of the style's `accuracy_target`: choose
     /// solver and element counts (see [`crate::auto_choice`]).
     pub accuracy_target: Option<f64>,
+    /// How the reference engine's step treats the velocity terms, instead
+    /// of the style's `sim.scheme` (`--velocity-terms`).
+    pub scheme: Option<StepScheme>,
 }
 
 /// Guard events kept for the report; later ones are only counted.
@@ -114,12 +118,19 @@ pub struct HeadlessSim {
     group_names: Vec<String>,
     group_of_strand: Vec<usize>,
     head: RigidMotion,
+    clip: Option<ClipTrajectory>,
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
     batch_resets: Vec<String>,
 }
 
 impl HeadlessSim {
+    /// Plays `clip` on the head from time zero, then holds the head still
+    /// (the window's clips; `helixhair sim --play`).
+    pub fn play(&mut self, clip: Clip) {
+        self.clip = Some(ClipTrajectory(clip));
+    }
+
     /// Builds the hair system of `style`, with `overrides` applied to its
     /// settings (and checked).
     /// A style that places roots on the scalp has them grown on the
@@ -135,6 +146,9 @@ impl HeadlessSim {
         let mut settings = style.sim.clone();
         if let Some(method) = overrides.method {
             settings.method = method;
+        }
+        if let Some(scheme) = overrides.scheme {
+            settings.scheme = scheme;
         }
         if let Some(dt_secs) = overrides.dt_secs {
             settings.dt_secs = dt_secs;
@@ -225,6 +239,7 @@ impl HeadlessSim {
             group_names: style.groups.iter().map(|g| g.name.clone()).collect(),
             group_of_strand,
             head: RigidMotion::default(),
+            clip: None,
             choices,
             guard_events: Vec::new(),
             batch_resets: Vec::new(),
@@ -274,7 +289,10 @@ impl HeadlessSim {
     /// Advances one frame; returns its wall time in seconds.
     pub fn step(&mut self) -> f64 {
         let start = Instant::now();
-        self.engine.step_frame(&self.head);
+        match &self.clip {
+            Some(clip) => self.engine.step_frame(clip),
+            None => self.engine.step_frame(&self.head),
+        }
         let secs = start.elapsed().as_secs_f64();
         if let Some(reference) = self.engine.reference() {
             let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
@@ -293,6 +311,16 @@ impl HeadlessSim {
                 )
             });
             self.batch_resets.extend(resets.collect::<Vec<_>>());
+            let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
+            let pins = batch.last_guard_pins().iter().take(room).map(|&strand| {
+                format!(
+                    "strand {strand} (group {}) kept failing the guard's checks and at t = \
+                     {time_secs:.4} s was pinned at rest in its natural shape; it is no longer \
+                     simulated (try more substeps or the Exact solver)",
+                    self.group_name(strand)
+                )
+            });
+            self.batch_resets.extend(pins.collect::<Vec<_>>());
         }
         secs
     }

@@ -41,6 +41,7 @@ pub mod error_model;
 pub mod field_path;
 pub mod groom;
 pub mod guide_curves;
+pub mod head_clip;
 pub mod headless;
 pub mod render_cmd;
 pub mod sim_report;

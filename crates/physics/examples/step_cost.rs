@@ -5,7 +5,8 @@
 //!
 //! Each (method, N) pair runs 15 batches of steps after a warm-up and
 //! prints the median seconds per step, with the spread (min and max batch),
-//! as CSV on stdout. Compare methods as ratios taken from one run: the
+//! as CSV on stdout, for the velocity-explicit step and the default
+//! velocity-implicit one (`quick`: N = 10 and 20 only). Compare methods as ratios taken from one run: the
 //! machine is shared and absolute times drift.
 
 use std::sync::Arc;
@@ -13,7 +14,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 use helixhair_physics::{
-    Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
+    Method, NaturalShape, RigidMotion, RootPose, StepScheme, Strand, StrandModel, StrandParams,
 };
 
 const BATCHES: usize = 15;
@@ -28,9 +29,21 @@ fn main() {
             step_m: 0.05,
         }
     };
-    println!("method,elements,median_secs_per_step,min_secs_per_step,max_secs_per_step");
-    for n in [5usize, 10, 20, 50, 100] {
-        for method in Method::ALL {
+    let sizes: &[usize] = if std::env::args().any(|a| a == "quick") {
+        &[10, 20]
+    } else {
+        &[5, 10, 20, 50, 100]
+    };
+    println!("method,scheme,elements,median_secs_per_step,min_secs_per_step,max_secs_per_step");
+    for &n in sizes {
+        for (method, scheme) in Method::ALL.into_iter().flat_map(|m| {
+            [
+                StepScheme::VelocityExplicit,
+                StepScheme::VelocityImplicit { corrections: 1 },
+                StepScheme::default(),
+            ]
+            .map(|s| (m, s))
+        }) {
             let params = StrandParams {
                 elements: n,
                 natural_shape: shape.clone(),
@@ -39,6 +52,7 @@ fn main() {
             let model = Arc::new(StrandModel::new(&params, 4).expect("valid parameters"));
             let root = RootPose::from_direction(DVec3::ZERO, DVec3::X, DVec3::Y);
             let mut strand = Strand::new(model, root, method);
+            strand.set_scheme(scheme);
             let motion = RigidMotion::default();
             let gravity = DVec3::new(0.0, -9.81, 0.0);
             let h = 1.0 / 600.0; // small enough for every method to stay finite
@@ -62,12 +76,20 @@ fn main() {
                 " (non-finite)"
             };
             println!(
-                "{},{n},{:.3e},{:.3e},{:.3e}{finite}",
+                "{},{},{n},{:.3e},{:.3e},{:.3e}{finite}",
                 method.name(),
+                scheme_name(scheme),
                 batches[BATCHES / 2],
                 batches[0],
                 batches[BATCHES - 1]
             );
         }
+    }
+}
+
+fn scheme_name(scheme: StepScheme) -> String {
+    match scheme {
+        StepScheme::VelocityExplicit => "explicit".into(),
+        StepScheme::VelocityImplicit { corrections } => format!("implicit{corrections}"),
     }
 }

@@ -51,8 +51,13 @@ pub fn sample_force(
         f += *extra;
     }
     if let Some(contact) = &inputs.contact {
+        // Implicit contact: the predicted push; its Δv term is in the step
+        // matrix (crate::collision::contact).
         let world = inputs.root.position_m + s.position_m;
-        f += contact.force(world, s.velocity_m_per_s, model.mass_per_length);
+        if let Some(push) = contact.implicit_force(world, s.velocity_m_per_s, model.mass_per_length)
+        {
+            f += push.force_n_per_m;
+        }
     }
     f
 }
@@ -64,6 +69,23 @@ pub fn generalized_forces(
     inputs: &ForceInputs,
     out: &mut [DVec3],
 ) {
+    project_sample_forces(
+        model,
+        kin,
+        |i| sample_force(model, kin, inputs, i) * kin.samples[i].weight_m,
+        out,
+    );
+}
+
+/// Σ_s Jᵀ(s) f_s per element for sample forces `f_s` (N: force per unit
+/// length times the sample's weight), by the two suffix sums: the
+/// projection every generalized force shares.
+pub fn project_sample_forces(
+    model: &StrandModel,
+    kin: &Kinematics,
+    weighted_force: impl Fn(usize) -> DVec3,
+    out: &mut [DVec3],
+) {
     let points = model.quadrature.len();
     let mut force_beyond = DVec3::ZERO;
     let mut torque_beyond = DVec3::ZERO;
@@ -72,7 +94,7 @@ pub fn generalized_forces(
         let mut own = jac.a.transpose() * force_beyond + jac.b.transpose() * torque_beyond;
         for i in e * points..(e + 1) * points {
             let s = &kin.samples[i];
-            let f = sample_force(model, kin, inputs, i) * s.weight_m;
+            let f = weighted_force(i);
             own += s.jacobian.transpose() * f;
             force_beyond += f;
             torque_beyond += s.position_m.cross(f);

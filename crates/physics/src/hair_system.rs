@@ -15,7 +15,8 @@ use rayon::prelude::*;
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::energy::Energies;
 use crate::error::ParamError;
-use crate::guard::{Guard, GuardAction, GuardEvent, GuardState, speed_bound_m_per_s};
+use crate::frame_balance::{MeasureInputs, StrandMeasure};
+use crate::guard::{Guard, GuardAction, GuardEvent, GuardState};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -67,11 +68,12 @@ impl HairSystem {
         let model = Arc::new(StrandModel::new(params, self.settings.quadrature_points)?);
         let start = self.strands.len();
         let method = self.settings.method;
-        self.strands.extend(
-            roots
-                .iter()
-                .map(|root| Strand::new(model.clone(), *root, method)),
-        );
+        let scheme = self.settings.scheme;
+        self.strands.extend(roots.iter().map(|root| {
+            let mut strand = Strand::new(model.clone(), *root, method);
+            strand.set_scheme(scheme);
+            strand
+        }));
         Ok(start..self.strands.len())
     }
 
@@ -268,6 +270,40 @@ fn plain_frame(s: &mut Strand, frame: &FrameInputs<'_>, substeps: u32) -> StageT
     times
 }
 
+/// The guard's measure of strand `s` at the end of a frame of `substeps`.
+///
+/// Both ends of a frame are measured with the contact stiffness of the
+/// frame's own step (`frame.substeps`), whatever step a retry takes, so
+/// that the contact springs' energy is counted alike at both ends.
+fn end_measure(s: &mut Strand, frame: &FrameInputs<'_>) -> StrandMeasure {
+    let end_secs = frame.start_secs + frame.dt_secs;
+    measure_at(
+        s,
+        frame,
+        end_secs,
+        frame.dt_secs / f64::from(frame.substeps),
+    )
+}
+
+fn measure_at(s: &mut Strand, frame: &FrameInputs<'_>, t_secs: f64, h_secs: f64) -> StrandMeasure {
+    let motion = frame.head.motion_at(t_secs);
+    let contact = frame.collider.map(|collider| ContactInputs {
+        collider,
+        head: &motion,
+        settings: frame.contact,
+        h_secs,
+    });
+    let root = motion.carry(s.root());
+    s.measure(
+        &root,
+        &MeasureInputs {
+            gravity_m_per_s2: frame.gravity,
+            air_velocity_m_per_s: frame.air,
+            contact,
+        },
+    )
+}
+
 /// Steps strand `s` (index `index`) through one frame; with a guard, checks
 /// the result and recovers as [`crate::guard`] describes.
 fn guarded_frame(
@@ -283,8 +319,15 @@ fn guarded_frame(
         };
     };
     let mut state = s.guard_state();
+    if state.pinned {
+        // Held at rest in its natural shape, carried by the head.
+        return FrameOutcome::default();
+    }
     if state.hold_frames > 0 {
         state.hold_frames -= 1;
+        if state.hold_frames == 0 {
+            state.recent_resets = 0;
+        }
     } else {
         state.substeps = 0;
         if let Some(own_method) = state.own_method.take() {
@@ -292,10 +335,15 @@ fn guarded_frame(
         }
     }
     let own = frame.substeps.max(state.substeps);
-    let start_speed = speed_bound_m_per_s(s.model(), s.v());
+    let start = match s.cached_measure() {
+        Some(m) => m,
+        None => measure_at(s, frame, frame.start_secs, frame.dt_secs / f64::from(own)),
+    };
     s.checkpoint();
     let mut times = plain_frame(s, frame, own);
-    let Some(cause) = guard.check(s.model(), s.q(), s.v(), start_speed) else {
+    let end = end_measure(s, frame);
+    let Some(cause) = guard.check(s.q(), s.v(), &start, &end, frame.dt_secs) else {
+        s.set_cached_measure(Some(end));
         s.set_guard_state(state);
         return FrameOutcome {
             times,
@@ -312,20 +360,25 @@ fn guarded_frame(
     };
     let action = loop {
         if substeps > guard.max_substeps.max(frame.substeps) {
-            s.restore_checkpoint(true);
             state.substeps = 0;
             state.hold_frames = guard.hold_frames;
+            state.recent_resets += 1;
+            if state.recent_resets >= guard.resets_before_pinning {
+                s.set_natural_at_rest();
+                state.pinned = true;
+                break GuardAction::Pinned;
+            }
+            s.restore_checkpoint(true);
             break GuardAction::Reset;
         }
         s.restore_checkpoint(false);
         times.accumulate(&plain_frame(s, frame, substeps));
-        // A retry is judged by the absolute bounds only: it runs a solver
-        // that solves the full step matrix at a finer step, so fast growth
-        // from it (a strand falling from rest) is physics, not a blow-up.
+        let end = end_measure(s, frame);
         if guard
-            .check(s.model(), s.q(), s.v(), f64::INFINITY)
+            .check(s.q(), s.v(), &start, &end, frame.dt_secs)
             .is_none()
         {
+            s.set_cached_measure(Some(end));
             state.substeps = substeps;
             state.hold_frames = guard.hold_frames;
             break GuardAction::Retried {

@@ -194,6 +194,26 @@ fn geometry_parts(
     (phi, co, jets, point)
 }
 
+/// Jets of the centreline at arc length σ and, at the element's end
+/// (σ = `length`), of the centreline and the rotation: what a sweep that
+/// needs no Jacobian uses ([`crate::reconstruct::free_accelerations`]).
+pub fn centreline_jets(sigma: f64, k: Jet<DVec3>, end: bool) -> (Jet<DVec3>, Jet<DMat3>) {
+    let phi = k.map_linear(|v| v * sigma);
+    let y = phi.dot(phi);
+    let co = HelixCoefficients::at(y.v);
+    let [a, b, c] = [y.chain(co.a), y.chain(co.b), y.chain(co.c)];
+    let e0 = Jet::new(DVec3::X, DVec3::ZERO, DVec3::ZERO);
+    let phi_x_e0 = phi.cross(e0);
+    let f = e0 + b * phi_x_e0 + c * phi.cross(phi_x_e0);
+    let rotation = if end {
+        let s = phi.map_linear(skew);
+        Jet::constant(DMat3::IDENTITY) + a * s + b * (s * s)
+    } else {
+        Jet::constant(DMat3::IDENTITY)
+    };
+    (f.map_linear(|v| v * sigma), rotation)
+}
+
 /// Centreline jet and Jacobian at arc length σ, for a strain jet
 /// k = (q, q̇, q̈).
 pub fn point_geometry(sigma: f64, k: Jet<DVec3>) -> PointGeometry {

@@ -36,6 +36,7 @@ pub mod collision;
 pub mod energy;
 pub mod error;
 pub mod forces;
+pub mod frame_balance;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod guard;
@@ -53,6 +54,7 @@ pub mod settings;
 pub mod solve;
 pub mod step;
 pub mod strand;
+pub mod velocity_terms;
 
 pub use energy::Energies;
 pub use error::ParamError;
@@ -62,6 +64,6 @@ pub use model::StrandModel;
 pub use motion::{Bounce, HeadTrajectory, Oscillation, RigidMotion, RootPose};
 pub use natural_shape::NaturalShape;
 pub use params::{ElementLayout, StrandParams};
-pub use settings::{Method, SimSettings};
+pub use settings::{Method, SimSettings, StepScheme};
 pub use step::StageTimes;
 pub use strand::Strand;

@@ -119,3 +119,63 @@ fn put_block(m: &mut DMatrix<f64>, row: usize, col: usize, block: &DMat3) {
         }
     }
 }
+
+/// Adds a mass-like term Σ_s Jᵀ(s) W_s J(s) to `out` (the mass data of a
+/// step matrix), for per-sample 3×3 symmetric weights `weights` given as
+/// (sample index, W) in increasing sample order: what implicit contact puts
+/// in the step matrix (W = w h (h k + c) n nᵀ).
+///
+/// With anisotropic weights the suffix moments become matrices,
+/// M₀ = Σ W, M₁ = Σ W[r]×, N₂ = Σ [r]× W [r]×, and beyond element Q
+/// X_Q += M₀ A_Q − M₁ B_Q, Y_Q += −M₁ᵀ A_Q − N₂ B_Q (with W = ρS w 𝟙 these
+/// are the isotropic moments of [`mass_blocks`]); the element's own
+/// samples add D_Q += Gᵀ W G, U_Q += W G, V_Q += [r]× W G.
+pub fn add_sample_weights(
+    model: &StrandModel,
+    kin: &Kinematics,
+    weights: &[(usize, DMat3)],
+    out: &mut MassData,
+) {
+    if weights.is_empty() {
+        return;
+    }
+    let points = model.quadrature.len();
+    let (mut m0, mut m1, mut n2) = (DMat3::ZERO, DMat3::ZERO, DMat3::ZERO);
+    let mut next = weights.len();
+    for e in (0..model.elements()).rev() {
+        let jac = &kin.elements[e];
+        let x_beyond = m0 * jac.a - m1 * jac.b;
+        let y_beyond = -m1.transpose() * jac.a - n2 * jac.b;
+        let (mut u, mut v, mut d) = (DMat3::ZERO, DMat3::ZERO, DMat3::ZERO);
+        while next > 0 && weights[next - 1].0 >= e * points {
+            next -= 1;
+            let (i, w) = weights[next];
+            let s = &kin.samples[i];
+            let r = skew(s.position_m);
+            let wg = w * s.jacobian;
+            u += wg;
+            v += r * wg;
+            d += s.jacobian.transpose() * wg;
+            m0 += w;
+            m1 += w * r;
+            n2 += r * w * r;
+        }
+        out.diagonal[e] += d + jac.a.transpose() * x_beyond + jac.b.transpose() * y_beyond;
+        out.own[e] += d;
+        out.x[e] += u + x_beyond;
+        out.y[e] += v + y_beyond;
+    }
+}
+
+/// `out` = s × `mass` (every block), reusing `out`'s buffers.
+pub fn scaled(mass: &MassData, s: f64, out: &mut MassData) {
+    for (dst, src) in [
+        (&mut out.diagonal, &mass.diagonal),
+        (&mut out.own, &mass.own),
+        (&mut out.x, &mass.x),
+        (&mut out.y, &mass.y),
+    ] {
+        dst.clear();
+        dst.extend(src.iter().map(|m| *m * s));
+    }
+}

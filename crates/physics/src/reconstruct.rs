@@ -21,7 +21,7 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::helix::{end_geometry, point_geometry, skew};
+use crate::helix::{centreline_jets, end_geometry, point_geometry, skew};
 use crate::jet::Jet;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
@@ -81,15 +81,7 @@ pub fn reconstruct(
     out.samples.clear();
     out.elements.clear();
 
-    let w = skew(root.angular_velocity_rad_per_s);
-    let alpha = skew(root.angular_acceleration_rad_per_s2);
-    let r0 = root.world_from_body;
-    let mut frame = Jet::new(r0, w * r0, (alpha + w * w) * r0);
-    let mut point = Jet::new(
-        DVec3::ZERO,
-        root.velocity_m_per_s,
-        root.acceleration_m_per_s2,
-    );
+    let (mut frame, mut point) = root_jets(root);
     out.frames.push(frame.v);
     out.points_m.push(point.v);
     out.point_velocities_m_per_s.push(point.d);
@@ -123,4 +115,46 @@ pub fn reconstruct(
         out.points_m.push(point.v);
         out.point_velocities_m_per_s.push(point.d);
     }
+}
+
+/// The free acceleration r̈ (q̈ = 0) of every quadrature sample, element by
+/// element, for strains `q`, rates `v` and the root motion: the same jet
+/// sweep as [`reconstruct`], keeping only what the velocity terms need
+/// ([`crate::velocity_terms`]).
+pub fn free_accelerations(
+    model: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &RigidMotion,
+    out: &mut Vec<DVec3>,
+) {
+    out.clear();
+    let (mut frame, mut point) = root_jets(root);
+    for e in 0..model.elements() {
+        let length = model.lengths_m[e];
+        let k = Jet::new(q[e], v[e], DVec3::ZERO);
+        for node in &model.quadrature.nodes {
+            let (centreline, _) = centreline_jets(node * length, k, false);
+            out.push((point + frame * centreline).dd);
+        }
+        let (centreline, rotation) = centreline_jets(length, k, true);
+        point = point + frame * centreline;
+        frame = frame * rotation;
+    }
+}
+
+/// The root frame's and point's jets: the sweep's seed (positions relative
+/// to the root point).
+fn root_jets(root: &RigidMotion) -> (Jet<DMat3>, Jet<DVec3>) {
+    let w = skew(root.angular_velocity_rad_per_s);
+    let alpha = skew(root.angular_acceleration_rad_per_s2);
+    let r0 = root.world_from_body;
+    (
+        Jet::new(r0, w * r0, (alpha + w * w) * r0),
+        Jet::new(
+            DVec3::ZERO,
+            root.velocity_m_per_s,
+            root.acceleration_m_per_s2,
+        ),
+    )
 }

@@ -7,11 +7,12 @@ use glam::DVec3;
 use crate::collision::ContactInputs;
 use crate::energy::{Energies, energies};
 use crate::forces::ForceInputs;
+use crate::frame_balance::{MeasureInputs, StrandMeasure, measure};
 use crate::guard::GuardState;
 use crate::model::StrandModel;
 use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
-use crate::settings::Method;
+use crate::settings::{Method, StepScheme};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
 
 /// A Super-Helix strand clamped to a root on the head.
@@ -26,6 +27,9 @@ pub struct Strand {
     checkpoint_q: Vec<DVec3>,
     checkpoint_v: Vec<DVec3>,
     guard_state: GuardState,
+    measure_kinematics: Kinematics,
+    /// The guard's measure of the current state, while it is valid.
+    cached_measure: Option<StrandMeasure>,
 }
 
 impl Strand {
@@ -40,6 +44,8 @@ impl Strand {
             checkpoint_q: model.natural.clone(),
             checkpoint_v: vec![DVec3::ZERO; n],
             guard_state: GuardState::default(),
+            measure_kinematics: Kinematics::default(),
+            cached_measure: None,
             model,
             root,
         }
@@ -69,6 +75,31 @@ impl Strand {
     pub fn set_state(&mut self, q: &[DVec3], v: &[DVec3]) {
         self.q.copy_from_slice(q);
         self.v.copy_from_slice(v);
+        self.cached_measure = None;
+    }
+
+    /// The guard's measure of the current state ([`crate::frame_balance`])
+    /// for a root moving as `root`: one reconstruction.
+    pub fn measure(&mut self, root: &RigidMotion, inputs: &MeasureInputs) -> StrandMeasure {
+        reconstruct(
+            &self.model,
+            &self.q,
+            &self.v,
+            root,
+            &mut self.measure_kinematics,
+        );
+        measure(&self.model, &self.q, &self.measure_kinematics, root, inputs)
+    }
+
+    /// The measure the last guarded frame ended with, if the state has not
+    /// changed since.
+    pub fn cached_measure(&self) -> Option<StrandMeasure> {
+        self.cached_measure
+    }
+
+    /// Remembers `measure` as the current state's.
+    pub fn set_cached_measure(&mut self, measure: Option<StrandMeasure>) {
+        self.cached_measure = measure;
     }
 
     /// Sets the per-sample external force per unit length (N/m; one entry
@@ -86,7 +117,19 @@ impl Strand {
 
     /// Switches the solver; the state is kept.
     pub fn set_method(&mut self, method: Method) {
+        let scheme = self.workspace.scheme;
         self.workspace = StepWorkspace::new(method);
+        self.workspace.scheme = scheme;
+    }
+
+    /// How the strand's steps treat the velocity-dependent forces.
+    pub fn scheme(&self) -> StepScheme {
+        self.workspace.scheme
+    }
+
+    /// Sets how the strand's steps treat the velocity-dependent forces.
+    pub fn set_scheme(&mut self, scheme: StepScheme) {
+        self.workspace.scheme = scheme;
     }
 
     /// Step buffers of the last step (kinematics, mass, forces, solver).
@@ -115,6 +158,7 @@ impl Strand {
         h_secs: f64,
         contact: Option<ContactInputs<'_>>,
     ) -> StageTimes {
+        self.cached_measure = None;
         let inputs = StepInputs {
             h_secs,
             forces: ForceInputs {
@@ -172,6 +216,7 @@ impl Strand {
     /// Returns to the state of the last [`Strand::checkpoint`]; with
     /// `at_rest`, with zero strain rates (at rest relative to the root).
     pub fn restore_checkpoint(&mut self, at_rest: bool) {
+        self.cached_measure = None;
         self.q.clone_from(&self.checkpoint_q);
         if at_rest {
             self.v.fill(DVec3::ZERO);
@@ -183,5 +228,14 @@ impl Strand {
     /// Whether every strain and rate is finite.
     pub fn is_finite(&self) -> bool {
         self.q.iter().chain(&self.v).all(|x| x.is_finite())
+    }
+}
+
+impl Strand {
+    /// Puts the strand at rest in its natural shape (the guard's pin).
+    pub fn set_natural_at_rest(&mut self) {
+        self.q.clone_from(&self.model.natural);
+        self.v.fill(DVec3::ZERO);
+        self.cached_measure = None;
     }
 }

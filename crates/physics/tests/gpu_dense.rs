@@ -23,8 +23,8 @@ use helixhair_physics::gpu::twin::stage_exact;
 use helixhair_physics::gpu::{GpuContext, GpuError, GpuSystem, Stepper};
 use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::{
-    HairSystem, HeadTrajectory, Method, RigidMotion, RootPose, SimSettings, StrandModel,
-    StrandParams,
+    HairSystem, HeadTrajectory, Method, RigidMotion, RootPose, SimSettings, StepScheme,
+    StrandModel, StrandParams,
 };
 
 /// GPU Dense against its CPU twins over [`SHAKE_STEPS`] steps of a head
@@ -69,6 +69,9 @@ const MASS_MATRIX_TOL: f64 = 1e-4;
 
 fn settings(method: Method, points: usize) -> SimSettings {
     SimSettings {
+        // The f32 paths step velocity-explicit (docs/gpu.md): the f64
+        // reference runs the same scheme.
+        scheme: StepScheme::VelocityExplicit,
         method,
         substeps: 1,
         quadrature_points: points,

@@ -16,7 +16,7 @@ use helixhair_physics::gpu::twin::{
     stage_elements, stage_exact, stage_frames, stage_solve, stage_suffix,
 };
 use helixhair_physics::gpu::{GpuContext, GpuSystem};
-use helixhair_physics::{HeadTrajectory, Method, SimSettings};
+use helixhair_physics::{HeadTrajectory, Method, SimSettings, StepScheme};
 
 /// GPU against CPU twin after one step (Exact) or one frame of 10
 /// substeps (Block-diagonal) from a random state: max |Δ| over max |value|,
@@ -32,6 +32,9 @@ const TRAJECTORY_TOL: f32 = 5e-5;
 /// (GPU, twin) states.
 fn run(ctx: GpuContext, method: Method, strands: usize, steps: usize) -> (GpuState, GpuState) {
     let settings = SimSettings {
+        // The f32 paths step velocity-explicit (docs/gpu.md): the f64
+        // reference runs the same scheme.
+        scheme: StepScheme::VelocityExplicit,
         method,
         substeps: if method == Method::BlockDiagonal {
             10
@@ -153,6 +156,9 @@ fn kernels_follow_the_reference_on_a_straight_strand_falling_out_of_plane() {
     for method in [Method::BlockDiagonal, Method::Exact] {
         let Some(ctx) = context() else { return };
         let settings = SimSettings {
+            // The f32 paths step velocity-explicit (docs/gpu.md): the f64
+            // reference runs the same scheme.
+            scheme: StepScheme::VelocityExplicit,
             method,
             substeps: if method == Method::Exact { 4 } else { 40 },
             ..SimSettings::default()

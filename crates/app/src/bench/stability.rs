@@ -237,6 +237,7 @@ fn curly_style_steps(ctx: &mut BenchContext<'_>, duration_secs: f64) -> anyhow::
                         method: Some(method),
                         dt_secs: Some(dt),
                         accuracy_target: None,
+                        scheme: None,
                     },
                 )?;
                 let system = sim

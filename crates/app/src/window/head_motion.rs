@@ -24,99 +24,8 @@ use helixhair_physics::{HeadTrajectory, RigidMotion};
 /// rad/s: it settles in about 0.4 s.
 pub const FOLLOW_RAD_PER_S: f64 = 12.0;
 
-/// Time step of the central differences, seconds.
-const DIFF_SECS: f64 = 5e-4;
-
-/// A built-in head motion.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Clip {
-    /// Two nods: 20° down and back at 1.5 Hz.
-    Nod,
-    /// A shake: 0.5 rad either way at 1.5 Hz for two cycles, eased in and out.
-    Shake,
-    /// A turn of 60° to the left, a hold, and back.
-    Turn,
-    /// A quick jerk: 6 cm sideways in 0.12 s, then back in 0.5 s.
-    Jerk,
-}
-
-impl Clip {
-    /// Every clip, for menus.
-    pub const ALL: [Clip; 4] = [Clip::Nod, Clip::Shake, Clip::Turn, Clip::Jerk];
-
-    /// Name for menus and the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Clip::Nod => "nod",
-            Clip::Shake => "shake",
-            Clip::Turn => "turn",
-            Clip::Jerk => "jerk",
-        }
-    }
-
-    /// The clip called `name`.
-    pub fn from_name(name: &str) -> Option<Clip> {
-        Clip::ALL.into_iter().find(|c| c.name() == name)
-    }
-
-    /// Length in seconds.
-    pub fn duration_secs(self) -> f64 {
-        match self {
-            Clip::Nod | Clip::Shake => 2.0 / 1.5,
-            Clip::Turn => 2.4,
-            Clip::Jerk => 0.62,
-        }
-    }
-
-    /// (rotation, offset) of the head at `t` seconds into the clip; the
-    /// identity outside [0, duration].
-    pub fn pose_at(self, t: f64) -> (DMat3, DVec3) {
-        let d = self.duration_secs();
-        if !(0.0..=d).contains(&t) {
-            return (DMat3::IDENTITY, DVec3::ZERO);
-        }
-        let tau = std::f64::consts::TAU;
-        match self {
-            Clip::Nod => {
-                let angle = 20f64.to_radians() * 0.5 * (1.0 - (tau * 1.5 * t).cos());
-                (DMat3::from_rotation_x(angle), DVec3::ZERO)
-            }
-            Clip::Shake => {
-                let ease = (std::f64::consts::PI * t / d).sin().powi(2);
-                let angle = 0.5 * ease * (tau * 1.5 * t).sin();
-                (DMat3::from_rotation_y(angle), DVec3::ZERO)
-            }
-            Clip::Turn => {
-                let amount = if t < 0.8 {
-                    smoothstep(t / 0.8)
-                } else if t < 1.6 {
-                    1.0
-                } else {
-                    1.0 - smoothstep((t - 1.6) / 0.8)
-                };
-                (
-                    DMat3::from_rotation_y(60f64.to_radians() * amount),
-                    DVec3::ZERO,
-                )
-            }
-            Clip::Jerk => {
-                let amount = if t < 0.12 {
-                    smoothstep(t / 0.12)
-                } else {
-                    1.0 - smoothstep((t - 0.12) / 0.5)
-                };
-                (DMat3::IDENTITY, DVec3::new(0.06 * amount, 0.0, 0.0))
-            }
-        }
-    }
-}
-
-/// Quintic smoothstep: 0 at 0, 1 at 1, first and second derivatives zero
-/// at both ends (so a clip starts and stops without a jolt).
-fn smoothstep(x: f64) -> f64 {
-    let x = x.clamp(0.0, 1.0);
-    x * x * x * (x * (6.0 * x - 15.0) + 10.0)
-}
+pub use crate::head_clip::Clip;
+use crate::head_clip::motion_from_pose;
 
 /// The user's pose: turn about the vertical, tilt about the sideways axis,
 /// and an offset.
@@ -244,40 +153,9 @@ impl FrameHead {
     }
 }
 
-/// The rotation vector (axis × angle) of `r`, for small and large angles.
-fn rotation_vector(r: DMat3) -> DVec3 {
-    // atan2 keeps small angles accurate, where acos(w) loses half the
-    // digits; q and −q are the same rotation, so take w ≥ 0.
-    let mut q = glam::DQuat::from_mat3(&r);
-    if q.w < 0.0 {
-        q = -q;
-    }
-    let xyz = DVec3::new(q.x, q.y, q.z);
-    let s = xyz.length();
-    if s == 0.0 {
-        DVec3::ZERO
-    } else {
-        xyz * (2.0 * s.atan2(q.w) / s)
-    }
-}
-
 impl HeadTrajectory for FrameHead {
     fn motion_at(&self, t_secs: f64) -> RigidMotion {
-        let h = DIFF_SECS;
-        let (r0, p0) = self.pose_at(t_secs);
-        let (rm, pm) = self.pose_at(t_secs - h);
-        let (rp, pp) = self.pose_at(t_secs + h);
-        // World angular displacement over ±h: R(t ± h) R(t)ᵀ.
-        let back = rotation_vector(rm * r0.transpose());
-        let ahead = rotation_vector(rp * r0.transpose());
-        RigidMotion {
-            position_m: p0,
-            world_from_body: r0,
-            velocity_m_per_s: (pp - pm) / (2.0 * h),
-            angular_velocity_rad_per_s: (ahead - back) / (2.0 * h),
-            acceleration_m_per_s2: (pp - 2.0 * p0 + pm) / (h * h),
-            angular_acceleration_rad_per_s2: (ahead + back) / (h * h),
-        }
+        motion_from_pose(|t| self.pose_at(t), t_secs)
     }
 }
 

@@ -56,7 +56,7 @@ impl<T: Real> FrameState<T> {
     /// Position, velocity and acceleration of the world point p + R h for a
     /// local point with derivatives (h, ḣ, ḧ).
     #[inline(always)]
-    fn carry(&self, h: V3<T>, h_dot: V3<T>, h_ddot: V3<T>) -> [V3<T>; 3] {
+    pub fn carry(&self, h: V3<T>, h_dot: V3<T>, h_ddot: V3<T>) -> [V3<T>; 3] {
         let w = self.angular_velocity;
         let d = self.frame * h;
         let rel_v = self.frame * h_dot;

@@ -1,21 +1,21 @@
-//! Failing safe on the fast path: the checks of [`crate::guard`], lane by
+//! Failing safe on the fast path: the measures of [`crate::guard`], lane by
 //! lane, and a reset.
 //!
 //! # How it works
 //!
-//! After each frame, every strand (every lane of every batch) is checked
-//! with the same bounds and limits as the f64 [`crate::HairSystem`]
-//! ([`Guard`]):
-//!
-//! - **finite**: every strain and rate is a number. Computed in SIMD as
-//!   Σ 0·x over the strand's 6N values, which is 0 in a lane exactly when
-//!   all of them are finite (0·∞ and 0·NaN are NaN);
-//! - **speed**: the bound Σ_Q ℓ_Q |q̇_Q| (L − s_Q) of
-//!   [`crate::guard::speed_bound_m_per_s`] on any point's speed relative to
-//!   the root, in f32 lanes. A frame fails above
-//!   [`Guard::speed_limit_m_per_s`], or above [`Guard::growth_factor`] times
-//!   the bound at the frame's start once past
-//!   [`Guard::speed_floor_m_per_s`].
+//! After each frame, every strand (every lane of every batch) is measured
+//! as the f64 [`crate::HairSystem`] measures it ([`crate::frame_balance`]):
+//! [`measure_lanes`] sweeps the batch root to tip in f32 lanes, summing
+//! over the quadrature samples each lane's kinetic, elastic and
+//! gravitational energy, momentum, angular momentum about the root, the
+//! external forces with their torque and power (drag, and the head's
+//! contact at the element end points, as the step applies it), and the
+//! fastest point relative to the root's rigid motion. Each lane's sums go
+//! into a [`StrandMeasure`], and [`Guard::check`] judges the frame from
+//! the measures at its start and end: finite, true speed under the limit,
+//! no energy that no force put in (with an allowance for f32 round-off,
+//! [`F32_ENERGY_ROUND_OFF`]). The start of a frame is the end of the
+//! previous one, so a frame costs one sweep more than its steps.
 //!
 //! **Recovery is a reset**: a failing strand goes back to its natural shape
 //! at rest (q = qⁿ, q̇ = 0), and its index is reported
@@ -29,13 +29,20 @@
 //! matters more than the frame rate.
 //!
 //! A strand that passes is not touched, so a healthy run is bit-identical
-//! with and without the guard. The checks are O(N) per batch and frame,
-//! against the step's O(N × points) per substep.
+//! with and without the guard.
 
+use glam::DVec3;
+
+use super::forward::{FrameState, advance};
+use super::geometry::local_point;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::BatchModel;
+use super::layout::{RootMotion, StepEnv};
 use super::vec::V3;
+use crate::collision::ContactInputs;
+use crate::frame_balance::StrandMeasure;
 use crate::guard::Guard;
+use crate::motion::RigidMotion;
 
 /// Per lane of a batch (`v`: its N rate triples), the speed bound
 /// Σ_Q ℓ_Q |q̇_Q| (L − s_Q), m/s.
@@ -59,38 +66,163 @@ fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
     std::array::from_fn(|i| nan_if_not.lane(i) == 0.0)
 }
 
-/// Checks one batch (`q`, `v`: N triples each) that started its frame with
-/// speed bounds `start_m_per_s`; resets each failing lane to `model`'s
-/// natural shape at rest. Returns the failing lanes.
+/// Relative round-off allowed on an f32 lane's energy balance (of the
+/// sizes of the energies summed): f32 sums of a few hundred terms.
+pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
+
+/// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
+/// moving as `root` (lanes) with root points at `root_positions_m`
+/// (world), under `env`'s gravity and air, with the head's `contact` if any.
+pub fn measure_lanes(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<Lanes>,
+    motions: &[RigidMotion; LANES],
+    q: &[V3<Lanes>],
+    v: &[V3<Lanes>],
+    contact: Option<&ContactInputs<'_>>,
+) -> [StrandMeasure; LANES] {
+    let rho_s = Lanes::splat(model.mass_per_length);
+    let nu = Lanes::splat(model.air_drag);
+    let g = V3::splat(env.gravity_m_per_s2);
+    let air = V3::splat(env.air_velocity_m_per_s);
+    let zero = Lanes::splat(0.0);
+    let (mut kinetic, mut elastic, mut power, mut fastest) = (zero, zero, zero, zero);
+    let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
+        (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
+    let mut mass = zero;
+    let mut s = FrameState::at_root(root);
+    let n = q.len();
+    let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
+    for e in 0..n {
+        let length_m = model.lengths_m[e];
+        for (node, weight) in model.nodes.iter().zip(&model.weights) {
+            let lp = local_point(node * length_m, q[e], v[e]);
+            let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+            let w_len = Lanes::splat(weight * length_m);
+            let w_mass = w_len * rho_s;
+            kinetic += vel.dot(vel) * w_mass * Lanes::splat(0.5);
+            momentum += vel.scale(w_mass);
+            angular += r.cross(vel).scale(w_mass);
+            first_moment += r.scale(w_mass);
+            mass += w_mass;
+            let drag = (vel - air).scale(nu);
+            power -= drag.dot(vel) * w_len;
+            let f = (g.scale(rho_s) - drag).scale(w_len);
+            force += f;
+            torque += r.cross(f);
+            let carried = s_root_velocity(root, r);
+            let rel = vel - carried;
+            fastest = fastest.max(rel.dot(rel).sqrt());
+        }
+        let d = q[e] - V3::splat(model.natural[e]);
+        let k = V3::splat(model.stiffness[e]);
+        elastic += (d.x * d.x * k.x + d.y * d.y * k.y + d.z * d.z * k.z) * Lanes::splat(0.5);
+        s = advance(&s, length_m, q[e], v[e]).0;
+        if let Some(contact) = contact {
+            // The step's contact: f at each end point, carrying half of
+            // each element beside it (super::contact).
+            let share = 0.5 * (length_m + model.lengths_m.get(e + 1).copied().unwrap_or(0.0));
+            for (lane, list) in contact_force.iter_mut().enumerate() {
+                let pick = |x: V3<Lanes>| {
+                    DVec3::new(
+                        f64::from(x.x.lane(lane)),
+                        f64::from(x.y.lane(lane)),
+                        f64::from(x.z.lane(lane)),
+                    )
+                };
+                let point = pick(s.point_m);
+                let velocity = pick(s.point_velocity);
+                let f = contact.force(
+                    motions[lane].position_m + point,
+                    velocity,
+                    f64::from(model.mass_per_length),
+                ) * f64::from(share);
+                list.push((point, velocity, f));
+            }
+        }
+    }
+    std::array::from_fn(|lane| {
+        let x = |t: Lanes| f64::from(t.lane(lane));
+        let x3 = |t: V3<Lanes>| DVec3::new(x(t.x), x(t.y), x(t.z));
+        let motion = &motions[lane];
+        let gravity = DVec3::from_array(env.gravity_m_per_s2.map(f64::from));
+        let relative_gravity_j = -gravity.dot(x3(first_moment));
+        let gravity_j = relative_gravity_j - x(mass) * gravity.dot(motion.position_m);
+        let mut out = StrandMeasure {
+            kinetic_j: x(kinetic),
+            energy_j: x(kinetic) + x(elastic) + gravity_j,
+            size_j: x(kinetic) + x(elastic) + relative_gravity_j.abs(),
+            momentum: x3(momentum),
+            angular_momentum: x3(angular),
+            external_force_n: x3(force),
+            external_torque_n_m: x3(torque),
+            external_power_w: x(power),
+            contact_power_w: 0.0,
+            contact_j: 0.0,
+            in_contact: contact_force[lane]
+                .iter()
+                .any(|(_, _, f)| *f != DVec3::ZERO),
+            root_velocity_m_per_s: motion.velocity_m_per_s,
+            root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
+            fastest_relative_m_per_s: x(fastest),
+        };
+        for (point, velocity, f) in &contact_force[lane] {
+            out.external_force_n += *f;
+            out.external_torque_n_m += point.cross(*f);
+            out.external_power_w += f.dot(*velocity);
+            out.contact_power_w += f.dot(*velocity);
+        }
+        out
+    })
+}
+
+/// The velocity the root's rigid motion gives a point `r` (relative to the
+/// root point).
+fn s_root_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
+    root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r)
+}
+
+/// Checks one batch (`q`, `v`: N triples each) whose lanes started the
+/// frame measured as `start` and ended it as `end`; resets each failing
+/// lane to `model`'s natural shape at rest. Returns the failing lanes.
 pub fn check_and_reset(
     guard: &Guard,
     model: &BatchModel,
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
-    start_m_per_s: Lanes,
+    start: &[StrandMeasure; LANES],
+    end: &[StrandMeasure; LANES],
+    dt_secs: f64,
 ) -> [bool; LANES] {
     let finite_q = finite_lanes(q);
     let finite_v = finite_lanes(v);
-    let speed = speed_bound_m_per_s(model, v);
     let failed: [bool; LANES] = std::array::from_fn(|i| {
-        let speed = f64::from(speed.lane(i));
-        let start = f64::from(start_m_per_s.lane(i));
-        let grown = guard.growth_factor * start.max(guard.speed_floor_m_per_s);
-        // A NaN speed fails the finite test; written so that it fails here too.
-        !(finite_q[i] && finite_v[i] && speed <= guard.speed_limit_m_per_s && speed <= grown)
+        !(finite_q[i] && finite_v[i])
+            || guard
+                .check_with_round_off(&[], &[], &start[i], &end[i], dt_secs, F32_ENERGY_ROUND_OFF)
+                .is_some()
     });
-    if failed.contains(&true) {
-        for (e, (q, v)) in q.iter_mut().zip(v.iter_mut()).enumerate() {
-            let natural = model.natural[e];
-            for (i, _) in failed.iter().enumerate().filter(|(_, f)| **f) {
-                q.x.set_lane(i, natural[0]);
-                q.y.set_lane(i, natural[1]);
-                q.z.set_lane(i, natural[2]);
-                v.x.set_lane(i, 0.0);
-                v.y.set_lane(i, 0.0);
-                v.z.set_lane(i, 0.0);
-            }
-        }
+    for (lane, _) in failed.iter().enumerate().filter(|(_, f)| **f) {
+        set_natural_at_rest(model, q, v, lane);
     }
     failed
+}
+
+/// Puts lane `lane` of a batch (`q`, `v`: N triples each) at `model`'s
+/// natural shape, at rest.
+pub fn set_natural_at_rest(
+    model: &BatchModel,
+    q: &mut [V3<Lanes>],
+    v: &mut [V3<Lanes>],
+    lane: usize,
+) {
+    for ((q, v), natural) in q.iter_mut().zip(v.iter_mut()).zip(&model.natural) {
+        q.x.set_lane(lane, natural[0]);
+        q.y.set_lane(lane, natural[1]);
+        q.z.set_lane(lane, natural[2]);
+        v.x.set_lane(lane, 0.0);
+        v.y.set_lane(lane, 0.0);
+        v.z.set_lane(lane, 0.0);
+    }
 }

@@ -11,12 +11,13 @@ use super::block_diagonal::step_block_diagonal_with;
 use super::contact::{EndPointForce, LaneContact, NearCells, NoContact};
 use super::exact::{Elimination, step_exact_with};
 use super::forward::{FrameState, advance};
-use super::guard::{check_and_reset, speed_bound_m_per_s};
+use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::vec::V3;
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
+use crate::frame_balance::StrandMeasure;
 use crate::guard::Guard;
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -32,7 +33,24 @@ struct Group {
     q: Vec<V3<Lanes>>,
     v: Vec<V3<Lanes>>,
     first_strand: usize,
+    /// The guard's per-lane measures at the end of the last frame, while
+    /// the state has not changed since.
+    measures: Option<Vec<[StrandMeasure; LANES]>>,
+    /// Per strand (batch-major, padding included): resets in the current
+    /// window, frames left in it, and whether the guard pinned it.
+    guard_standing: Vec<LaneStanding>,
 }
+
+/// One strand's standing with the batch guard.
+#[derive(Clone, Copy, Debug, Default)]
+struct LaneStanding {
+    recent_resets: u32,
+    window_frames: u32,
+    pinned: bool,
+}
+
+/// One batch's state and roots, read only, as the guard's measure takes them.
+type BatchView<'a> = ((&'a [V3<Lanes>], &'a [V3<Lanes>]), &'a [RootPose]);
 
 /// One batch's state and roots, as the step's iterators hand them out.
 type BatchRef<'a> = ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]);
@@ -74,6 +92,7 @@ pub struct BatchSystem {
     contact: ContactSettings,
     guard: Option<Guard>,
     last_resets: Vec<usize>,
+    last_pins: Vec<usize>,
     reset_count: usize,
 }
 
@@ -103,6 +122,7 @@ impl BatchSystem {
             contact: ContactSettings::default(),
             guard: Some(Guard::default()),
             last_resets: Vec::new(),
+            last_pins: Vec::new(),
             reset_count: 0,
         })
     }
@@ -129,6 +149,8 @@ impl BatchSystem {
             q,
             roots: roots.to_vec(),
             first_strand: start,
+            measures: None,
+            guard_standing: vec![LaneStanding::default(); batches * LANES],
             model,
         });
         self.strand_count += roots.len();
@@ -207,7 +229,15 @@ impl BatchSystem {
         &self.last_resets
     }
 
-    /// How many strand resets the guard made since the system was built.
+    /// Indices of the strands the guard pinned in the last frame (see
+    /// [`crate::guard::GuardAction::Pinned`]): they kept failing, and are
+    /// held at rest in their natural shape from now on.
+    pub fn last_guard_pins(&self) -> &[usize] {
+        &self.last_pins
+    }
+
+    /// How many strand resets and pins the guard made since the system was
+    /// built.
     pub fn guard_reset_count(&self) -> usize {
         self.reset_count
     }
@@ -223,8 +253,20 @@ impl BatchSystem {
             air_velocity_m_per_s: self.settings.air_velocity_m_per_s.as_vec3().to_array(),
         };
         let exact = self.settings.method == Method::Exact;
-        let start_speeds: Vec<Vec<Lanes>> = match self.guard {
-            Some(_) => self.groups.iter().map(Group::speed_bounds).collect(),
+        let start_secs = self.time_secs;
+        let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
+            Some(_) => {
+                let motion = head.motion_at(start_secs);
+                let contact = contact_inputs(&self.collider, self.contact, &motion, h);
+                let parallel = self.parallel;
+                self.groups
+                    .iter_mut()
+                    .map(|g| match g.measures.take() {
+                        Some(m) => m,
+                        None => g.measure(&motion, &env, contact.as_ref(), parallel),
+                    })
+                    .collect()
+            }
             None => Vec::new(),
         };
         for _ in 0..self.settings.substeps {
@@ -245,12 +287,23 @@ impl BatchSystem {
         }
         self.head = head.motion_at(self.time_secs);
         self.last_resets.clear();
+        self.last_pins.clear();
         if let Some(guard) = &self.guard {
-            for (group, start) in self.groups.iter_mut().zip(&start_speeds) {
-                group.guard(guard, start, &mut self.last_resets);
+            let motion = self.head;
+            let contact = contact_inputs(&self.collider, self.contact, &motion, h);
+            let dt = self.settings.dt_secs;
+            let parallel = self.parallel;
+            let resets = &mut self.last_resets;
+            let pins = &mut self.last_pins;
+            for (group, start) in self.groups.iter_mut().zip(&start_measures) {
+                group.hold_pinned();
+                let end = group.measure(&motion, &env, contact.as_ref(), parallel);
+                let before = resets.len();
+                group.guard(guard, start, &end, dt, resets, pins);
+                group.measures = (resets.len() == before).then_some(end);
             }
         }
-        self.reset_count += self.last_resets.len();
+        self.reset_count += self.last_resets.len() + self.last_pins.len();
     }
 
     fn locate(&self, index: usize) -> (&Group, usize, usize) {
@@ -293,6 +346,7 @@ impl BatchSystem {
             .expect("located above");
         let n = g.model.elements();
         assert!(q.len() == n && v.len() == n, "state length must be {n}");
+        g.measures = None;
         for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
             for (x, s) in dst[batch * n..(batch + 1) * n].iter_mut().zip(src) {
                 x.x.set_lane(lane, s.x as f32);
@@ -394,28 +448,103 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
 }
 
 impl Group {
-    /// Per batch, the guard's speed bound (see [`super::guard`]).
-    fn speed_bounds(&self) -> Vec<Lanes> {
+    /// Per batch, the guard's measures of every lane for the head moving
+    /// as `motion` (see [`super::guard`]).
+    fn measure(
+        &self,
+        motion: &RigidMotion,
+        env: &StepEnv,
+        contact: Option<&ContactInputs<'_>>,
+        parallel: bool,
+    ) -> Vec<[StrandMeasure; LANES]> {
         let n = self.model.elements();
-        self.v
-            .chunks(n)
-            .map(|v| speed_bound_m_per_s(&self.model, v))
-            .collect()
+        let one = |((q, v), roots): BatchView<'_>| {
+            let motions: [RigidMotion; LANES] =
+                std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
+            let root = RootMotion::<Lanes>::gather(&motions);
+            measure_lanes(&self.model, env, &root, &motions, q, v, contact)
+        };
+        if parallel {
+            self.q
+                .par_chunks(n)
+                .zip(self.v.par_chunks(n))
+                .zip(self.roots.par_chunks(LANES))
+                .map(one)
+                .collect()
+        } else {
+            self.q
+                .chunks(n)
+                .zip(self.v.chunks(n))
+                .zip(self.roots.chunks(LANES))
+                .map(one)
+                .collect()
+        }
     }
 
     /// The guard's end-of-frame check; appends the reset strands' indices.
-    fn guard(&mut self, guard: &Guard, start: &[Lanes], resets: &mut Vec<usize>) {
+    fn guard(
+        &mut self,
+        guard: &Guard,
+        start: &[[StrandMeasure; LANES]],
+        end: &[[StrandMeasure; LANES]],
+        dt_secs: f64,
+        resets: &mut Vec<usize>,
+        pins: &mut Vec<usize>,
+    ) {
         let n = self.model.elements();
-        let batches = self.q.chunks_mut(n).zip(self.v.chunks_mut(n)).zip(start);
-        for (batch, ((q, v), start)) in batches.enumerate() {
-            let failed = check_and_reset(guard, &self.model, q, v, *start);
-            for (lane, _) in failed.iter().enumerate().filter(|(_, f)| **f) {
+        for standing in &mut self.guard_standing {
+            if standing.window_frames > 0 {
+                standing.window_frames -= 1;
+                if standing.window_frames == 0 {
+                    standing.recent_resets = 0;
+                }
+            }
+        }
+        let batches = self
+            .q
+            .chunks_mut(n)
+            .zip(self.v.chunks_mut(n))
+            .zip(start.iter().zip(end));
+        for (batch, ((q, v), (start, end))) in batches.enumerate() {
+            let mut failed = check_and_reset(guard, &self.model, q, v, start, end, dt_secs);
+            for (lane, fail) in failed.iter_mut().enumerate() {
+                let standing = &mut self.guard_standing[batch * LANES + lane];
+                // A pinned strand is held, not judged.
+                *fail &= !standing.pinned;
+                if !*fail {
+                    continue;
+                }
+                standing.recent_resets += 1;
+                standing.window_frames = guard.hold_frames;
                 let local = batch * LANES + lane;
                 // Padding lanes are reset too, but name no strand.
                 if local < self.roots.len() {
-                    resets.push(self.first_strand + local);
+                    if standing.recent_resets >= guard.resets_before_pinning {
+                        standing.pinned = true;
+                        pins.push(self.first_strand + local);
+                    } else {
+                        resets.push(self.first_strand + local);
+                    }
                 }
             }
+        }
+    }
+
+    /// Puts every pinned strand back at its natural shape, at rest.
+    fn hold_pinned(&mut self) {
+        let n = self.model.elements();
+        for (i, standing) in self.guard_standing.iter().enumerate() {
+            if !standing.pinned {
+                continue;
+            }
+            let (batch, lane) = (i / LANES, i % LANES);
+            let range = batch * n..(batch + 1) * n;
+            set_natural_at_rest(
+                &self.model,
+                &mut self.q[range.clone()],
+                &mut self.v[range],
+                lane,
+            );
         }
     }
 
@@ -459,4 +588,19 @@ impl Group {
                 .for_each(|batch| step_batch(&mut scratch, batch));
         }
     }
+}
+
+/// The contact inputs for the head moving as `motion`, if a collider is set.
+fn contact_inputs<'a>(
+    collider: &'a Option<(Arc<SignedDistanceField>, NearCells)>,
+    settings: ContactSettings,
+    motion: &'a RigidMotion,
+    h_secs: f64,
+) -> Option<ContactInputs<'a>> {
+    collider.as_ref().map(|(collider, _)| ContactInputs {
+        collider,
+        head: motion,
+        settings,
+        h_secs,
+    })
 }

@@ -11,6 +11,30 @@
 //! k = α ρS / h² and c = 2 √α ρS / h make the spring-mass pair of one
 //! sample critically damped at the step's stability edge scaled by α: an
 //! explicit force in the linearly implicit step stays stable for α < 1.
+//! That is what the f32 batch path applies ([`ContactInputs::force`]).
+//!
+//! # Implicit contact (the f64 reference)
+//!
+//! An explicit penalty that stable is soft: hair resting on the head sinks
+//! g h²/α into it (11 mm at 60 Hz with α = 0.25), and a bouncing head
+//! pushes hair into the skull. The reference therefore treats contact in
+//! the step matrix, as it treats the stiffness: over a step the sample's
+//! normal distance moves by h (v_rel·n + n·J Δv), so the force at the
+//! step's end is
+//!
+//! f = [k (skin − d − h v_rel·n) − c v_rel·n] − (h k + c) n nᵀ J Δv,
+//!
+//! the bracket (the predicted push, [`ContactInputs::implicit_force`]) on
+//! the right-hand side and h (h k + c) Jᵀ n nᵀ J on the left, a
+//! mass-like term the solvers take with the mass data
+//! ([`crate::mass::add_sample_weights`]). Then α can be large
+//! ([`ContactSettings::implicit_stiffness_ratio`]): the step stays stable
+//! for any α, as it does for any K. A sample that will cross into the skin
+//! during the step (d + h min(v_rel·n, 0) < skin) is in contact from the
+//! step's start, so no sample ends a step deep in a spring it never
+//! compressed. A sample whose predicted push is not positive (separating
+//! faster than the spring pushes) is out of contact for the step: contact
+//! never pulls.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -32,6 +56,14 @@ pub struct ContactSettings {
     /// Cap on the contact acceleration, m/s². Default 300 (about 30 g): a
     /// head jumping into the hair pushes it aside without flinging it.
     pub max_acceleration_m_per_s2: f64,
+    /// α of the implicit contact the f64 reference steps (see the module
+    /// docs). Default 4: a sample held by contact alone sinks g h²/α =
+    /// 2.7 mm at 60 Hz (16 times stiffer than the explicit penalty), and
+    /// the contact is critically damped per sample. Stiffer is not better
+    /// yet: at α = 16 and 64, strands landing on a sphere gained energy at
+    /// impact (the contact set is frozen over a step), which the guard
+    /// flagged; at α = 1 and 4 it never did.
+    pub implicit_stiffness_ratio: f64,
 }
 
 impl Default for ContactSettings {
@@ -40,6 +72,7 @@ impl Default for ContactSettings {
             skin_m: 0.002,
             stiffness_ratio: 0.25,
             max_acceleration_m_per_s2: 300.0,
+            implicit_stiffness_ratio: 4.0,
         }
     }
 }
@@ -79,5 +112,105 @@ impl ContactInputs<'_> {
         let c = 2.0 * s.stiffness_ratio.sqrt() * rho_s / self.h_secs;
         let push = (k * (s.skin_m - d) - c * approach).min(rho_s * s.max_acceleration_m_per_s2);
         n * push.max(0.0)
+    }
+}
+
+/// What a sample's implicit contact means for the energy balance
+/// ([`crate::frame_balance`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactEnergy {
+    /// The spring's stored energy per unit length, ½ k (skin − d)², J/m.
+    pub stored_j_per_m: f64,
+    /// The spring force's magnitude k (skin − d), N/m.
+    pub spring_n_per_m: f64,
+    /// The sample's velocity relative to the surface along the normal, m/s.
+    pub approach_m_per_s: f64,
+}
+
+/// A sample's implicit contact for one step (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImplicitContact {
+    /// The predicted push at the step's end without the Δv term, N/m.
+    pub force_n_per_m: DVec3,
+    /// The outward normal n, world.
+    pub normal: DVec3,
+    /// h k + c, per unit length (N·s/m²): the step matrix gains
+    /// h (h k + c) Jᵀ n nᵀ J times the sample's weight.
+    pub gain: f64,
+}
+
+impl ContactInputs<'_> {
+    /// The implicit spring's stored energy at a sample (zero out of the
+    /// skin), with what the energy balance needs to take the spring's
+    /// power out of the contact's work.
+    pub fn implicit_energy(&self, p_m: DVec3, v_m_per_s: DVec3, rho_s: f64) -> ContactEnergy {
+        let head = self.head;
+        let offset = p_m - head.position_m;
+        let local = head.world_from_body.transpose() * offset;
+        let Some((d, gradient)) = self.collider.sample(local) else {
+            return ContactEnergy::default();
+        };
+        let s = &self.settings;
+        if d >= s.skin_m || gradient == DVec3::ZERO {
+            return ContactEnergy::default();
+        }
+        let n = head.world_from_body * gradient;
+        let surface_velocity =
+            head.velocity_m_per_s + head.angular_velocity_rad_per_s.cross(offset);
+        let k = s.implicit_stiffness_ratio * rho_s / (self.h_secs * self.h_secs);
+        let depth = s.skin_m - d;
+        ContactEnergy {
+            stored_j_per_m: 0.5 * k * depth * depth,
+            spring_n_per_m: k * depth,
+            approach_m_per_s: (v_m_per_s - surface_velocity).dot(n),
+        }
+    }
+
+    /// The implicit contact of a sample at world position `p_m` moving at
+    /// `v_m_per_s`, for a strand of mass per length `rho_s`; `None` out of
+    /// contact.
+    pub fn implicit_force(
+        &self,
+        p_m: DVec3,
+        v_m_per_s: DVec3,
+        rho_s: f64,
+    ) -> Option<ImplicitContact> {
+        let head = self.head;
+        let offset = p_m - head.position_m;
+        let local = head.world_from_body.transpose() * offset;
+        let (d, gradient) = self.collider.sample(local)?;
+        let s = &self.settings;
+        if gradient == DVec3::ZERO {
+            return None;
+        }
+        let n = head.world_from_body * gradient;
+        let surface_velocity =
+            head.velocity_m_per_s + head.angular_velocity_rad_per_s.cross(offset);
+        let approach = (v_m_per_s - surface_velocity).dot(n);
+        let h = self.h_secs;
+        // A sample that will enter the skin during the step is in contact
+        // already: otherwise it would end the step deep inside and be
+        // pushed out by a spring it never compressed (energy from nowhere).
+        let predicted_d = d + h * approach.min(0.0);
+        if predicted_d >= s.skin_m {
+            return None;
+        }
+        let alpha = s.implicit_stiffness_ratio;
+        let k = alpha * rho_s / (h * h);
+        let c = 2.0 * alpha.sqrt() * rho_s / h;
+        let spring = k * (s.skin_m - d - h * approach) - c * approach;
+        let cap = rho_s * s.max_acceleration_m_per_s2;
+        // Capped, the push no longer changes with the sample's motion: no
+        // term in the step matrix (it would hold the hair back).
+        let (push, gain) = if spring > cap {
+            (cap, 0.0)
+        } else {
+            (spring, h * k + c)
+        };
+        (push > 0.0).then_some(ImplicitContact {
+            force_n_per_m: n * push,
+            normal: n,
+            gain,
+        })
     }
 }

@@ -3,7 +3,7 @@
 //! The reference every other method is measured against.
 
 use glam::DVec3;
-use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn, LU};
 
 use super::StepSolver;
 use crate::mass::{MassData, dense_mass};
@@ -13,7 +13,15 @@ use crate::reconstruct::Kinematics;
 #[derive(Clone, Debug, Default)]
 pub struct DenseSolver {
     mass: DMatrix<f64>,
-    factor: Option<Cholesky<f64, Dyn>>,
+    factor: Option<Factor>,
+}
+
+/// The step matrix's factors: Cholesky while it is symmetric, LU once the
+/// velocity terms make it non-symmetric.
+#[derive(Clone, Debug)]
+enum Factor {
+    Cholesky(Cholesky<f64, Dyn>),
+    Lu(LU<f64, Dyn, Dyn>),
 }
 
 impl DenseSolver {
@@ -21,10 +29,17 @@ impl DenseSolver {
     pub fn mass_matrix(&self) -> &DMatrix<f64> {
         &self.mass
     }
-}
 
-impl StepSolver for DenseSolver {
-    fn prepare(&mut self, kin: &Kinematics, mass: &MassData, mass_scale: f64, diagonal: &[DVec3]) {
+    /// Builds and factors s M + D + `extra` (Cholesky without `extra`, LU
+    /// with it: the velocity terms' h G is not symmetric).
+    pub fn prepare_with(
+        &mut self,
+        kin: &Kinematics,
+        mass: &MassData,
+        mass_scale: f64,
+        diagonal: &[DVec3],
+        extra: Option<DMatrix<f64>>,
+    ) {
         self.mass = dense_mass(kin, mass);
         let mut step = &self.mass * mass_scale;
         for (e, d) in diagonal.iter().enumerate() {
@@ -32,15 +47,31 @@ impl StepSolver for DenseSolver {
                 step[(3 * e + i, 3 * e + i)] += d[i];
             }
         }
-        // The step matrix is symmetric positive definite (D > 0); a failed
-        // factorisation means non-finite input, which the caller's guards see
-        // as a non-finite result.
-        self.factor = Cholesky::new(step);
+        // Without `extra` the step matrix is symmetric positive definite
+        // (D > 0); a failed factorisation means non-finite input, which the
+        // caller's guards see as a non-finite result.
+        self.factor = match extra {
+            None => Cholesky::new(step).map(Factor::Cholesky),
+            Some(extra) => {
+                let lu = (step + extra).lu();
+                lu.is_invertible().then_some(Factor::Lu(lu))
+            }
+        };
+    }
+}
+
+impl StepSolver for DenseSolver {
+    fn prepare(&mut self, kin: &Kinematics, mass: &MassData, mass_scale: f64, diagonal: &[DVec3]) {
+        self.prepare_with(kin, mass, mass_scale, diagonal, None);
     }
 
     fn solve(&mut self, _kin: &Kinematics, _mass: &MassData, rhs: &[DVec3], out: &mut [DVec3]) {
         match &self.factor {
-            Some(factor) => from_vector(&factor.solve(&to_vector(rhs)), out),
+            Some(Factor::Cholesky(factor)) => from_vector(&factor.solve(&to_vector(rhs)), out),
+            Some(Factor::Lu(factor)) => match factor.solve(&to_vector(rhs)) {
+                Some(y) => from_vector(&y, out),
+                None => out.fill(DVec3::NAN),
+            },
             None => out.fill(DVec3::NAN),
         }
     }

@@ -1,0 +1,192 @@
+//! Measuring a frame: the energy a strand gained, against the work done on
+//! it from outside.
+//!
+//! # Why
+//!
+//! A failing step shows as energy the physics never put in: a blow-up
+//! doubles a strand's energy in a frame or two, and a solver that is not
+//! passive (Block-diagonal with its truncated inertia) keeps a strand
+//! moving forever with a still head. A bound on speed sees neither in
+//! time: the old guard's bound Σ ℓ|q̇|(L − s) read 50 m/s on coiled strands
+//! whose fastest point moved at 1 m/s, and reset healthy hair. So the guard
+//! measures the state itself: each sample's true velocity and the
+//! strand's energy, from the same reconstruction the step runs.
+//!
+//! # How
+//!
+//! At the end of a frame, [`measure`] sums over the quadrature samples:
+//! the energy E = T + U_elastic + U_gravity, the momentum P and the angular
+//! momentum L about the root point, the external forces (gravity, air
+//! drag, the head's contact push) with their torque and their power, and
+//! the fastest point relative to the root's rigid motion.
+//!
+//! The root holds the strand with a force F and a torque τ. Newton's laws
+//! about the moving root point O give them from what was measured,
+//! F = Ṗ − F_ext and τ = L̇ + v_O × P − τ_ext, and their work over the
+//! frame is W_root = ∫ F·v_O + τ·ω dt. [`unexplained_energy_j`] takes these
+//! integrals by the trapezoid rule (ΔP over the frame, the root's velocities
+//! averaged) and returns ΔE − W_root − W_ext, the energy no force put in.
+//! Internal friction only removes energy, so for a correct step it is
+//! negative or at the estimate's error, which is small next to the
+//! frame's kinetic energy; a blow-up makes it a large positive number.
+//! With a still head and no wind every work term but the contact's is zero
+//! and the test is simply: energy must not grow.
+//!
+//! Cost: one sum over the samples of a reconstruction, O(N). The start of a
+//! frame is the end of the previous one, so a frame needs one more
+//! reconstruction than its steps.
+
+use glam::DVec3;
+
+use crate::collision::ContactInputs;
+use crate::model::StrandModel;
+use crate::motion::RigidMotion;
+use crate::reconstruct::Kinematics;
+
+/// What a strand's state is, measured from its reconstruction. With a
+/// collider, E includes the implicit contact springs' stored energy
+/// ½ k (skin − d)², so only the contact's damping and the moving surface
+/// do work.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StrandMeasure {
+    /// Kinetic energy T = ½ ∫ ρS |ṙ|² ds, joules (world frame).
+    pub kinetic_j: f64,
+    /// T + elastic + gravitational (+ contact spring) energy, joules.
+    pub energy_j: f64,
+    /// T + elastic + |gravitational energy relative to the root point|,
+    /// joules: the size of the terms summed, for the round-off allowance
+    /// (the root point's own height cancels between frames exactly).
+    pub size_j: f64,
+    /// Momentum ∫ ρS ṙ ds, kg·m/s.
+    pub momentum: DVec3,
+    /// Angular momentum about the root point, ∫ ρS (r − O) × ṙ ds, kg·m²/s.
+    pub angular_momentum: DVec3,
+    /// Gravity, drag and contact summed, N.
+    pub external_force_n: DVec3,
+    /// Their torque about the root point, N·m.
+    pub external_torque_n_m: DVec3,
+    /// Power of drag and contact, ∫ f · ṙ ds, W (gravity's is inside E).
+    pub external_power_w: f64,
+    /// The contact's share of [`StrandMeasure::external_power_w`], W: the
+    /// term whose trapezoid estimate is least sure (contact starts and ends
+    /// within a frame), see [`work_uncertainty_j`].
+    pub contact_power_w: f64,
+    /// The contact springs' stored energy, joules (inside `energy_j`).
+    pub contact_j: f64,
+    /// Whether any sample touches the head (pushed by contact).
+    pub in_contact: bool,
+    /// The root point's velocity, m/s.
+    pub root_velocity_m_per_s: DVec3,
+    /// The root frame's angular velocity, rad/s.
+    pub root_angular_velocity_rad_per_s: DVec3,
+    /// Fastest sample relative to the root's rigid motion
+    /// |ṙ − (v_O + ω × (r − O))|, m/s: the true speed, not a bound.
+    pub fastest_relative_m_per_s: f64,
+}
+
+/// The environment the measure needs besides the strand.
+#[derive(Clone, Copy, Debug)]
+pub struct MeasureInputs<'a> {
+    /// Gravity, m/s².
+    pub gravity_m_per_s2: DVec3,
+    /// Air velocity, m/s.
+    pub air_velocity_m_per_s: DVec3,
+    /// The head's collider, if any: the push measured is the implicit one
+    /// the f64 reference steps with ([`ContactInputs::implicit_force`]).
+    pub contact: Option<ContactInputs<'a>>,
+}
+
+/// Measures a strand with strains `q` whose reconstruction for a root
+/// moving as `root` is `kin`.
+pub fn measure(
+    model: &StrandModel,
+    q: &[DVec3],
+    kin: &Kinematics,
+    root: &RigidMotion,
+    inputs: &MeasureInputs,
+) -> StrandMeasure {
+    let rho_s = model.mass_per_length;
+    let mut out = StrandMeasure {
+        root_velocity_m_per_s: root.velocity_m_per_s,
+        root_angular_velocity_rad_per_s: root.angular_velocity_rad_per_s,
+        ..StrandMeasure::default()
+    };
+    let mut gravity_j = 0.0;
+    let mut relative_gravity_j = 0.0;
+    let mut contact_j = 0.0;
+    for s in &kin.samples {
+        let w = s.weight_m;
+        let r = s.position_m;
+        let v = s.velocity_m_per_s;
+        out.kinetic_j += 0.5 * w * rho_s * v.length_squared();
+        gravity_j -= w * rho_s * inputs.gravity_m_per_s2.dot(r + root.position_m);
+        relative_gravity_j -= w * rho_s * inputs.gravity_m_per_s2.dot(r);
+        out.momentum += v * (w * rho_s);
+        out.angular_momentum += r.cross(v) * (w * rho_s);
+        let drag = -model.air_drag * (v - inputs.air_velocity_m_per_s);
+        let mut f = drag;
+        out.external_power_w += drag.dot(v) * w;
+        if let Some(contact) = &inputs.contact {
+            let world = root.position_m + r;
+            let push = contact
+                .implicit_force(world, v, rho_s)
+                .map_or(DVec3::ZERO, |c| c.force_n_per_m);
+            out.in_contact |= push != DVec3::ZERO;
+            f += push;
+            // The spring's energy is counted in E, so its power on the
+            // hair, −dU/dt = k (skin − d) v_rel·n, leaves the external work.
+            let spring = contact.implicit_energy(world, v, rho_s);
+            contact_j += spring.stored_j_per_m * w;
+            let power = push.dot(v) - spring.spring_n_per_m * spring.approach_m_per_s;
+            out.contact_power_w += power * w;
+            out.external_power_w += power * w;
+        }
+        f += rho_s * inputs.gravity_m_per_s2;
+        out.external_force_n += f * w;
+        out.external_torque_n_m += r.cross(f) * w;
+        let carried = root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r);
+        out.fastest_relative_m_per_s = out.fastest_relative_m_per_s.max((v - carried).length());
+    }
+    let elastic_j: f64 = q
+        .iter()
+        .zip(&model.natural)
+        .zip(&model.stiffness)
+        .map(|((q, n), k)| 0.5 * (*k * (*q - *n)).dot(*q - *n))
+        .sum();
+    out.energy_j = out.kinetic_j + elastic_j + gravity_j + contact_j;
+    out.contact_j = contact_j;
+    out.size_j = out.kinetic_j + elastic_j + relative_gravity_j.abs() + contact_j;
+    out
+}
+
+/// The energy a frame of `dt_secs` from `start` to `end` gained that no
+/// force put in: ΔE − W_root − W_external, joules (trapezoid rule; see the
+/// module docs).
+pub fn unexplained_energy_j(start: &StrandMeasure, end: &StrandMeasure, dt_secs: f64) -> f64 {
+    let mean = |a: DVec3, b: DVec3| (a + b) * 0.5;
+    let root_impulse = end.momentum
+        - start.momentum
+        - mean(start.external_force_n, end.external_force_n) * dt_secs;
+    let p_cross = mean(
+        start.root_velocity_m_per_s.cross(start.momentum),
+        end.root_velocity_m_per_s.cross(end.momentum),
+    );
+    let root_angular_impulse = end.angular_momentum - start.angular_momentum + p_cross * dt_secs
+        - mean(start.external_torque_n_m, end.external_torque_n_m) * dt_secs;
+    let root_work = root_impulse.dot(mean(start.root_velocity_m_per_s, end.root_velocity_m_per_s))
+        + root_angular_impulse.dot(mean(
+            start.root_angular_velocity_rad_per_s,
+            end.root_angular_velocity_rad_per_s,
+        ));
+    let external_work = 0.5 * (start.external_power_w + end.external_power_w) * dt_secs;
+    (end.energy_j - start.energy_j) - root_work - external_work
+}
+
+/// How unsure the balance is about the contact's work, joules: half the
+/// frame times the change of the contact's power (the difference of the
+/// two one-sided rules). Only frames without contact are judged by
+/// energy ([`StrandMeasure::in_contact`]; see [`crate::guard`]), so this
+/// is the error left from a contact that ended exactly at a frame's edge.
+pub fn work_uncertainty_j(start: &StrandMeasure, end: &StrandMeasure, dt_secs: f64) -> f64 {
+    0.5 * dt_secs * (end.contact_power_w - start.contact_power_w).abs()
+}
