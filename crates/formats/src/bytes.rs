@@ -32,8 +32,9 @@ impl<'a> LeBytes<'a> {
     /// Checks that `size` bytes starting at `start` lie inside the file.
     /// `field_offset` is where the count or offset that asked for them is
     /// stored, for the error's location. A size beyond the whole file is
-    /// [`ReadErrorKind::TooLarge`], a range that starts in the file and runs
-    /// off its end [`ReadErrorKind::Truncated`].
+    /// [`ReadErrorKind::TooLarge`] (at `field_offset`); a range that runs off
+    /// the file's end is [`ReadErrorKind::Truncated`] (at the end of the
+    /// file, or at `field_offset` when the range starts past it).
     pub fn require(
         &self,
         start: u64,
@@ -52,8 +53,14 @@ impl<'a> LeBytes<'a> {
         };
         match start.checked_add(size) {
             Some(end) if end <= len => Ok(()),
+            // The array would start past the end: the offset is wrong.
+            _ if start >= len && size > 0 => Err(self.error(
+                field_offset,
+                ReadErrorKind::Truncated,
+                format!("{what} start at byte {start}, past the end of the file at byte {len}"),
+            )),
             _ => Err(self.error(
-                len.min(start),
+                len,
                 ReadErrorKind::Truncated,
                 format!(
                     "{what} take bytes {start}..{} but the file ends at byte {len}",
@@ -63,8 +70,25 @@ impl<'a> LeBytes<'a> {
         }
     }
 
+    /// Checks that a fixed-size part (a header, a field) lies inside the
+    /// file: a short file is [`ReadErrorKind::Truncated`].
+    pub fn require_fixed(&self, start: u64, size: u64, what: &str) -> Result<(), ReadError> {
+        let len = self.len();
+        if start + size <= len {
+            return Ok(());
+        }
+        Err(self.error(
+            len.min(start),
+            ReadErrorKind::Truncated,
+            format!(
+                "the file ends at byte {len}, inside {what} (bytes {start}..{})",
+                start + size
+            ),
+        ))
+    }
+
     fn array<const N: usize>(&self, offset: u64, what: &str) -> Result<[u8; N], ReadError> {
-        self.require(offset, Some(N as u64), offset, what)?;
+        self.require_fixed(offset, N as u64, what)?;
         let start = offset as usize;
         let mut bytes = [0; N];
         bytes.copy_from_slice(&self.data[start..start + N]);

@@ -61,7 +61,7 @@ pub fn read_hair(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadEr
             "a .hair file starts with \"HAIR\"".to_string(),
         ));
     }
-    file.require(0, Some(HAIR_HEADER_BYTES), 0, "the 128-byte header")?;
+    file.require_fixed(0, HAIR_HEADER_BYTES, "the 128-byte header")?;
     let strands = u64::from(file.u32_at(4, "the strand count")?);
     let points = u64::from(file.u32_at(8, "the point count")?);
     let flags = file.u32_at(12, "the array flags")?;
@@ -91,7 +91,8 @@ pub fn read_hair(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadEr
     let mut end = HAIR_HEADER_BYTES;
     for (slot, &(bit, what, field, size)) in sizes.iter().enumerate() {
         if has(bit) {
-            file.require(end, Some(size), field, &format!("the {what}"))?;
+            let what = format!("the {what} of {strands} strands, {points} points");
+            file.require(end, Some(size), field, &what)?;
             offsets[slot] = end;
             end += size;
         }

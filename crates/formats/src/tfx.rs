@@ -109,16 +109,18 @@ pub fn read_tfx(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadErr
 }
 
 fn layout_v4(file: &LeBytes) -> Result<Layout, ReadError> {
-    file.require(0, Some(TFX_V4_HEADER_BYTES), 0, "a TressFX 4 header")?;
+    file.require_fixed(0, TFX_V4_HEADER_BYTES, "the TressFX 4 header")?;
     let strands = u64::from(file.u32_at(4, "the strand count")?);
     let points_per_strand = u64::from(file.u32_at(8, "the points per strand")?);
     let points = strands * points_per_strand;
+    let positions = format!("positions of {strands} strands × {points_per_strand} points");
+    let colours = format!("colours of {strands} strands × {points_per_strand} points");
     let arrays = [
-        (12, "positions", Some(points * 16)),
+        (12, positions.as_str(), Some(points * 16)),
         (16, "per-strand UVs", Some(strands * 8)),
         (20, "per-point UVs", Some(points * 8)),
         (24, "per-strand thicknesses", Some(strands * 4)),
-        (28, "per-point colours", Some(points * 16)),
+        (28, colours.as_str(), Some(points * 16)),
     ];
     let offsets = check_arrays(file, &arrays, TFX_V4_HEADER_BYTES, 12)?;
     Ok(Layout {
@@ -131,15 +133,17 @@ fn layout_v4(file: &LeBytes) -> Result<Layout, ReadError> {
 }
 
 fn layout_v3(file: &LeBytes) -> Result<Layout, ReadError> {
-    file.require(0, Some(TFX_V3_HEADER_BYTES), 0, "a TressFX 3 header")?;
+    file.require_fixed(0, TFX_V3_HEADER_BYTES, "the TressFX 3 header")?;
     let strands = u64::from(file.u32_at(4, "the strand count")?);
     let points_per_strand = u64::from(file.u32_at(8, "the points per strand")?);
     let points = strands * points_per_strand;
+    let positions = format!("positions of {strands} strands × {points_per_strand} points");
+    let colours = format!("colours of {strands} strands × {points_per_strand} points");
     let arrays = [
-        (144, "positions", Some(points * 12)),
+        (144, positions.as_str(), Some(points * 12)),
         (148, "per-strand thicknesses", Some(strands * 4)),
         (152, "per-strand UVs", Some(strands * 8)),
-        (156, "per-point colours", Some(points * 16)),
+        (156, colours.as_str(), Some(points * 16)),
         (160, "guide strand indices", Some(strands * 4)),
         (164, "per-point UVs", Some(points * 8)),
     ];

@@ -96,3 +96,54 @@ pub fn assert_points_equal(read: &[Vec3], written: &[Vec3], what: &str) {
         assert_eq!(a, b, "{what}: point {index}");
     }
 }
+
+/// A valid file of each format, from [`groom`] (20 strands × 8 points,
+/// with widths and colours where the format holds them; the USD one with
+/// three time samples).
+pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
+    use helixhair_formats::{Animation, Format, Frame};
+    let mut bytes = Vec::new();
+    match format {
+        Format::Tfx => helixhair_formats::write_tfx(&mut bytes, &groom(11, 20, 8, false, true)),
+        Format::Hair => helixhair_formats::write_hair(&mut bytes, &groom(12, 20, 8, true, true)),
+        Format::Obj => helixhair_formats::write_obj(&mut bytes, &groom(13, 20, 8, false, false)),
+        Format::Usda => {
+            let curves = groom(14, 20, 8, true, true);
+            let frames = (0..3)
+                .map(|k| Frame::from_curves(k as f64, &curves))
+                .collect();
+            let animation = Animation {
+                time_codes_per_second: 24.0,
+                frames,
+            };
+            helixhair_formats::write_usda(&mut bytes, &curves, Some(&animation), None)
+        }
+    }
+    .expect("the sample groom writes");
+    bytes
+}
+
+/// Asserts a read failed with this kind of error at this place, and prints
+/// the message (the tests' record of what users see).
+pub fn expect_error(
+    result: Result<helixhair_formats::Imported, helixhair_formats::ReadError>,
+    kind: helixhair_formats::ReadErrorKind,
+    location: helixhair_formats::Location,
+) -> helixhair_formats::ReadError {
+    match result {
+        Ok(imported) => panic!(
+            "expected a {kind:?} error at {location}, read {}",
+            imported.summary
+        ),
+        Err(error) => {
+            println!("{error}");
+            assert_eq!((error.kind, error.location), (kind, location), "{error}");
+            error
+        }
+    }
+}
+
+/// Overwrites a little-endian `u32` (a header field) in a file.
+pub fn put_u32(bytes: &mut [u8], offset: usize, value: u32) {
+    bytes[offset..offset + 4].copy_from_slice(&value.to_le_bytes());
+}
