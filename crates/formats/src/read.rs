@@ -40,6 +40,20 @@ pub struct Imported {
     pub warnings: Vec<String>,
 }
 
+impl Imported {
+    /// The points held, in the curves and in every frame: never more than
+    /// the file has bytes (the fuzz targets and mutation tests check it).
+    pub fn points_held(&self) -> usize {
+        let frames: usize = self
+            .animation
+            .iter()
+            .flat_map(|animation| &animation.frames)
+            .map(|frame| frame.points_m.len())
+            .sum();
+        self.curves.point_count() + frames
+    }
+}
+
 /// Reads a file's bytes as `format`.
 pub fn read(bytes: &[u8], format: Format, options: &ReadOptions) -> Result<Imported, ReadError> {
     match format {

@@ -74,6 +74,15 @@ pub fn read_tfx(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadErr
             ),
         ));
     };
+    if layout.points_per_strand == 0 {
+        // Found by fuzzing: strands of no points take no bytes, so a tiny
+        // file could ask for millions of empty strands.
+        return Err(file.error(
+            8,
+            ReadErrorKind::BadValue,
+            format!("{} strands of 0 points each", layout.strands),
+        ));
+    }
     let units = Units::resolve(Format::Tfx, options, None)?;
     let point_count = (layout.strands * layout.points_per_strand) as usize;
     let per_strand = layout.points_per_strand as usize;
@@ -177,7 +186,7 @@ fn check_arrays(
             return Err(file.error(
                 field,
                 ReadErrorKind::BadValue,
-                format!("the {what} offset {offset} points inside the {header_bytes}-byte header"),
+                format!("the {what} start at byte {offset}, inside the {header_bytes}-byte header"),
             ));
         }
         file.require(offset, size, field, &format!("the {what}"))?;

@@ -102,13 +102,7 @@ fn mutation_run(format: Format, seed: u64) {
         match outcome {
             Ok(Ok(imported)) => {
                 ok += 1;
-                let frame_points: usize = imported
-                    .animation
-                    .iter()
-                    .flat_map(|a| &a.frames)
-                    .map(|f| f.points_m.len())
-                    .sum();
-                let points = imported.curves.point_count() + frame_points;
+                let points = imported.points_held();
                 assert!(
                     points <= bytes.len(),
                     "{format} seed {seed} case {case}: {points} points out of {} bytes",

@@ -148,3 +148,15 @@ fn tressfx_3_layout_reads() {
         Location::Byte(300),
     );
 }
+
+/// Regression (found by fuzzing): a 3.x header asking for 2 million strands
+/// of 0 points passed every size check (they take no bytes) and made the
+/// reader allocate 160 MB of empty strands from a 400-byte file.
+#[test]
+fn zero_points_per_strand_allocates_nothing() {
+    let mut bytes = vec![0u8; 400];
+    bytes[..4].copy_from_slice(&3.0f32.to_le_bytes());
+    put_u32(&mut bytes, 4, 0x0020_0002);
+    put_u32(&mut bytes, 144, 296);
+    expect_error(read_tfx(&bytes), ReadErrorKind::BadValue, Location::Byte(8));
+}
