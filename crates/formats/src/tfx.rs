@@ -125,11 +125,11 @@ fn layout_v4(file: &LeBytes) -> Result<Layout, ReadError> {
     let positions = format!("positions of {strands} strands × {points_per_strand} points");
     let colours = format!("colours of {strands} strands × {points_per_strand} points");
     let arrays = [
-        (12, positions.as_str(), Some(points * 16)),
-        (16, "per-strand UVs", Some(strands * 8)),
-        (20, "per-point UVs", Some(points * 8)),
-        (24, "per-strand thicknesses", Some(strands * 4)),
-        (28, colours.as_str(), Some(points * 16)),
+        (12, positions.as_str(), points.checked_mul(16)),
+        (16, "per-strand UVs", strands.checked_mul(8)),
+        (20, "per-point UVs", points.checked_mul(8)),
+        (24, "per-strand thicknesses", strands.checked_mul(4)),
+        (28, colours.as_str(), points.checked_mul(16)),
     ];
     let offsets = check_arrays(file, &arrays, TFX_V4_HEADER_BYTES, 12)?;
     Ok(Layout {
@@ -149,12 +149,12 @@ fn layout_v3(file: &LeBytes) -> Result<Layout, ReadError> {
     let positions = format!("positions of {strands} strands × {points_per_strand} points");
     let colours = format!("colours of {strands} strands × {points_per_strand} points");
     let arrays = [
-        (144, positions.as_str(), Some(points * 12)),
-        (148, "per-strand thicknesses", Some(strands * 4)),
-        (152, "per-strand UVs", Some(strands * 8)),
-        (156, colours.as_str(), Some(points * 16)),
-        (160, "guide strand indices", Some(strands * 4)),
-        (164, "per-point UVs", Some(points * 8)),
+        (144, positions.as_str(), points.checked_mul(12)),
+        (148, "per-strand thicknesses", strands.checked_mul(4)),
+        (152, "per-strand UVs", strands.checked_mul(8)),
+        (156, colours.as_str(), points.checked_mul(16)),
+        (160, "guide strand indices", strands.checked_mul(4)),
+        (164, "per-point UVs", points.checked_mul(8)),
     ];
     let offsets = check_arrays(file, &arrays, TFX_V3_HEADER_BYTES, 144)?;
     Ok(Layout {

@@ -166,7 +166,9 @@ fn prim_curves(
         }
         sizes.push(count as usize);
     }
-    let total: usize = sizes.iter().sum();
+    let total = sizes
+        .iter()
+        .fold(0usize, |sum, &size| sum.saturating_add(size));
     let transform = |point: &[f64; 3]| {
         let p = world.transform_point3(DVec3::from_array(*point));
         units.point(p.x, p.y, p.z)
@@ -279,7 +281,9 @@ fn per_curve<T>(
     what: &str,
     warnings: &mut Vec<String>,
 ) -> Option<Matched<T>> {
-    let total: usize = sizes.iter().sum();
+    let total = sizes
+        .iter()
+        .fold(0usize, |sum, &size| sum.saturating_add(size));
     let len = array.values.len();
     let interpolation = match array.interpolation.as_deref() {
         Some("constant") => Some(Interpolation::Constant),
