@@ -17,7 +17,7 @@
 //!
 //! 1. **Decode**: a reader turns the file's bytes into strands, checking
 //!    every count against the file's length before allocating (so a hostile
-//!    header cannot exhaust memory; see [`read`] for the bound) and
+//!    header cannot exhaust memory; see [`mod@read`] for the bound) and
 //!    reporting problems with a byte offset or a line ([`ReadError`]).
 //! 2. **Units and axes**: points become metres, Y up ([`ReadOptions`] for
 //!    formats that do not say).

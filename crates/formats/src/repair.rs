@@ -1,6 +1,6 @@
 //! Degenerate strands repaired or skipped one by one, never the groom.
 //!
-//! Every reader hands the strands it decoded to [`repair`], which looks at
+//! Every reader hands the strands it decoded to `repair`, which looks at
 //! each strand alone, in this order:
 //!
 //! 1. fewer than two points: **skipped** ([`RepairReason::TooFewPoints`]);
@@ -107,7 +107,7 @@ impl fmt::Display for RepairReason {
     }
 }
 
-/// What [`repair`] did to a file's strands.
+/// What repair did to a file's strands.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct RepairSummary {
     /// Strands decoded from the file.

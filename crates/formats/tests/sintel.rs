@@ -6,7 +6,7 @@ mod common;
 
 use std::time::Instant;
 
-use helixhair_formats::{Format, ReadOptions, read};
+use helixhair_formats::{Format, ReadOptions, read, write_hair, write_obj, write_tfx, write_usda};
 
 /// The README's bounds are given to a millimetre.
 const BOUNDS_TOLERANCE_M: f32 = 0.001;
@@ -61,4 +61,45 @@ fn sintel_tfx_reads_whole_inside_its_bounds() {
     assert!((lengths_m[0] - 0.025).abs() < 0.001);
     assert!((lengths_m[lengths_m.len() - 1] - 0.248).abs() < 0.001);
     assert!((median - 0.102).abs() < 0.001);
+}
+
+#[test]
+fn sintel_written_back_as_tfx_has_the_same_positions_and_every_format_round_trips() {
+    let path = common::sintel_dir().join("sintel_hair.16points.tfx");
+    let Ok(bytes) = std::fs::read(&path) else {
+        println!(
+            "SKIPPED: {} is absent (the Sintel data lives in ../shared)",
+            path.display()
+        );
+        return;
+    };
+    let groom = read(&bytes, Format::Tfx, &ReadOptions::default()).expect("reads");
+    let mut tfx = Vec::new();
+    write_tfx(&mut tfx, &groom.curves).expect("writes");
+    // Same positions, w included (0 at roots, 1 elsewhere), byte for byte.
+    let positions = 160..160 + 11_400 * 16 * 16;
+    assert_eq!(tfx[positions.clone()], bytes[positions]);
+    for format in Format::ALL {
+        let start = Instant::now();
+        let mut written = Vec::new();
+        match format {
+            Format::Tfx => write_tfx(&mut written, &groom.curves),
+            Format::Hair => write_hair(&mut written, &groom.curves),
+            Format::Usda => write_usda(&mut written, &groom.curves, None, None),
+            Format::Obj => write_obj(&mut written, &groom.curves),
+        }
+        .expect("writes");
+        let write_ms = start.elapsed().as_secs_f64() * 1e3;
+        let start = Instant::now();
+        let again = read(&written, format, &ReadOptions::default()).expect("reads back");
+        let read_ms = start.elapsed().as_secs_f64() * 1e3;
+        println!(
+            "{format}: {} bytes, written in {write_ms:.1} ms, read in {read_ms:.1} ms",
+            written.len()
+        );
+        assert_eq!(again.curves.curves.len(), 11_400);
+        for (a, b) in again.curves.curves.iter().zip(&groom.curves.curves) {
+            common::assert_points_equal(&a.points_m, &b.points_m, &format!("sintel via {format}"));
+        }
+    }
 }

@@ -91,6 +91,7 @@ impl<'a> Lexer<'a> {
             b'"' | b'\'' => self.string(first)?,
             b'<' => {
                 let end = self.find_byte(b'>', "a path </...> is not closed")?;
+                self.count_lines(start, end);
                 self.at = end + 1;
                 Token::Path(&self.text[start + 1..end])
             }

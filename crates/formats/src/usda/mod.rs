@@ -6,7 +6,7 @@
 //! (pure Rust, actively developed) reads `usda`/`usdc`/`usdz` but has no
 //! writer, and the `usd` crates are bindings to Pixar's C++ library (a
 //! heavy native build) or placeholders. So this module reads a careful
-//! subset of the text format ([`parse`]) and writes plain `usda` ([`write`]);
+//! subset of the text format ([`parse`]) and writes plain `usda` ([`mod@write`]);
 //! binary `usdc` is not supported (convert with `usdcat file.usdc -o
 //! file.usda`). Pixar's own library (`usd-core` on PyPI) reads back what
 //! this module writes, in a test. Alembic is in the same place: no
