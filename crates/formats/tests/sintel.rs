@@ -13,12 +13,7 @@ const BOUNDS_TOLERANCE_M: f32 = 0.001;
 
 #[test]
 fn sintel_tfx_reads_whole_inside_its_bounds() {
-    let path = common::sintel_dir().join("sintel_hair.16points.tfx");
-    let Ok(bytes) = std::fs::read(&path) else {
-        println!(
-            "SKIPPED: {} is absent (the Sintel data lives in ../shared)",
-            path.display()
-        );
+    let Some(bytes) = common::sintel_tfx() else {
         return;
     };
     let start = Instant::now();
@@ -65,12 +60,7 @@ fn sintel_tfx_reads_whole_inside_its_bounds() {
 
 #[test]
 fn sintel_written_back_as_tfx_has_the_same_positions_and_every_format_round_trips() {
-    let path = common::sintel_dir().join("sintel_hair.16points.tfx");
-    let Ok(bytes) = std::fs::read(&path) else {
-        println!(
-            "SKIPPED: {} is absent (the Sintel data lives in ../shared)",
-            path.display()
-        );
+    let Some(bytes) = common::sintel_tfx() else {
         return;
     };
     let groom = read(&bytes, Format::Tfx, &ReadOptions::default()).expect("reads");

@@ -89,6 +89,19 @@ pub fn sintel_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/sintel")
 }
 
+/// The Sintel groom's bytes, or `None` after printing why the test skips.
+pub fn sintel_tfx() -> Option<Vec<u8>> {
+    let path = sintel_dir().join("sintel_hair.16points.tfx");
+    let bytes = std::fs::read(&path).ok();
+    if bytes.is_none() {
+        println!(
+            "SKIPPED: {} is absent (the Sintel data lives in ../shared)",
+            path.display()
+        );
+    }
+    bytes
+}
+
 /// Asserts two point lists are equal to the bit.
 pub fn assert_points_equal(read: &[Vec3], written: &[Vec3], what: &str) {
     assert_eq!(read.len(), written.len(), "{what}: point counts");
