@@ -44,6 +44,7 @@ pub mod read;
 pub mod repair;
 pub mod tfx;
 pub mod usda;
+mod warnings;
 mod write_checks;
 
 pub use animation::{Animation, Frame};

@@ -144,3 +144,35 @@ fn nan_points_skip_their_strand_only_and_bad_metadata_is_refused() {
     let text = "#usda 1.0\n(\n    upAxis = \"X\"\n)\n";
     expect_error(read_usda(text), ReadErrorKind::BadValue, Location::Line(3));
 }
+
+/// Many prims under a very long name each deserving a warning: warnings
+/// stop at 100 (and one line counting the rest) and quote names shortened,
+/// instead of copying the long name once per prim.
+#[test]
+fn warnings_and_quoted_names_are_bounded() {
+    let long_name = "n".repeat(100_000);
+    let mut text = format!("#usda 1.0\ndef Xform \"{long_name}\" {{\n");
+    for index in 0..5_000 {
+        text.push_str(&format!(
+            "  def BasisCurves \"c{index}\" {{ int[] curveVertexCounts = [2]\n    point3f[] points = [(0,0,0), (0,1,0)] }}\n"
+        ));
+    }
+    text.push_str("}\n");
+    let groom = read(text.as_bytes(), Format::Usda, &ReadOptions::default()).expect("reads");
+    assert_eq!(groom.curves.curves.len(), 5_000);
+    assert_eq!(
+        groom.warnings.len(),
+        101,
+        "100 kept and one counting the rest"
+    );
+    assert!(
+        groom.warnings[100].contains("4900 more"),
+        "{}",
+        groom.warnings[100]
+    );
+    assert!(
+        groom.warnings.iter().all(|warning| warning.len() < 400),
+        "{}",
+        groom.warnings[0]
+    );
+}

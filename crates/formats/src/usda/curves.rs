@@ -9,8 +9,9 @@ use crate::error::{Location, ReadError, ReadErrorKind};
 use crate::format::Format;
 use crate::options::ReadOptions;
 use crate::read::{Imported, Units, finish};
-use crate::usda::parse::{ArrayValue, CurvesPrim, Layer};
+use crate::usda::parse::{ArrayValue, CurvesPrim, Layer, PrimPath};
 use crate::usda::transform::world_transforms;
+use crate::warnings::{Warnings, short};
 
 /// USD's `metersPerUnit` when a layer does not author one (centimetres).
 pub const USD_FALLBACK_METERS_PER_UNIT: f64 = 0.01;
@@ -76,37 +77,48 @@ pub(crate) fn curves_from_layer(
     let world = world_transforms(&prims, &mut warnings);
     let mut per_prim = Vec::with_capacity(curve_prims.len());
     for prim in curve_prims {
-        let path = prims[prim.prim].path.clone();
+        let path = PrimPath {
+            prims: &prims,
+            index: prim.prim,
+        };
         let transform = world[prim.prim];
         if let Some(read) = prim_curves(prim, &path, transform, &units, &mut warnings)? {
             per_prim.push(read);
         }
     }
     if per_prim.is_empty() {
-        warnings.push("the layer has no BasisCurves prim with points".to_string());
+        warnings.push(|| "the layer has no BasisCurves prim with points".to_string());
     }
     let frames = merge_frames(&per_prim, file_bytes)?;
     let curves = per_prim.into_iter().flat_map(|prim| prim.curves).collect();
     let animation = (!frames.is_empty()).then_some((time_codes_per_second, frames));
-    Ok(finish(Format::Usda, &units, curves, animation, warnings))
+    Ok(finish(
+        Format::Usda,
+        &units,
+        curves,
+        animation,
+        warnings.into_vec(),
+    ))
 }
 
 fn prim_curves(
     prim: CurvesPrim,
-    path: &str,
+    path: &PrimPath,
     world: DMat4,
     units: &Units,
-    warnings: &mut Vec<String>,
+    warnings: &mut Warnings,
 ) -> Result<Option<PrimCurves>, ReadError> {
     match prim.curve_type.as_deref() {
         Some("linear") => {}
-        Some("cubic") | None => warnings.push(format!(
-            "<{path}>: {} curves (basis {}) are read as their control polylines",
-            prim.curve_type
-                .as_deref()
-                .unwrap_or("cubic (USD's fallback type)"),
-            prim.basis.as_deref().unwrap_or("bezier"),
-        )),
+        Some("cubic") | None => warnings.push(|| {
+            format!(
+                "<{path}>: {} curves (basis {}) are read as their control polylines",
+                prim.curve_type
+                    .as_deref()
+                    .unwrap_or("cubic (USD's fallback type)"),
+                prim.basis.as_deref().unwrap_or("bezier"),
+            )
+        }),
         Some(other) => {
             return Err(error(
                 prim.line,
@@ -116,7 +128,7 @@ fn prim_curves(
         }
     }
     if prim.wrap.as_deref() == Some("periodic") {
-        warnings.push(format!("<{path}>: periodic (closed) curves are read open"));
+        warnings.push(|| format!("<{path}>: periodic (closed) curves are read open"));
     }
     let mut samples: Vec<(f64, usize, Vec<[f64; 3]>)> = Vec::new();
     for (time, line, values) in prim.point_samples {
@@ -129,9 +141,11 @@ fn prim_curves(
         }
         match values {
             Some(values) => samples.push((time, line, values)),
-            None => warnings.push(format!(
-                "line {line}: <{path}>: the blocked points sample at time {time} is skipped"
-            )),
+            None => warnings.push(|| {
+                format!(
+                    "line {line}: <{path}>: the blocked points sample at time {time} is skipped"
+                )
+            }),
         }
     }
     samples.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -150,9 +164,7 @@ fn prim_curves(
                 format!("<{path}> has points but no curveVertexCounts"),
             ));
         }
-        warnings.push(format!(
-            "<{path}> has no curveVertexCounts and no points; skipped"
-        ));
+        warnings.push(|| format!("<{path}> has no curveVertexCounts and no points; skipped"));
         return Ok(None);
     };
     let mut sizes = Vec::with_capacity(counts.values.len());
@@ -196,7 +208,7 @@ fn prim_curves(
             points.values.iter().map(transform).collect()
         }
         (None, None) => {
-            warnings.push(format!("<{path}> has no points; skipped"));
+            warnings.push(|| format!("<{path}> has no points; skipped"));
             return Ok(None);
         }
     };
@@ -277,9 +289,9 @@ impl<T: Copy> Matched<T> {
 fn per_curve<T>(
     array: ArrayValue<T>,
     sizes: &[usize],
-    path: &str,
+    path: &PrimPath,
     what: &str,
-    warnings: &mut Vec<String>,
+    warnings: &mut Warnings,
 ) -> Option<Matched<T>> {
     let total = sizes
         .iter()
@@ -302,10 +314,10 @@ fn per_curve<T>(
         None => usize::MAX,
     };
     if interpolation.is_none() || len < expected || (len != expected && expected != 1) {
-        warnings.push(format!(
+        warnings.push(|| format!(
             "line {}: <{path}>: {what} has {len} values, which fits neither its interpolation ({}) nor {} curves of {total} points; ignored",
             array.line,
-            array.interpolation.as_deref().unwrap_or("none authored"),
+            short(array.interpolation.as_deref().unwrap_or("none authored")),
             sizes.len()
         ));
         return None;

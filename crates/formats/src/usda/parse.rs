@@ -17,6 +17,7 @@
 use crate::error::{Location, ReadError, ReadErrorKind};
 use crate::format::Format;
 use crate::usda::lexer::{Lexer, Token};
+use crate::warnings::{Warnings, short};
 
 /// The deepest nesting of prims or brackets read.
 pub const MAX_DEPTH: usize = 64;
@@ -41,7 +42,9 @@ pub(crate) struct ArrayValue<T> {
 /// A prim: its place in the tree and its transform ops.
 #[derive(Debug)]
 pub(crate) struct Prim {
-    pub path: String,
+    /// The name, cut to [`crate::warnings::MAX_QUOTED_CHARS`] characters
+    /// (it is only ever shown in messages).
+    pub name: String,
     pub parent: Option<usize>,
     /// `xformOpOrder`, when authored.
     pub xform_op_order: Option<Vec<String>>,
@@ -78,7 +81,26 @@ pub(crate) struct Layer {
     pub metadata: LayerMetadata,
     pub prims: Vec<Prim>,
     pub curves: Vec<CurvesPrim>,
-    pub warnings: Vec<String>,
+    pub warnings: Warnings,
+}
+
+/// A prim's path for messages (`/root/hair`), written from its shortened
+/// names only when shown.
+pub(crate) struct PrimPath<'a> {
+    pub prims: &'a [Prim],
+    pub index: usize,
+}
+
+impl std::fmt::Display for PrimPath<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut names = Vec::new();
+        let mut at = Some(self.index);
+        while let Some(index) = at {
+            names.push(self.prims[index].name.as_str());
+            at = self.prims[index].parent;
+        }
+        names.iter().rev().try_for_each(|name| write!(f, "/{name}"))
+    }
 }
 
 /// Parses a layer's text (the `#usda` line already checked and removed
@@ -229,12 +251,10 @@ impl<'a> Parser<'a> {
         } else {
             Said::default()
         };
-        let parent_path = parent.map_or("", |index| self.layer.prims[index].path.as_str());
-        let path = format!("{parent_path}/{name}");
         let skipped = skipped || specifier == "class" || said.inactive;
         let index = self.layer.prims.len();
         self.layer.prims.push(Prim {
-            path,
+            name: short(name),
             parent,
             xform_op_order: None,
             xform_ops: Vec::new(),
@@ -256,9 +276,13 @@ impl<'a> Parser<'a> {
                     self.string("the variant set's name")?;
                     self.expect(b'=')?;
                     self.skip_value()?;
-                    let path = &self.layer.prims[index].path;
-                    let warning = format!("line {line}: the variant set in <{path}> is not read");
-                    self.layer.warnings.push(warning);
+                    let path = PrimPath {
+                        prims: &self.layer.prims,
+                        index,
+                    };
+                    self.layer
+                        .warnings
+                        .push(|| format!("line {line}: the variant set in <{path}> is not read"));
                 }
                 (Token::Ident("reorder"), _) => {
                     self.ident("nameChildren or properties")?;
@@ -327,9 +351,12 @@ impl<'a> Parser<'a> {
             }
             (_, _, true) => {
                 if suffix == Some("timeSamples") && base != "points" && curves.is_some() {
-                    self.layer.warnings.push(format!(
-                        "line {line}: time samples of {base} are not read (only points move)"
-                    ));
+                    self.layer.warnings.push(|| {
+                        let base = short(base);
+                        format!(
+                            "line {line}: time samples of {base} are not read (only points move)"
+                        )
+                    });
                 }
                 self.skip_value()?;
             }
@@ -494,7 +521,7 @@ impl<'a> Parser<'a> {
                 ) => {
                     self.layer
                         .warnings
-                        .push(format!("line {line}: {key} (composition) are not followed"));
+                        .push(|| format!("line {line}: {key} (composition) are not followed"));
                     self.skip_value()?;
                 }
                 _ => self.skip_value()?,

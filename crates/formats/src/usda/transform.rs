@@ -13,26 +13,27 @@
 
 use glam::{DMat4, DQuat, DVec3, EulerRot};
 
-use crate::usda::parse::Prim;
+use crate::usda::parse::{Prim, PrimPath};
+use crate::warnings::{Warnings, short};
 
 /// Each prim's world transform (parents come before children in `prims`).
-pub(crate) fn world_transforms(prims: &[Prim], warnings: &mut Vec<String>) -> Vec<DMat4> {
+pub(crate) fn world_transforms(prims: &[Prim], warnings: &mut Warnings) -> Vec<DMat4> {
     let mut world: Vec<DMat4> = Vec::with_capacity(prims.len());
-    for prim in prims {
+    for (index, prim) in prims.iter().enumerate() {
         let parent = prim.parent.map_or(DMat4::IDENTITY, |index| world[index]);
-        let (local, reset) = local_transform(prim, warnings);
+        let path = PrimPath { prims, index };
+        let (local, reset) = local_transform(prim, path, warnings);
         world.push(if reset { local } else { parent * local });
     }
     world
 }
 
 /// A prim's local transform and whether it resets the parents' stack.
-fn local_transform(prim: &Prim, warnings: &mut Vec<String>) -> (DMat4, bool) {
+fn local_transform(prim: &Prim, path: PrimPath, warnings: &mut Warnings) -> (DMat4, bool) {
     if prim.animated_xform {
-        warnings.push(format!(
-            "<{}> has time-sampled transform ops; their default values are used",
-            prim.path
-        ));
+        warnings.push(|| {
+            format!("<{path}> has time-sampled transform ops; their default values are used")
+        });
     }
     let Some(order) = &prim.xform_op_order else {
         return (DMat4::IDENTITY, false);
@@ -50,19 +51,25 @@ fn local_transform(prim: &Prim, warnings: &mut Vec<String>) -> (DMat4, bool) {
             None => (entry.as_str(), false),
         };
         let Some((_, _, values)) = prim.xform_ops.iter().find(|(op, _, _)| op == name) else {
-            warnings.push(format!(
-                "<{}>: {name} is in xformOpOrder but has no value; skipped",
-                prim.path
-            ));
+            warnings.push(|| {
+                format!(
+                    "<{}>: {} is in xformOpOrder but has no value; skipped",
+                    path,
+                    short(name)
+                )
+            });
             continue;
         };
         match op_matrix(name, values) {
             Some(matrix) => local *= if invert { matrix.inverse() } else { matrix },
-            None => warnings.push(format!(
-                "<{}>: {name} with {} values is not a transform op this reader knows; skipped",
-                prim.path,
-                values.len()
-            )),
+            None => warnings.push(|| {
+                format!(
+                    "<{}>: {} with {} values is not a transform op this reader knows; skipped",
+                    path,
+                    short(name),
+                    values.len()
+                )
+            }),
         }
     }
     (local, reset)
