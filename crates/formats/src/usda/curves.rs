@@ -181,8 +181,14 @@ fn prim_curves(
     let total = sizes
         .iter()
         .fold(0usize, |sum, &size| sum.saturating_add(size));
+    // Without a transform the numbers go straight to metres (no -0 + 0).
+    let identity = world == DMat4::IDENTITY;
     let transform = |point: &[f64; 3]| {
-        let p = world.transform_point3(DVec3::from_array(*point));
+        let p = if identity {
+            DVec3::from_array(*point)
+        } else {
+            world.transform_point3(DVec3::from_array(*point))
+        };
         units.point(p.x, p.y, p.z)
     };
     let check = |line: usize, len: usize, what: &str| {
