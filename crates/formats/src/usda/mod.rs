@@ -2,16 +2,17 @@
 //!
 //! # Why by hand
 //!
-//! No maintained Rust crate both reads and writes USD curves: `openusd`
-//! (pure Rust, actively developed) reads `usda`/`usdc`/`usdz` but has no
-//! writer, and the `usd` crates are bindings to Pixar's C++ library (a
-//! heavy native build) or placeholders. So this module reads a careful
-//! subset of the text format ([`parse`]) and writes plain `usda` ([`mod@write`]);
-//! binary `usdc` is not supported (convert with `usdcat file.usdc -o
-//! file.usda`). Pixar's own library (`usd-core` on PyPI) reads back what
-//! this module writes, in a test. Alembic is in the same place: no
-//! maintained Rust crate reads or writes Alembic curves (`ogawa-rs` reads
-//! the container only), so there is no Alembic support.
+//! The one maintained pure-Rust USD crate, `openusd`, reads and writes
+//! usda/usdc/usdz, but its current releases need Rust 1.96 (the workspace
+//! is on 1.95) and it brings about 55 crates where this one has two; the
+//! `usd` crates are bindings to Pixar's C++ build. So this module reads a
+//! careful subset of the text format ([`parse`]) and writes plain `usda`
+//! ([`mod@write`]); binary `usdc` is not supported (convert with `usdcat
+//! file.usdc -o file.usda`). `docs/formats.md` has the evaluation. Pixar's
+//! own library (`usd-core` on PyPI) reads back what this module writes, in
+//! a test. Alembic is not supported: nothing in Rust writes it, and the one
+//! reader (`ogawa-rs`) calls itself a work in progress that partially reads
+//! curves.
 //!
 //! # What is read
 //!
