@@ -26,7 +26,7 @@
 //!
 //! Writers check everything first, then write to any [`std::io::Write`] in
 //! one call, so a caller doing atomic replacement never renames half a file.
-//! [`read()`] picks a reader by [`Format`]; `docs/formats.md` at the
+//! [`read()`] picks a reader by [`Format`], [`write()`] a writer; `docs/formats.md` at the
 //! repository root has limits, error examples and fuzzing figures.
 
 #![warn(missing_docs)]
@@ -45,6 +45,7 @@ pub mod repair;
 pub mod tfx;
 pub mod usda;
 mod warnings;
+pub mod write;
 mod write_checks;
 
 pub use animation::{Animation, Frame};
@@ -60,3 +61,4 @@ pub use repair::{RepairReason, RepairSummary};
 pub use tfx::{read_tfx, write_tfx};
 pub use usda::read_usda;
 pub use usda::write::write_usda;
+pub use write::write;

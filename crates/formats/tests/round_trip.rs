@@ -6,8 +6,7 @@ mod common;
 
 use common::{assert_points_equal, groom};
 use helixhair_formats::{
-    Animation, Format, Frame, ReadOptions, StrandValue, TriangleMesh, read, write_hair, write_obj,
-    write_tfx, write_usda,
+    Animation, Format, Frame, ReadOptions, StrandValue, TriangleMesh, read, write, write_usda,
 };
 
 fn round_trip(
@@ -15,13 +14,7 @@ fn round_trip(
     written: &helixhair_formats::CurveSet,
 ) -> helixhair_formats::Imported {
     let mut bytes = Vec::new();
-    match format {
-        Format::Tfx => write_tfx(&mut bytes, written),
-        Format::Hair => write_hair(&mut bytes, written),
-        Format::Usda => write_usda(&mut bytes, written, None, None),
-        Format::Obj => write_obj(&mut bytes, written),
-    }
-    .expect("write");
+    write(&mut bytes, format, written).expect("write");
     let read = read(&bytes, format, &ReadOptions::default()).expect("read back");
     assert_eq!(
         read.curves.curves.len(),

@@ -6,7 +6,7 @@ mod common;
 
 use std::time::Instant;
 
-use helixhair_formats::{Format, ReadOptions, read, write_hair, write_obj, write_tfx, write_usda};
+use helixhair_formats::{Format, ReadOptions, read, write, write_tfx};
 
 /// The README's bounds are given to a millimetre.
 const BOUNDS_TOLERANCE_M: f32 = 0.001;
@@ -72,13 +72,7 @@ fn sintel_written_back_as_tfx_has_the_same_positions_and_every_format_round_trip
     for format in Format::ALL {
         let start = Instant::now();
         let mut written = Vec::new();
-        match format {
-            Format::Tfx => write_tfx(&mut written, &groom.curves),
-            Format::Hair => write_hair(&mut written, &groom.curves),
-            Format::Usda => write_usda(&mut written, &groom.curves, None, None),
-            Format::Obj => write_obj(&mut written, &groom.curves),
-        }
-        .expect("writes");
+        write(&mut written, format, &groom.curves).expect("writes");
         let write_ms = start.elapsed().as_secs_f64() * 1e3;
         let start = Instant::now();
         let again = read(&written, format, &ReadOptions::default()).expect("reads back");
