@@ -1,0 +1,46 @@
+//! The file formats this crate knows, and how a file name picks one.
+
+use std::fmt;
+use std::path::Path;
+
+/// A hair curve file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Format {
+    /// AMD TressFX binary `.tfx` (versions 3.x and 4.x read, 4.0 written).
+    Tfx,
+    /// Cem Yuksel's binary `.hair` (the hair model library's format).
+    Hair,
+    /// USD text layers (`.usda`): `BasisCurves` prims.
+    Usda,
+    /// Wavefront OBJ polylines (`l` elements).
+    Obj,
+}
+
+impl Format {
+    /// Every format, in a fixed order.
+    pub const ALL: [Format; 4] = [Format::Tfx, Format::Hair, Format::Usda, Format::Obj];
+
+    /// The short lower-case name, also the usual file extension.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Tfx => "tfx",
+            Format::Hair => "hair",
+            Format::Usda => "usda",
+            Format::Obj => "obj",
+        }
+    }
+
+    /// The format a file name's extension names (any case), if any.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+        Format::ALL
+            .into_iter()
+            .find(|format| format.name() == extension)
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}

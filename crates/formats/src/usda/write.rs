@@ -1,0 +1,245 @@
+//! Writing a groom (and optionally its animation and head) as `.usda`.
+
+use std::fmt::Write as _;
+use std::io::Write;
+
+use glam::Vec3;
+
+use crate::animation::Animation;
+use crate::curve_set::{CurveSet, StrandValue, bounds_of};
+use crate::error::WriteError;
+use crate::format::Format;
+use crate::mesh::TriangleMesh;
+use crate::write_checks::{all_or_none, finite_points};
+
+/// Writes one layer:
+///
+/// - layer metadata `metersPerUnit = 1`, `upAxis = "Y"`, and for an
+///   animation `timeCodesPerSecond`, `startTimeCode`, `endTimeCode`;
+/// - `def Xform "HelixHair"` (the default prim) holding
+///   `def BasisCurves "hair"`: `type = "linear"`, `wrap = "nonperiodic"`,
+///   `curveVertexCounts`, `points` (or `points.timeSamples` for an
+///   animation, one sample per frame, with `extent` sampled alike), `widths`
+///   when every curve has one (`uniform` when all are per strand, else
+///   `vertex`), `primvars:displayColor` likewise;
+/// - `def Mesh "head"` when a head is given (`faceVertexCounts` of 3,
+///   `faceVertexIndices`, `points`, `subdivisionScheme = "none"`).
+///
+/// Numbers are the shortest decimals that read back as the same `f32`.
+/// Everything is checked before the first byte is written: non-finite
+/// points, widths or colours on some curves only, frames of the wrong
+/// length, head indices out of range.
+pub fn write_usda(
+    out: &mut impl Write,
+    curves: &CurveSet,
+    animation: Option<&Animation>,
+    head: Option<&TriangleMesh>,
+) -> Result<(), WriteError> {
+    let invalid = |message: String| WriteError::invalid(Format::Usda, message);
+    finite_points(Format::Usda, curves)?;
+    let with_width = all_or_none(Format::Usda, curves, "width", |c| c.width_m.is_some())?;
+    let with_colour = all_or_none(Format::Usda, curves, "colour", |c| c.colour.is_some())?;
+    let point_count = curves.point_count();
+    if let Some(animation) = animation {
+        if !(animation.time_codes_per_second.is_finite() && animation.time_codes_per_second > 0.0) {
+            return Err(invalid(format!(
+                "time codes per second must be positive, not {}",
+                animation.time_codes_per_second
+            )));
+        }
+        for (index, frame) in animation.frames.iter().enumerate() {
+            if frame.points_m.len() != point_count {
+                return Err(invalid(format!(
+                    "frame {index} has {} points, the curves {point_count}",
+                    frame.points_m.len()
+                )));
+            }
+            if !frame.time_code.is_finite() || frame.points_m.iter().any(|p| !p.is_finite()) {
+                return Err(invalid(format!(
+                    "frame {index} has a non-finite time or point"
+                )));
+            }
+            if index > 0 && frame.time_code <= animation.frames[index - 1].time_code {
+                return Err(invalid(format!(
+                    "frame {index}'s time code does not increase"
+                )));
+            }
+        }
+    }
+    if let Some(head) = head {
+        let n = head.vertices_m.len();
+        if let Some(index) = head
+            .triangles
+            .iter()
+            .position(|t| t.iter().any(|&v| v as usize >= n))
+        {
+            return Err(invalid(format!(
+                "head triangle {index} names a vertex past the {n} vertices"
+            )));
+        }
+        if head.vertices_m.iter().any(|v| !v.is_finite()) {
+            return Err(invalid("a head vertex is not finite".to_string()));
+        }
+    }
+    let animated = animation.filter(|a| !a.frames.is_empty());
+
+    let mut text = String::with_capacity(64 * point_count + 1024);
+    text.push_str("#usda 1.0\n(\n    defaultPrim = \"HelixHair\"\n");
+    text.push_str("    doc = \"Written by helixhair-formats\"\n");
+    text.push_str("    metersPerUnit = 1\n    upAxis = \"Y\"\n");
+    if let Some(animation) = animated {
+        let first = animation.frames.first().map_or(0.0, |f| f.time_code);
+        let last = animation.frames.last().map_or(0.0, |f| f.time_code);
+        let _ = writeln!(
+            text,
+            "    startTimeCode = {first}\n    endTimeCode = {last}"
+        );
+        let _ = writeln!(
+            text,
+            "    timeCodesPerSecond = {}",
+            animation.time_codes_per_second
+        );
+    }
+    text.push_str(")\n\ndef Xform \"HelixHair\"\n{\n");
+    text.push_str("    def BasisCurves \"hair\"\n    {\n");
+    text.push_str("        uniform token type = \"linear\"\n");
+    text.push_str("        uniform token wrap = \"nonperiodic\"\n");
+    text.push_str("        int[] curveVertexCounts = [");
+    join(
+        &mut text,
+        curves.curves.iter().map(|c| c.points_m.len()),
+        |t, n| {
+            let _ = write!(t, "{n}");
+        },
+    );
+    text.push_str("]\n");
+    match animated {
+        None => {
+            text.push_str("        point3f[] points = ");
+            vec3_array(
+                &mut text,
+                curves
+                    .curves
+                    .iter()
+                    .flat_map(|c| c.points_m.iter().copied()),
+            );
+            text.push('\n');
+            text.push_str("        float3[] extent = ");
+            extent(
+                &mut text,
+                curves.curves.iter().flat_map(|c| c.points_m.iter()),
+            );
+            text.push('\n');
+        }
+        Some(animation) => {
+            text.push_str("        point3f[] points.timeSamples = {\n");
+            for frame in &animation.frames {
+                let _ = write!(text, "            {}: ", frame.time_code);
+                vec3_array(&mut text, frame.points_m.iter().copied());
+                text.push_str(",\n");
+            }
+            text.push_str("        }\n        float3[] extent.timeSamples = {\n");
+            for frame in &animation.frames {
+                let _ = write!(text, "            {}: ", frame.time_code);
+                extent(&mut text, frame.points_m.iter());
+                text.push_str(",\n");
+            }
+            text.push_str("        }\n");
+        }
+    }
+    if with_width {
+        let uniform = curves
+            .curves
+            .iter()
+            .all(|c| matches!(c.width_m, Some(StrandValue::PerStrand(_))));
+        text.push_str("        float[] widths = [");
+        let widths = curves.curves.iter().flat_map(|curve| {
+            let count = if uniform { 1 } else { curve.points_m.len() };
+            (0..count).map(move |index| {
+                curve
+                    .width_m
+                    .as_ref()
+                    .and_then(|w| w.at(index))
+                    .unwrap_or(0.0)
+            })
+        });
+        join(&mut text, widths, |t, w| {
+            let _ = write!(t, "{w}");
+        });
+        let interpolation = if uniform { "uniform" } else { "vertex" };
+        let _ = writeln!(
+            text,
+            "] (\n            interpolation = \"{interpolation}\"\n        )"
+        );
+    }
+    if with_colour {
+        let uniform = curves
+            .curves
+            .iter()
+            .all(|c| matches!(c.colour, Some(StrandValue::PerStrand(_))));
+        text.push_str("        color3f[] primvars:displayColor = ");
+        let colours = curves.curves.iter().flat_map(|curve| {
+            let count = if uniform { 1 } else { curve.points_m.len() };
+            (0..count).map(move |index| {
+                Vec3::from_array(
+                    curve
+                        .colour
+                        .as_ref()
+                        .and_then(|c| c.at(index))
+                        .unwrap_or([1.0; 3]),
+                )
+            })
+        });
+        vec3_array(&mut text, colours);
+        let interpolation = if uniform { "uniform" } else { "vertex" };
+        let _ = writeln!(
+            text,
+            " (\n            interpolation = \"{interpolation}\"\n        )"
+        );
+    }
+    text.push_str("    }\n");
+    if let Some(head) = head {
+        text.push_str("\n    def Mesh \"head\"\n    {\n");
+        text.push_str("        uniform token subdivisionScheme = \"none\"\n");
+        text.push_str("        int[] faceVertexCounts = [");
+        join(&mut text, head.triangles.iter(), |t, _| t.push('3'));
+        text.push_str("]\n        int[] faceVertexIndices = [");
+        join(&mut text, head.triangles.iter().flatten(), |t, v| {
+            let _ = write!(t, "{v}");
+        });
+        text.push_str("]\n        point3f[] points = ");
+        vec3_array(&mut text, head.vertices_m.iter().copied());
+        text.push_str("\n        float3[] extent = ");
+        extent(&mut text, head.vertices_m.iter());
+        text.push_str("\n    }\n");
+    }
+    text.push_str("}\n");
+    out.write_all(text.as_bytes())
+        .map_err(WriteError::io(Format::Usda))
+}
+
+fn join<T>(
+    text: &mut String,
+    items: impl Iterator<Item = T>,
+    mut write: impl FnMut(&mut String, T),
+) {
+    for (index, item) in items.enumerate() {
+        if index > 0 {
+            text.push_str(", ");
+        }
+        write(text, item);
+    }
+}
+
+fn vec3_array(text: &mut String, points: impl Iterator<Item = Vec3>) {
+    text.push('[');
+    join(text, points, |t, p| {
+        let _ = write!(t, "({}, {}, {})", p.x, p.y, p.z);
+    });
+    text.push(']');
+}
+
+fn extent<'a>(text: &mut String, points: impl Iterator<Item = &'a Vec3>) {
+    let (min, max) = bounds_of(points).unwrap_or((Vec3::ZERO, Vec3::ZERO));
+    vec3_array(text, [min, max].into_iter());
+}
