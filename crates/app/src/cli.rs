@@ -9,11 +9,11 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 use helixhair_physics::Method;
+use helixhair_physics::engine::EngineKind;
 use helixhair_physics::settings::MAX_ITERATIONS;
 
 use crate::atomic_write::write_atomically;
 use crate::bench::{BenchArgs, run_bench};
-use crate::engine::EngineKind;
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;

@@ -152,7 +152,7 @@ fn the_guard_stays_silent_on_every_example_style_under_a_head_shake() {
 fn the_full_head_runs_on_the_batch_engine_and_survives_a_head_shake() {
     // The batch engine has no guard: the full-head example must stay finite
     // under the same shake on its own.
-    use helixhair_app::engine::EngineKind;
+    use helixhair_physics::engine::EngineKind;
     let path =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/groomed/full_head.ron");
     let style = Style::load(&path).unwrap_or_else(|e| panic!("{e}"));

@@ -34,6 +34,7 @@
 pub mod batch;
 pub mod collision;
 pub mod energy;
+pub mod engine;
 pub mod error;
 pub mod forces;
 #[cfg(feature = "gpu")]
@@ -55,6 +56,7 @@ pub mod step;
 pub mod strand;
 
 pub use energy::Energies;
+pub use engine::{Engine, EngineKind};
 pub use error::ParamError;
 pub use guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState};
 pub use hair_system::HairSystem;

@@ -11,9 +11,9 @@
 use std::sync::Arc;
 
 use helixhair_physics::collision::SignedDistanceField;
+use helixhair_physics::engine::Engine;
 use helixhair_render::HeadMesh;
 
-use crate::engine::Engine;
 use crate::groom::head_collider;
 
 /// A collider built from the head mesh, shared by every run.
