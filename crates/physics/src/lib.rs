@@ -4,9 +4,9 @@
 //!
 //! A strand is a chain of N helical elements; its generalized coordinates
 //! are each element's twist and two curvatures, q_Q = (τ, κ₁, κ₂), so it
-//! cannot stretch and its curl is a physical parameter. `PHYSICS.md` (in the
-//! shared docs) is the brief; every formula has a check in this crate's
-//! tests.
+//! cannot stretch and its curl is a physical parameter. `docs/physics.md`
+//! explains the model, the step and the solvers, and lists the known
+//! answers this crate's tests hold the formulas to.
 //!
 //! # One step
 //!

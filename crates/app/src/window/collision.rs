@@ -38,7 +38,8 @@ impl HeadCollider {
     }
 
     /// Makes `engine` collide its strands with this collider (through
-    /// [`Engine::set_collider`]: the batch engine does not collide yet).
+    /// [`Engine::set_collider`]; both engines collide: the reference at
+    /// every quadrature sample, the batch engine at element end points).
     pub fn attach(&self, engine: &mut Engine) {
         engine.set_collider(Some(self.field.clone()));
     }
