@@ -8,16 +8,18 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
+use helixhair_physics::engine::EngineKind;
 use helixhair_physics::settings::MAX_ITERATIONS;
 use helixhair_physics::{Method, StepScheme};
 
 use crate::atomic_write::write_atomically;
+#[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
-use crate::engine::EngineKind;
 use crate::head_clip::Clip;
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;
+#[cfg(feature = "window")]
 use crate::window::{WindowArgs, run_window};
 
 /// Frames `helixhair sim` runs unless told otherwise: one second at 60 Hz.
@@ -25,6 +27,12 @@ pub const DEFAULT_STEPS: u32 = 60;
 
 /// Most frames one `helixhair sim` may run (the per-frame timings are kept).
 pub const MAX_STEPS: u32 = 1_000_000;
+
+/// What `helixhair` without a command says when it was built without the
+/// window (cargo feature `window`).
+pub const NO_WINDOW: &str = "this helixhair was built without the styling window \
+    (cargo feature `window`); run a command instead, e.g. \
+    `helixhair sim --style assets/styles/curly.ron`, or see `helixhair --help`";
 
 /// HelixHair: Super-Helix hair simulation.
 #[derive(Clone, Debug, Parser)]
@@ -39,6 +47,7 @@ pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
     /// The window's options (used without a command).
+    #[cfg(feature = "window")]
     #[command(flatten)]
     pub window: WindowArgs,
 }
@@ -51,6 +60,7 @@ pub enum Command {
     Sim(SimArgs),
     /// Measure speed against accuracy: cost per step, error against cost,
     /// stability maps and vibration modes, as CSV files and SVG charts.
+    #[cfg(feature = "bench")]
     Bench(BenchArgs),
     /// Simulate a style, then draw it offscreen into a PNG (or one PNG per
     /// frame) on any graphics adapter, lavapipe included.
@@ -156,8 +166,12 @@ pub fn parse_engine(name: &str) -> Result<EngineKind, String> {
 /// summary goes to `stderr` when the JSON report takes stdout.
 pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow::Result<()> {
     match &cli.command {
+        #[cfg(feature = "window")]
         None => run_window(&cli.window),
+        #[cfg(not(feature = "window"))]
+        None => anyhow::bail!("{NO_WINDOW}"),
         Some(Command::Sim(args)) => run_sim(args, stdout, stderr),
+        #[cfg(feature = "bench")]
         Some(Command::Bench(args)) => run_bench(args, stdout),
         Some(Command::Render(args)) => crate::render_cmd::run_render(args, stdout),
     }

@@ -2,20 +2,16 @@
 //! fine Dense reference, measured by `helixhair bench --study accuracy` on
 //! a 20 cm strand of each curl class bouncing on its root.
 //!
-//! The bench writes `error_model.ron`; the copy in `assets/` (from a full
-//! bench run, regenerated with the command in `docs/RESULTS.md`) is built
-//! into the binary and read by [`crate::auto_choice`]. Nothing in it is
-//! guessed: every entry is one measured run.
-
-use std::path::Path;
+//! This module holds the data type and reads it; it knows nothing of the
+//! bench. The bench (`bench::error_model_build`, feature `bench`) writes
+//! `error_model.ron`; the copy in `assets/` (from a full bench run,
+//! regenerated with the command in `docs/RESULTS.md`) is built into the
+//! binary and read by [`crate::auto_choice`]. Nothing in it is guessed:
+//! every entry is one measured run.
 
 use anyhow::Context as _;
 use helixhair_physics::{Method, StrandParams};
 use serde::{Deserialize, Serialize};
-
-use crate::atomic_write::write_atomically;
-use crate::bench::accuracy::AccuracyRow;
-use crate::bench::scenes::{CurlClass, RunSetting, SCENE_LENGTH_M};
 
 /// The model built into the binary (from a full bench run).
 pub const BUILT_IN: &str = include_str!("../../../assets/error_model.ron");
@@ -73,46 +69,6 @@ pub fn max_curvature_per_m(params: &StrandParams) -> f64 {
 }
 
 impl ErrorModel {
-    /// The model from the accuracy study's rows of the `bounce-CLASS` scenes.
-    pub fn from_rows(rows: &[AccuracyRow], reference: RunSetting, duration_secs: f64) -> Self {
-        let classes = CurlClass::ALL
-            .iter()
-            .map(|&c| ClassCurvature {
-                class: c.name().into(),
-                curvature_per_m: max_curvature_per_m(&StrandParams {
-                    natural_shape: c.shape(),
-                    ..StrandParams::default()
-                }),
-            })
-            .collect();
-        let entries = rows
-            .iter()
-            .filter_map(|r| {
-                let class = r.scene.strip_prefix("bounce-")?;
-                Some(ErrorEntry {
-                    class: class.into(),
-                    method: Method::from_name(&r.method)?,
-                    elements: r.elements,
-                    substeps: r.substeps,
-                    error: r.error,
-                    cost_ms_per_sim_sec: r.cost_ms_per_sim_sec,
-                })
-            })
-            .collect();
-        Self {
-            source: format!(
-                "helixhair bench --study accuracy: 20 cm strands of each curl class, root 45° below horizontal, bouncing 1.5 cm at 2 Hz for \
-                 {duration_secs} s; reference {} with {} elements and {} substeps",
-                reference.method.label(),
-                reference.elements,
-                reference.substeps
-            ),
-            scene_length_m: SCENE_LENGTH_M,
-            classes,
-            entries,
-        }
-    }
-
     /// Parses a model from RON text.
     pub fn from_ron(text: &str) -> anyhow::Result<Self> {
         ron::from_str(text).map_err(|e| anyhow::anyhow!("error model, {e}"))
@@ -121,13 +77,5 @@ impl ErrorModel {
     /// The model built into the binary.
     pub fn built_in() -> anyhow::Result<Self> {
         Self::from_ron(BUILT_IN).context("the built-in error model (assets/error_model.ron)")
-    }
-
-    /// Writes the model as RON, atomically.
-    pub fn save(&self, path: &Path) -> anyhow::Result<()> {
-        let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
-            .context("cannot encode the error model")?;
-        write_atomically(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))
     }
 }

@@ -8,10 +8,9 @@
 //! turn by at most [`MAX_TURN_RAD`].
 
 use glam::{DVec3, Vec3};
+use helixhair_physics::engine::Engine;
 use helixhair_physics::helix::centreline_and_jacobian;
 use helixhair_render::StrandBuffers;
-
-use crate::engine::Engine;
 
 /// Largest angle the tangent turns between two drawn points, radians.
 pub const MAX_TURN_RAD: f64 = 0.45;

@@ -7,7 +7,7 @@
 //! for NaN and infinities after each one, so a blow-up is reported at the
 //! frame where it happened.
 //!
-//! The engine ([`crate::engine`]) is the style's `engine` or `--engine`:
+//! The engine ([`helixhair_physics::engine`]) is the style's `engine` or `--engine`:
 //! the f64 reference (whose guard normally prevents a blow-up; what it did
 //! is kept, [`HeadlessSim::guard_events`], for the report) or the f32
 //! batch path, which runs only Exact and Block-diagonal and whose guard
@@ -24,13 +24,12 @@
 use std::ops::Range;
 use std::time::Instant;
 
+use helixhair_physics::engine::{Engine, EngineKind};
 use helixhair_physics::{GuardEvent, HairSystem, Method, ParamError, RigidMotion, StepScheme};
+use helixhair_render::head_generate::default_head;
 use thiserror::Error;
 
-use helixhair_render::head_generate::default_head;
-
 use crate::auto_choice::{Choice, choose};
-use crate::engine::{Engine, EngineKind};
 use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
 use crate::groom::{grow_scalp_roots, needs_head};

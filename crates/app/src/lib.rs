@@ -3,15 +3,28 @@
 //!
 //! The binary (`src/main.rs`) is a thin shell over [`cli::run`], so tests
 //! drive everything through this library. Without a command it opens the
-//! styling window ([`window`]).
+//! styling window (module `window`, cargo feature `window`); `helixhair
+//! bench` is module `bench` (feature `bench`). Both features are on by
+//! default; without them the style format and the headless `sim` and
+//! `render` commands build alone.
+//!
+//! Every face (`sim`, `render`, the window, the bench) steps the physics
+//! through one core, [`helixhair_physics::engine::Engine`] (the f64
+//! reference `HairSystem` or the f32 `BatchSystem`). `sim`, `render` and
+//! the bench's stability study build it from a style with
+//! [`HeadlessSim`]; the window builds its own (`window::live_sim`). The
+//! module graph has no cycles, and nothing below the faces depends on the
+//! window or the bench.
 //!
 //! # From a style file to a report
 //!
 //! 1. [`Style::load`] reads a style ([`style`]); every error names the file,
 //!    the line and the field ([`StyleError`], located with
 //!    [`source_map::SourceMap`]).
-//! 2. [`HeadlessSim::new`] builds a [`helixhair_physics::HairSystem`] from it
-//!    ([`headless`]), with the command line's overrides.
+//! 2. [`HeadlessSim::new`] builds an [`helixhair_physics::engine::Engine`]
+//!    from it ([`headless`]) on the style's engine or `--engine`, with the
+//!    command line's other overrides (and, with an accuracy target, the
+//!    solver and element counts of [`auto_choice`]).
 //! 3. [`HeadlessSim::run`] steps it on a still head, timing each frame and
 //!    checking the state stays finite.
 //! 4. [`SimReport`] ([`sim_report`]) gathers timings, energies and strand
@@ -32,11 +45,11 @@
 
 pub mod atomic_write;
 pub mod auto_choice;
+#[cfg(feature = "bench")]
 pub mod bench;
 pub mod camera_arg;
 pub mod cli;
 pub mod drawn_hair;
-pub mod engine;
 pub mod error_model;
 pub mod field_path;
 pub mod groom;
@@ -46,11 +59,14 @@ pub mod headless;
 pub mod render_cmd;
 pub mod sim_report;
 pub mod source_map;
+pub mod stats;
 pub mod style;
+pub mod style_checks;
 pub mod style_error;
 pub mod style_groom;
 pub mod style_groom_validate;
 pub mod style_validate;
+#[cfg(feature = "window")]
 pub mod window;
 
 pub use field_path::FieldPath;

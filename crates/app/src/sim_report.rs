@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::auto_choice::Choice;
 
 use crate::headless::HeadlessSim;
+use crate::stats::median;
 
 /// Value of the `format` field.
 pub const SIM_REPORT_FORMAT: &str = "helixhair-sim";
@@ -31,7 +32,7 @@ pub struct SimReport {
     pub style_path: String,
     /// The style's `name`.
     pub style_name: String,
-    /// The engine that ran ([`crate::engine::EngineKind::label`]):
+    /// The engine that ran ([`helixhair_physics::engine::EngineKind::label`]):
     /// `reference` or `batch`.
     pub engine: &'static str,
     /// Solver, as `--method` spells it ([`helixhair_physics::Method::label`]:
@@ -182,19 +183,6 @@ impl WallTimeReport {
     }
 }
 
-/// Median of `values` (mean of the middle two for an even count; 0 if
-/// empty).
-pub fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let n = sorted.len();
-    match n {
-        0 => 0.0,
-        _ if n % 2 == 1 => sorted[n / 2],
-        _ => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
-    }
-}
-
 impl SimReport {
     /// The report of `sim` after a run whose frames took `per_step_secs`.
     pub fn new(
@@ -328,13 +316,6 @@ impl SimReport {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn median_of_odd_even_and_empty_lists() {
-        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
-        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 2.5);
-        assert_eq!(median(&[]), 0.0);
-    }
 
     #[test]
     fn wall_time_statistics() {

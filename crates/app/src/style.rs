@@ -16,16 +16,15 @@
 use std::path::Path;
 
 use glam::DVec3;
+use helixhair_physics::engine::EngineKind;
 use helixhair_physics::{RootPose, SimSettings, StrandParams};
 use serde::{Deserialize, Serialize};
 
 use crate::atomic_write::write_atomically;
-use crate::engine::EngineKind;
 use crate::field_path::FieldPath;
 use crate::source_map::{SourceMap, TextPosition};
 use crate::style_error::{StyleError, StyleErrorKind, StyleIssue};
 use crate::style_groom::{RenderStrands, ScalpPlacement};
-use crate::style_validate::check_version;
 
 /// The style format version this build reads and writes. Files with any
 /// other version are refused (see "Version policy" in the format docs).
@@ -49,7 +48,7 @@ pub struct Style {
     /// The physics engine: `Reference` (the f64 `HairSystem`, every solver,
     /// guard and collider; the default) or `Batch` (the f32 SIMD
     /// `BatchSystem` on all cores, `sim.method` `Exact` or `BlockDiagonal`
-    /// only). See [`crate::engine`].
+    /// only). See [`helixhair_physics::engine`].
     #[serde(default)]
     pub engine: EngineKind,
     /// Accuracy target for the automatic choice of solver and element
@@ -264,4 +263,18 @@ fn located_ron(
         kind: StyleErrorKind::of_ron(&error.code),
         message: error.code.to_string(),
     }
+}
+
+/// Refuses every format version but [`STYLE_VERSION`].
+pub(crate) fn check_version(version: u32) -> Result<(), StyleIssue> {
+    if version == STYLE_VERSION {
+        return Ok(());
+    }
+    Err(StyleIssue {
+        field: FieldPath::root().field("version"),
+        kind: StyleErrorKind::Version,
+        message: format!(
+            "version {version} is not supported: this build reads version {STYLE_VERSION}"
+        ),
+    })
 }

@@ -2,9 +2,9 @@
 //! naming the offending field as the rest of the style's checks do.
 
 use crate::field_path::FieldPath;
+use crate::style_checks::{check_finite, invalid};
 use crate::style_error::StyleIssue;
 use crate::style_groom::{RenderStrands, ScalpPlacement, ScalpRegion};
-use crate::style_validate::{check_finite, invalid};
 
 /// Most guide strands one group may place on the scalp: every one is
 /// simulated, and a few thousand already cost seconds per frame.

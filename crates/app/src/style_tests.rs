@@ -358,7 +358,7 @@ fn nan_is_reported_after_parsing_at_its_field() {
 
 #[test]
 fn the_engine_field_defaults_to_reference_and_reads_batch() {
-    use crate::engine::EngineKind;
+    use helixhair_physics::engine::EngineKind;
     assert_eq!(load(VALID).expect("loads").engine, EngineKind::Reference);
     let src = edit(
         "    sim: (method: Dense,",

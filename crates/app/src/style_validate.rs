@@ -7,11 +7,12 @@
 
 use glam::DVec3;
 use helixhair_physics::ParamError;
+use helixhair_physics::engine::EngineKind;
 
-use crate::engine::EngineKind;
 use crate::field_path::FieldPath;
-use crate::style::{Root, STYLE_VERSION, Style};
-use crate::style_error::{StyleErrorKind, StyleIssue};
+use crate::style::{Root, Style, check_version};
+use crate::style_checks::{check_finite, invalid};
+use crate::style_error::StyleIssue;
 use crate::style_groom_validate::{validate_render, validate_scalp};
 
 /// Largest distance of a root coordinate from the head's origin, metres:
@@ -96,18 +97,6 @@ pub(crate) fn method_spelling(method: helixhair_physics::Method) -> String {
     ron::to_string(&method).unwrap_or_else(|_| method.label())
 }
 
-/// Refuses every format version but [`STYLE_VERSION`].
-pub(crate) fn check_version(version: u32) -> Result<(), StyleIssue> {
-    if version == STYLE_VERSION {
-        return Ok(());
-    }
-    Err(issue(
-        FieldPath::root().field("version"),
-        StyleErrorKind::Version,
-        format!("version {version} is not supported: this build reads version {STYLE_VERSION}"),
-    ))
-}
-
 fn validate_root(root: &Root, at: &FieldPath) -> Result<(), StyleIssue> {
     let limit = MAX_ROOT_COORDINATE_M;
     check_finite(root.position_m, &at.field("position_m"), Some(limit))?;
@@ -125,41 +114,8 @@ fn validate_root(root: &Root, at: &FieldPath) -> Result<(), StyleIssue> {
     check_finite(root.reference, &at.field("reference"), None)
 }
 
-/// Every component finite and, with `limit`, inside `[-limit, limit]`.
-pub(crate) fn check_finite(v: DVec3, at: &FieldPath, limit: Option<f64>) -> Result<(), StyleIssue> {
-    for (k, x) in v.to_array().into_iter().enumerate() {
-        if !x.is_finite() {
-            return Err(invalid(
-                at.index(k),
-                format!("must be a finite number; found {x}"),
-            ));
-        }
-        if let Some(limit) = limit
-            && x.abs() > limit
-        {
-            return Err(invalid(
-                at.index(k),
-                format!("must lie in [-{limit}, {limit}]; found {x}"),
-            ));
-        }
-    }
-    Ok(())
-}
-
 fn format_vec(v: DVec3) -> String {
     format!("({}, {}, {})", v.x, v.y, v.z)
-}
-
-fn issue(field: FieldPath, kind: StyleErrorKind, message: String) -> StyleIssue {
-    StyleIssue {
-        field,
-        kind,
-        message,
-    }
-}
-
-pub(crate) fn invalid(field: FieldPath, message: impl Into<String>) -> StyleIssue {
-    issue(field, StyleErrorKind::InvalidValue, message.into())
 }
 
 /// A physics parameter error, its field placed under `prefix`.

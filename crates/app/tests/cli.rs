@@ -11,6 +11,7 @@ fn helixhair(args: &[&str]) -> Output {
         .expect("helixhair starts")
 }
 
+#[cfg(feature = "window")]
 #[test]
 fn without_a_display_the_window_points_to_the_headless_commands() {
     let output = Command::new(env!("CARGO_BIN_EXE_helixhair"))
@@ -24,6 +25,17 @@ fn without_a_display_the_window_points_to_the_headless_commands() {
     assert!(stderr.contains("helixhair sim --style"), "{stderr}");
 }
 
+#[cfg(not(feature = "window"))]
+#[test]
+fn without_the_window_feature_no_command_says_so_and_fails() {
+    let output = helixhair(&[]);
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("cargo feature `window`"), "{stderr}");
+    assert!(stderr.contains("helixhair sim --style"), "{stderr}");
+}
+
+#[cfg(feature = "window")]
 #[test]
 fn window_options_are_documented() {
     let output = helixhair(&["--help"]);

@@ -1,7 +1,7 @@
 //! The example styles in `assets/styles/` load and are what their comments
 //! say: a few groups, 20 to 60 strands, roots on a 0.1 m scalp sphere
 //! growing along its outward normal, hair parameters in the measured ranges
-//! of PHYSICS.md.
+//! of `docs/physics.md`.
 
 use std::path::PathBuf;
 
@@ -82,7 +82,7 @@ fn curl(shape: &NaturalShape) -> (f64, f64) {
 
 #[test]
 fn hair_parameters_lie_in_the_measured_ranges() {
-    // PHYSICS.md section 3: radius 25-60 µm; natural curvature 20-200 1/m;
+    // docs/physics.md section 3: radius 25-60 µm; natural curvature 20-200 1/m;
     // ellipticity 1 (straight) rising to 1.6 and beyond (coily).
     let mut last_ellipticity = 0.0;
     for name in NAMES {
@@ -152,7 +152,7 @@ fn the_guard_stays_silent_on_every_example_style_under_a_head_shake() {
 fn the_full_head_runs_on_the_batch_engine_and_survives_a_head_shake() {
     // The batch engine has no guard: the full-head example must stay finite
     // under the same shake on its own.
-    use helixhair_app::engine::EngineKind;
+    use helixhair_physics::engine::EngineKind;
     let path =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/groomed/full_head.ron");
     let style = Style::load(&path).unwrap_or_else(|e| panic!("{e}"));

@@ -6,21 +6,20 @@
 //! One 30 cm straight strand (12 graded elements, as in
 //! `assets/styles/straight.ron`) grows from a 10 cm head along each of a
 //! few directions and falls under gravity (h = 1/240 s). For each it steps
-//! the batch arithmetic (`batch::exact::step_exact`) in f32 and, with the
-//! same f32 constants, in f64 (`Real for f64`), next to the f64 reference
-//! `HairSystem`, and prints the largest relative difference of max |q̇|
-//! over 45 frames. Measured: the f64 run of the batch arithmetic matches
-//! the reference to 5e-6 for every direction (its constants are f32), and
-//! the f32 run to 2e-5 except for roots that grow out of the vertical
-//! plane through the head's centre, where it is 5% off in the first frame
-//! and 16–22% within 45 frames (`helixhair sim` on `straight.ron` with the
-//! batch engine blows up at frame 27). The cause is round-off:
-//! the suffix moments are taken about the root, so the mass block of an
-//! element 30 cm out is the small difference of terms of size m|p|², and
-//! a straight strand's twist entries (it moves no centreline point when
-//! straight) are the smallest of all. Moments about each element's own
-//! start (spatial shifts of the suffix sums and of Exact's articulated
-//! inertia, as Featherstone's algorithm does) would remove it.
+//! the batch arithmetic with moments about the root
+//! (`batch::exact::step_exact`) in f32 and, with the same f32 constants,
+//! in f64 (`Real for f64`), and the batch path as it is
+//! (`BatchSystem`: f32, moments about each element's own points), next to
+//! the f64 reference `HairSystem`, and prints the largest relative
+//! difference of max |q̇| over 45 frames for each.
+//!
+//! It is the diagnosis behind the batch path's local moments: about the
+//! root, the mass block of an element 30 cm out is the small difference of
+//! terms of size m|p|², and a straight strand's twist entries are the
+//! smallest of all, so f32 (but not f64) parts from the reference on roots
+//! out of the vertical plane through the head's centre. The measured
+//! table and what the local moments changed are in `docs/RESULTS.md`
+//! ("f32 round-off on straight strands").
 
 use glam::DVec3;
 use helixhair_physics::batch::exact::{Elimination, step_exact};

@@ -4,9 +4,9 @@
 //!
 //! A strand is a chain of N helical elements; its generalized coordinates
 //! are each element's twist and two curvatures, q_Q = (τ, κ₁, κ₂), so it
-//! cannot stretch and its curl is a physical parameter. `PHYSICS.md` (in the
-//! shared docs) is the brief; every formula has a check in this crate's
-//! tests.
+//! cannot stretch and its curl is a physical parameter. `docs/physics.md`
+//! explains the model, the step and the solvers, and lists the known
+//! answers this crate's tests hold the formulas to.
 //!
 //! # One step
 //!
@@ -34,6 +34,7 @@
 pub mod batch;
 pub mod collision;
 pub mod energy;
+pub mod engine;
 pub mod error;
 pub mod forces;
 pub mod frame_balance;
@@ -57,6 +58,7 @@ pub mod strand;
 pub mod velocity_terms;
 
 pub use energy::Energies;
+pub use engine::{Engine, EngineKind};
 pub use error::ParamError;
 pub use guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState};
 pub use hair_system::HairSystem;

@@ -6,7 +6,7 @@
 //! stiffness diagonal `K`, the natural strains `qⁿ`) is derived from it by
 //! [`crate::StrandModel::new`], after [`StrandParams::validate`] has checked
 //! every field. Defaults describe an average human hair 20 cm long, from the
-//! measurements quoted in `PHYSICS.md` section 3.
+//! measurements quoted in `docs/physics.md` section 3.
 
 use serde::{Deserialize, Serialize};
 

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::ParamError;
 use crate::params::check_range;
 
-/// How the step matrix (M + hC + h²K) Δv = rhs is solved; see `PHYSICS.md`
+/// How the step matrix (M + hC + h²K) Δv = rhs is solved; see `docs/physics.md`
 /// section 5 and [`crate::solve`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -89,15 +89,16 @@ impl Method {
 #[serde(default, deny_unknown_fields)]
 pub struct SimSettings {
     /// Solver for the step matrix. Default Exact: Dense's answer (to
-    /// round-off) at O(N) cost, 1.1× Block-diagonal's per step at N = 10
-    /// and 4× cheaper than Dense at N = 50, while Block-diagonal blows up
-    /// on a hanging curl at 60 Hz from N = 8 (see `docs/solvers.md`).
+    /// round-off) at O(N) cost, a little dearer than Block-diagonal per
+    /// step and far cheaper than Dense as N grows, while Block-diagonal
+    /// blows up on a hanging curl at 60 Hz from N = 8 (the measured costs
+    /// and failures are in `docs/solvers.md`).
     pub method: Method,
     /// Frame time step in seconds, range [1e-6, 0.1]. Default 1/60 s: one
     /// display frame.
     pub dt_secs: f64,
     /// Substeps per frame, range 1..=64. Default 1: the linearly implicit
-    /// step is stable at 60 Hz for the elastic part (PHYSICS.md section 6).
+    /// step is stable at 60 Hz for the elastic part (`docs/physics.md` section 6).
     pub substeps: u32,
     /// Gravity in m/s², world coordinates (y up). Default (0, −9.81, 0).
     pub gravity_m_per_s2: DVec3,

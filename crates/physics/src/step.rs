@@ -9,7 +9,7 @@
 //!    s = 1 + hν/ρS folds the implicit drag, C_drag = (ν/ρS)M, into the mass
 //!    term. The right-hand side uses the exact M (matrix-free, O(N)) for
 //!    every method, so methods differ only in the matrix they solve.
-//! 5. **integrate**: v ← v + Δv, q ← q + h v (PHYSICS.md section 5).
+//! 5. **integrate**: v ← v + Δv, q ← q + h v (docs/physics.md section 5).
 //!
 //! M and Q are frozen at the start of the step; K and the damping are
 //! implicit, so the elastic part is unconditionally stable. With the

@@ -1,6 +1,6 @@
 //! Analytic derivatives against central finite differences, and the mass
 //! matrix and gravity force against the energies they come from
-//! (PHYSICS.md sections 4 and 7).
+//! (docs/physics.md sections 4 and 7).
 
 mod common;
 

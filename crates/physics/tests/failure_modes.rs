@@ -1,4 +1,4 @@
-//! Where the methods fail, pinned so that a change is noticed (PHYSICS.md
+//! Where the methods fail, pinned so that a change is noticed (docs/physics.md
 //! section 6). Each test opens with what goes wrong. The tests run the
 //! solvers raw (a `HairSystem`'s guard switched off); `guards.rs` pins how
 //! the guard catches each of these failures.

@@ -1,7 +1,7 @@
 //! The Dense step in f32 (GPU kernel, its CPU twins, `batch::dense`)
 //! against known answers: the f64 reference's Dense step and assembled
 //! mass matrix, and the Exact step (algebraically the same step matrix,
-//! PHYSICS.md section 5); and the GPU kernel against its twins over a head
+//! docs/physics.md section 5); and the GPU kernel against its twins over a head
 //! shake.
 //!
 //! Policy: with no adapter the GPU tests print why and pass, unless

@@ -1,4 +1,4 @@
-//! Exact invariants (PHYSICS.md section 7): a natural helix at rest stays
+//! Exact invariants (docs/physics.md section 7): a natural helix at rest stays
 //! at rest; rotating the root frame and gravity together leaves q
 //! unchanged; serial and parallel stepping agree bit for bit.
 

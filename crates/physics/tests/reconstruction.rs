@@ -1,4 +1,4 @@
-//! Reconstruction against known answers: the golden value of PHYSICS.md
+//! Reconstruction against known answers: the golden value of docs/physics.md
 //! section 2, an independent ODE integration of the frame equations, and
 //! the helix radius and pitch of a constant-strain strand.
 

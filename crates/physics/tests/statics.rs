@@ -1,4 +1,4 @@
-//! Rest states against known answers (PHYSICS.md section 7): the heavy
+//! Rest states against known answers (docs/physics.md section 7): the heavy
 //! elastica table, the small-deflection law of element-averaged curvature,
 //! and Dense and Block-diagonal agreeing at rest.
 
@@ -19,7 +19,7 @@ const REST_RATE: f64 = 1e-10;
 /// (at h = 0.02 s it keeps thrashing at α = 100, N = 40; see RESULTS).
 const SETTLE_H: f64 = 0.01;
 
-/// (α, y_tip/L, (L − x_tip)/L, tip angle) from PHYSICS.md section 7.
+/// (α, y_tip/L, (L − x_tip)/L, tip angle) from docs/physics.md section 7.
 const HEAVY_ELASTICA: [(f64, f64, f64, f64); 4] = [
     (1.0, 0.12347, 0.00875, 0.16512),
     (5.0, 0.49591, 0.15334, 0.69700),

@@ -1,4 +1,4 @@
-//! Vibration against known answers (PHYSICS.md sections 5 and 7): the
+//! Vibration against known answers (docs/physics.md sections 5 and 7): the
 //! first cantilever mode of Dense against 3.5160 × the Ritz ratios, the
 //! same frequency recovered by time stepping, and how much faster the
 //! Block-diagonal approximation swings.
@@ -18,10 +18,10 @@ const RITZ_RATIOS: [(usize, f64); 4] = [(1, 1.2719), (2, 1.0509), (5, 1.0078), (
 /// Ratios are quoted to 4 decimals (and 3.5160 to 4): 1e-4 relative.
 const RITZ_TOL: f64 = 1e-4;
 /// Block-diagonal's first-mode frequency over Dense's for a straight planar
-/// strand. PHYSICS.md quotes a linear estimate of 1.29, 1.68, 2.29; an
+/// strand. docs/physics.md quotes a linear estimate of 1.29, 1.68, 2.29; an
 /// independent computation (analytic planar Jacobians J_Q(s) = (s − s_Q)²/2
 /// inside element Q and ℓ(s − c_Q) beyond it, 20-point Gauss, scipy's
-/// generalized eigh) gives 1.27996, 1.67910, 2.28721: the brief's N = 5
+/// generalized eigh) gives 1.27996, 1.67910, 2.28721: docs/physics.md's N = 5
 /// figure is 0.01 high, the others agree to its two decimals.
 const BLOCK_RATIOS: [(usize, f64); 3] = [(5, 1.27996), (10, 1.67910), (20, 2.28721)];
 /// The independent values are quoted to 5 decimals.

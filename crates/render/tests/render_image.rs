@@ -5,7 +5,7 @@
 //! of roots on its scalp, seen from the front, in a 128 × 128 picture.
 
 use glam::Vec3;
-use helixhair_render::gpu::require::gpu_or_skip;
+use helixhair_gpu::context_or_skip;
 use helixhair_render::head_generate::default_head;
 use helixhair_render::{
     HairStrands, HeadMesh, Light, OffscreenRenderer, OrbitCamera, RenderSettings, RgbaImage, Scene,
@@ -55,7 +55,7 @@ fn front_camera() -> OrbitCamera {
 }
 
 fn render(hair: &HairStrands, head: &HeadMesh, test: &str) -> Option<RgbaImage> {
-    let gpu = gpu_or_skip(test)?;
+    let gpu = context_or_skip(test)?;
     let mut renderer =
         OffscreenRenderer::new(gpu, RenderSettings::new(SIDE_PX, SIDE_PX)).expect("renderer");
     let scene = Scene {

@@ -14,11 +14,11 @@ use serde::Serialize;
 
 use super::BenchContext;
 use super::chart::{Axis, LineChart, REFERENCE_COLOUR, Series, draw_line_chart, series_per_method};
+use super::error_model_build::{error_model_from_rows, save_error_model};
 use super::pareto::pareto_front;
 use super::scenes::{CurlClass, RunSetting, Scene, run_scene, tip_rms_error};
 use super::table::write_csv;
-use crate::error_model::ErrorModel;
-use crate::sim_report::median;
+use crate::stats::median;
 
 /// The reference setting: Dense, 64 elements, 16 substeps (h = 1/960 s).
 pub const REFERENCE: RunSetting = RunSetting {
@@ -181,7 +181,10 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
         rows.extend(scene_rows);
     }
     write_csv(&ctx.file("accuracy.csv"), &rows)?;
-    ErrorModel::from_rows(&rows, reference, duration).save(&ctx.file("error_model.ron"))?;
+    save_error_model(
+        &error_model_from_rows(&rows, reference, duration),
+        &ctx.file("error_model.ron"),
+    )?;
     super::iterations::run(ctx, duration)
 }
 

@@ -24,7 +24,7 @@ pub const QUICK_ELEMENTS: [usize; 3] = [5, 10, 20];
 /// finite on a straight strand.
 pub const TIMING_STEP_SECS: f64 = 1.0 / 600.0;
 
-/// The solvers the studies compare: the four methods of PHYSICS.md with
+/// The solvers the studies compare: the four methods of `docs/physics.md` (section 5) with
 /// Iterative at its default iteration count.
 pub const SOLVERS: [Method; 4] = [
     Method::Dense,

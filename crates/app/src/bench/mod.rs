@@ -17,6 +17,7 @@
 pub mod accuracy;
 pub mod chart;
 pub mod cost;
+pub mod error_model_build;
 pub mod iterations;
 pub mod modes;
 pub mod pareto;

@@ -17,12 +17,17 @@
 //! The reference is Dense at h = 1/960 s on the same cell. The study also
 //! runs the default curly style (`assets/styles/curly.ron`, all its
 //! strands, still head and head shake) at growing time steps and reports
-//! the largest step at which each solver stays finite.
+//! the largest step at which each solver stays finite. It builds that
+//! style's system with [`HeadlessSim::new`], the same style-to-engine path
+//! `helixhair sim` and `helixhair render` take, so the study measures what
+//! those commands run; the dependency points one way (the headless path
+//! knows nothing of the bench).
 
 use std::path::Path;
 
 use anyhow::Context as _;
 use glam::DVec3;
+use helixhair_physics::engine::EngineKind;
 use helixhair_physics::{Method, Oscillation, StrandParams};
 use plotters::prelude::*;
 use serde::Serialize;
@@ -34,7 +39,6 @@ use super::scenes::{
     CurlClass, RunSetting, Scene, SceneMotion, Trajectory, run_scene, tip_motion_rms,
 };
 use super::table::write_csv;
-use crate::engine::EngineKind;
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::style::Style;
 

@@ -34,7 +34,7 @@ use super::BenchContext;
 use super::chart::{Axis, LineChart, Series, draw_line_chart};
 use super::table::write_csv;
 use super::timing::secs_per_call;
-use crate::sim_report::median;
+use crate::stats::median;
 
 /// Timed batches per figure (odd: the median is one batch).
 pub const BATCHES: usize = 5;

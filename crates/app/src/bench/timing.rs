@@ -11,7 +11,7 @@ use glam::DVec3;
 use helixhair_physics::{RigidMotion, Strand};
 use serde::Serialize;
 
-use crate::sim_report::median;
+use crate::stats::median;
 
 /// Batches per measurement (odd, so the median is one batch).
 pub const BATCHES: usize = 15;

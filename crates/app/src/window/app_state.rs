@@ -16,10 +16,10 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use helixhair_physics::Method;
+use helixhair_physics::engine::EngineKind;
 use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
 
-use crate::engine::EngineKind;
 use crate::style::Style;
 
 use super::collision::HeadCollider;

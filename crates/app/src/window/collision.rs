@@ -11,9 +11,9 @@
 use std::sync::Arc;
 
 use helixhair_physics::collision::SignedDistanceField;
+use helixhair_physics::engine::Engine;
 use helixhair_render::HeadMesh;
 
-use crate::engine::Engine;
 use crate::groom::head_collider;
 
 /// A collider built from the head mesh, shared by every run.
@@ -38,7 +38,8 @@ impl HeadCollider {
     }
 
     /// Makes `engine` collide its strands with this collider (through
-    /// [`Engine::set_collider`]: the batch engine does not collide yet).
+    /// [`Engine::set_collider`]; both engines collide: the reference at
+    /// every quadrature sample, the batch engine at element end points).
     pub fn attach(&self, engine: &mut Engine) {
         engine.set_collider(Some(self.field.clone()));
     }

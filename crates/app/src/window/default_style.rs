@@ -11,11 +11,11 @@
 
 use glam::DVec3;
 use helixhair_physics::SimSettings;
+use helixhair_physics::engine::EngineKind;
 use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
 use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
-use crate::engine::EngineKind;
 use crate::style::{Root, STYLE_VERSION, StrandGroup, Style};
 
 use super::presets::built_in_presets;

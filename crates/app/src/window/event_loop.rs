@@ -186,7 +186,7 @@ impl Handler {
             save_png(&image, path)?;
         }
         if done {
-            let adapter = open.gpu.adapter_label.clone();
+            let adapter = open.gpu.adapter_label();
             self.summary(&adapter);
             event_loop.exit();
         }

@@ -1,5 +1,5 @@
 //! The simulation behind the window: an [`Engine`] (the f64 reference
-//! `HairSystem` or the f32 batch path, [`crate::engine`]) that follows the
+//! `HairSystem` or the f32 batch path, [`helixhair_physics::engine`]) that follows the
 //! style as it is edited, without a reset.
 //!
 //! The physics builds a strand's model (mass, stiffness, rest shape) once,
@@ -26,10 +26,10 @@
 use std::sync::Arc;
 
 use glam::DVec3;
+use helixhair_physics::engine::{Engine, EngineKind};
 use helixhair_physics::{Energies, GuardEvent, HeadTrajectory, Method, RigidMotion, StageTimes};
 use helixhair_render::{HeadMesh, StrandBuffers};
 
-use crate::engine::{Engine, EngineKind};
 use crate::groom::{grow_scalp_roots, needs_head};
 use crate::style::Style;
 

@@ -10,8 +10,7 @@
 //! differ by orders of magnitude), labelled with that value.
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2};
-
-use crate::engine::EngineKind;
+use helixhair_physics::engine::EngineKind;
 
 use super::app_state::AppState;
 use super::readouts::PhysicsSample;

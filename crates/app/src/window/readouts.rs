@@ -95,7 +95,7 @@ impl Readouts {
             .take(n)
             .map(|s| s.wall_secs)
             .collect();
-        (!recent.is_empty()).then(|| crate::sim_report::median(&recent))
+        (!recent.is_empty()).then(|| crate::stats::median(&recent))
     }
 
     /// Element steps per wall second over the last `n` frames.

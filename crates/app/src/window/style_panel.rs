@@ -9,9 +9,9 @@
 //! ranges (moduli, friction, time step) are logarithmic.
 
 use egui::{DragValue, Slider, Ui};
+use helixhair_physics::engine::EngineKind;
 use helixhair_physics::{Method, NaturalShape, StrandParams};
 
-use crate::engine::EngineKind;
 use crate::style::Style;
 
 /// Draws the simulation settings: engine, solver, time step, forces.

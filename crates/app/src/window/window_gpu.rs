@@ -43,9 +43,8 @@ pub struct WindowGpu {
     config: wgpu::SurfaceConfiguration,
     egui: egui_wgpu::Renderer,
     scenes: [Option<(OffscreenRenderer, egui::TextureId)>; 2],
-    /// Adapter name and backend.
-    pub adapter_label: String,
-    backend: wgpu::Backend,
+    /// The adapter and device, shared with the pictures' renderers.
+    gpu: GpuContext,
 }
 
 impl WindowGpu {
@@ -54,20 +53,10 @@ impl WindowGpu {
         let surface = instance
             .create_surface(window.clone())
             .context("creating the window's drawing surface")?;
-        let adapter = pollster::block_on(wgpu::util::initialize_adapter_from_env_or_default(
-            instance,
-            Some(&surface),
-        ))
-        .context("no graphics adapter can draw to this window")?;
-        let info = adapter.get_info();
-        let adapter_label = format!("{} ({:?})", info.name, info.backend);
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("helixhair window"),
-            required_limits: adapter.limits(),
-            ..Default::default()
-        }))
-        .with_context(|| format!("the adapter `{adapter_label}` refused a device"))?;
-        let caps = surface.get_capabilities(&adapter);
+        let gpu = GpuContext::for_surface(instance, &surface)
+            .context("no graphics adapter can draw to this window")?;
+        let (device, queue) = (gpu.device.clone(), gpu.queue.clone());
+        let caps = surface.get_capabilities(&gpu.adapter);
         let format = caps
             .formats
             .iter()
@@ -101,9 +90,13 @@ impl WindowGpu {
             config,
             egui,
             scenes: [None, None],
-            adapter_label,
-            backend: info.backend,
+            gpu,
         })
+    }
+
+    /// Adapter name and backend, for the readouts.
+    pub fn adapter_label(&self) -> String {
+        self.gpu.adapter_label()
     }
 
     /// Follows a window resize.
@@ -125,12 +118,7 @@ impl WindowGpu {
     ) -> anyhow::Result<egui::TextureId> {
         let [w, h] = size_px;
         if self.scenes[slot].is_none() {
-            let gpu = GpuContext {
-                device: self.device.clone(),
-                queue: self.queue.clone(),
-                adapter_label: self.adapter_label.clone(),
-                backend: self.backend,
-            };
+            let gpu = self.gpu.clone();
             let settings = RenderSettings {
                 shadow_map_px: WINDOW_SHADOW_MAP_PX,
                 ..RenderSettings::new(w, h)

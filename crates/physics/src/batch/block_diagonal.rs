@@ -5,27 +5,15 @@
 //! (s M_QQ + D) Δv = rhs and integrates. Two passes over the strand, no
 //! third: each element's block needs only the sums past it.
 
-use super::contact::{EndPointForce, NoContact};
+use super::contact::EndPointForce;
 use super::forward::forward_with;
 use super::lanes::Real;
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use super::vec::V3;
 
-/// One Block-diagonal step of every lane's strand; `scratch` has N entries.
-#[inline(always)]
-pub fn step_block_diagonal<T: Real>(
-    model: &BatchModel,
-    env: &StepEnv,
-    root: &RootMotion<T>,
-    q: &mut [V3<T>],
-    v: &mut [V3<T>],
-    scratch: &mut [ElementData<T>],
-) {
-    step_block_diagonal_with::<T, false, _>(model, env, root, q, v, scratch, &mut NoContact);
-}
-
-/// [`step_block_diagonal`] with a force at each element's end point
+/// One Block-diagonal step of every lane's strand (`scratch` has N
+/// entries), with a force at each element's end point
 /// ([`super::contact`]), and with moments about the root or, with `LOCAL`,
 /// about each element's own points ([`super::forward::forward_with`]; the
 /// suffix sums then move by −span from each element to the next).

@@ -20,7 +20,7 @@
 //! but stops at N = 21 (36N² bytes ≤ 16 KiB); a strand with more than 64
 //! elements is refused with [`GpuError::TooManyElements`].
 
-use super::device::GpuError;
+use super::GpuError;
 use super::kernels::Span;
 use super::layout::{DenseOwnGpu, FrameGpu, JacobiansGpu};
 
@@ -29,8 +29,8 @@ pub const DENSE_WGSL: &str = include_str!("../../../../shaders/physics/dense.wgs
 
 /// Invocations of one `stage_dense` workgroup (WGSL `DENSE_WORKGROUP`):
 /// one warp on NVIDIA hardware, so a barrier is cheap there, and the 3N
-/// rows of N ≤ 10 update in one pass (N = 20 takes two). On lavapipe 32
-/// ran 20% faster than 64 at N = 10 and the same at N = 20.
+/// rows of N ≤ 10 update in one pass (N = 20 takes two). Measured against
+/// 64 on lavapipe in `docs/gpu.md` (Dense kernel).
 pub const DENSE_WORKGROUP: u32 = 32;
 
 /// Most elements per strand the Dense kernel takes (WGSL

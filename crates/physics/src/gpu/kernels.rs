@@ -21,11 +21,11 @@ use std::borrow::Cow;
 use wgpu::util::DeviceExt;
 
 use super::dense_kernels::{self, DENSE_WGSL};
-use super::device::{GpuContext, GpuError};
 use super::layout::{
     BeyondGpu, ElementConstGpu, EliminationGpu, FrameGpu, JacobiansGpu, OffDiagonalGpu, OwnGpu,
     ParamsGpu, RootPoseGpu,
 };
+use super::{GpuContext, GpuError};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;

@@ -1,9 +1,10 @@
 //! The GPU path (cargo feature `gpu`): Block-diagonal, Exact and Dense
 //! steps as wgpu compute kernels, with a CPU twin for every kernel stage.
 //!
-//! - [`device`]: a headless device from the environment's adapter, and
-//!   [`GpuError`] (no adapter is an error the caller turns into a CPU
-//!   fallback: [`Stepper::prefer_gpu`] does it with a message).
+//! - [`GpuContext`]: the headless device, from `helixhair-gpu` (the one
+//!   device setup of the workspace); [`error`]: [`GpuError`] (no adapter
+//!   is an error the caller turns into a CPU fallback:
+//!   [`Stepper::prefer_gpu`] does it with a message).
 //! - [`layout`]: host structs of the WGSL structs, checked against the
 //!   shaders by `tests/gpu_layout.rs`.
 //! - [`kernels`]: [`GpuSystem`], buffers, pipelines and the step.
@@ -20,12 +21,13 @@
 
 pub mod dense_kernels;
 pub mod dense_twin;
-pub mod device;
+pub mod error;
 pub mod kernels;
 pub mod layout;
 pub mod twin;
 
-pub use device::{GpuContext, GpuError};
+pub use error::GpuError;
+pub use helixhair_gpu::GpuContext;
 pub use kernels::GpuSystem;
 
 use crate::batch::BatchSystem;
@@ -53,8 +55,9 @@ impl Stepper {
         params: &StrandParams,
         roots: &[RootPose],
     ) -> Result<(Self, String), ParamError> {
-        let gpu =
-            GpuContext::new_headless().and_then(|ctx| GpuSystem::new(ctx, settings, params, roots));
+        let gpu = GpuContext::new_headless()
+            .map_err(GpuError::from)
+            .and_then(|ctx| GpuSystem::new(ctx, settings, params, roots));
         match gpu {
             Ok(system) => {
                 let message = format!("physics on the GPU ({})", system.adapter_name());

@@ -7,7 +7,6 @@ pub mod gpu_data;
 pub mod offscreen;
 pub mod passes;
 pub mod readback;
-pub mod require;
 pub mod settings;
 pub mod shaders;
 pub mod shadow;

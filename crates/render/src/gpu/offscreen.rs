@@ -66,7 +66,7 @@ impl OffscreenRenderer {
         let errors = [validation, internal].map(|scope| pollster::block_on(scope.pop()));
         if let Some(error) = errors.into_iter().flatten().next() {
             return Err(GpuError::Unsupported {
-                adapter: gpu.adapter_label.clone(),
+                adapter: gpu.adapter_label(),
                 error: error.to_string(),
             });
         }
@@ -87,8 +87,8 @@ impl OffscreenRenderer {
     }
 
     /// The adapter's name, for reports.
-    pub fn adapter_label(&self) -> &str {
-        &self.gpu.adapter_label
+    pub fn adapter_label(&self) -> String {
+        self.gpu.adapter_label()
     }
 
     /// The settings the renderer was made with.

@@ -1,16 +1,16 @@
 //! The physics engine a run steps: the f64 reference [`HairSystem`] or the
-//! f32 [`BatchSystem`], behind one small API that `helixhair sim`
-//! ([`crate::headless`]), `helixhair render` and the window
-//! ([`crate::window::live_sim`]) share.
+//! f32 [`BatchSystem`], behind one small API: the one simulation core that
+//! every face of the app (the headless `helixhair sim`, `helixhair render`,
+//! the window's live run and the bench) stands on.
 //!
 //! # The two engines
 //!
 //! | | [`EngineKind::Reference`] | [`EngineKind::Batch`] |
 //! | --- | --- | --- |
-//! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`helixhair_physics::batch::LANES`] strands per SIMD batch, rayon over batches |
+//! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`crate::batch::LANES`] strands per SIMD batch, rayon over batches |
 //! | solvers | every [`Method`], per strand | Exact and Block-diagonal, one for all strands |
 //! | extras | stability guard with retries, head collider, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points |
-//! | speed on this 2-core machine | about 1e6 element-steps/s per core | about 2.5e7 element-steps/s per core |
+//! | speed | the baseline | an order of magnitude more element-steps per second per core (measured in `docs/RESULTS.md`, section 8) |
 //!
 //! The reference is what every solver study and the guard were built on,
 //! and stays the default; the batch engine is what makes a full head of
@@ -40,19 +40,19 @@
 //! [`Engine::set_collider`] is the one place a collider reaches the
 //! physics. Both engines collide with it: the reference at every
 //! quadrature sample, the batch engine at element end points
-//! (`helixhair_physics::batch::contact`).
+//! ([`crate::batch::contact`]).
 
 use std::ops::Range;
 use std::sync::Arc;
 
-use glam::DVec3;
-use helixhair_physics::batch::BatchSystem;
-use helixhair_physics::collision::SignedDistanceField;
-use helixhair_physics::reconstruct::{Kinematics, reconstruct};
-use helixhair_physics::{
+use crate::batch::BatchSystem;
+use crate::collision::SignedDistanceField;
+use crate::reconstruct::{Kinematics, reconstruct};
+use crate::{
     Energies, HairSystem, HeadTrajectory, Method, ParamError, RigidMotion, RootPose, SimSettings,
     Strand, StrandModel, StrandParams,
 };
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 /// Which physics engine steps the hair.
@@ -63,7 +63,7 @@ pub enum EngineKind {
     #[default]
     Reference,
     /// The f32 SIMD [`BatchSystem`] on all cores: Exact or Block-diagonal
-    /// only, about 25 times the reference's throughput per core.
+    /// only, many times the reference's throughput (`docs/RESULTS.md`).
     Batch,
 }
 
@@ -342,7 +342,7 @@ impl Engine {
 
 #[cfg(test)]
 mod tests {
-    use helixhair_physics::Oscillation;
+    use crate::Oscillation;
 
     use super::*;
 
@@ -360,7 +360,7 @@ mod tests {
         // The batch engine steps velocity-explicit (docs/gpu.md): the
         // reference runs the same scheme for the comparison.
         let settings = SimSettings {
-            scheme: helixhair_physics::StepScheme::VelocityExplicit,
+            scheme: crate::StepScheme::VelocityExplicit,
             ..SimSettings::default()
         };
         let mut engine = Engine::new(kind, settings).expect("valid settings");

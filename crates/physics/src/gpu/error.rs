@@ -1,0 +1,51 @@
+//! The errors of the GPU path.
+//!
+//! The device itself comes from `helixhair-gpu` ([`super::GpuContext`]),
+//! the one device setup the renderer and the window share: the adapter the
+//! environment picks (`WGPU_BACKEND`, `WGPU_ADAPTER_NAME`) or wgpu's
+//! default, with the adapter's own limits (lavapipe caps one storage
+//! binding at 128 MiB, which [`GpuError::TooLarge`] reports).
+
+use helixhair_gpu::DeviceError;
+use thiserror::Error;
+
+use crate::error::ParamError;
+
+/// Why the GPU path could not run.
+#[derive(Debug, Error)]
+pub enum GpuError {
+    /// No adapter, or no device on it: the caller should fall back to the
+    /// CPU ([`super::Stepper::prefer_gpu`] does).
+    #[error(transparent)]
+    Device(#[from] DeviceError),
+    /// A method the kernels do not implement.
+    #[error("the GPU path runs `block`, `exact` and `dense`, not `{0}`")]
+    UnsupportedMethod(String),
+    /// A parameter out of range.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// A buffer larger than one binding may be.
+    #[error("{what} needs {bytes} bytes in one buffer; this adapter allows {limit_bytes}")]
+    TooLarge {
+        /// Which buffer.
+        what: &'static str,
+        /// Its size.
+        bytes: u64,
+        /// The adapter's limit.
+        limit_bytes: u64,
+    },
+    /// A strand longer than the Dense kernel's workgroup arrays.
+    #[error(
+        "the GPU Dense kernel takes at most {max} elements per strand, not {elements}; \
+         use `exact` (the same answer in O(N))"
+    )]
+    TooManyElements {
+        /// Elements per strand asked for.
+        elements: usize,
+        /// The kernel's limit.
+        max: usize,
+    },
+    /// Mapping a buffer for readback failed.
+    #[error("reading GPU memory back failed: {0}")]
+    Readback(String),
+}

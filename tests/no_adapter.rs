@@ -1,0 +1,83 @@
+//! With the graphics adapter hidden (`helixhair_gpu::HIDDEN_ADAPTER_ENV`:
+//! Vulkan only, pointed at a driver that does not exist), every GPU user
+//! fails with a message or falls back, and none panics:
+//!
+//! - `helixhair render` exits with status 1 and says no adapter was found;
+//! - the physics' GPU engine (`Stepper::prefer_gpu`) falls back to the CPU
+//!   batch path and says why, and the fallback steps.
+//!
+//! The window's case needs an X server and is in
+//! `crates/app/tests/window_screenshot.rs`. These tests need no GPU: they
+//! hide whatever the machine has.
+
+use std::process::Command;
+
+use glam::DVec3;
+use helixhair_e2e::{describe, helixhair_bin, scratch_dir, workspace_root};
+use helixhair_gpu::HIDDEN_ADAPTER_ENV;
+use helixhair_physics::gpu::Stepper;
+use helixhair_physics::{RigidMotion, RootPose, SimSettings, StrandParams};
+
+/// Set in the child process of [`the_gpu_engine_falls_back_to_the_cpu`].
+const CHILD_VAR: &str = "HELIXHAIR_NO_ADAPTER_CHILD";
+
+#[test]
+fn render_says_there_is_no_adapter_and_exits_with_status_1() {
+    let out = scratch_dir("no-adapter").join("never.png");
+    let output = Command::new(helixhair_bin())
+        .args(["render", "--style", "tests/render_fixtures/small_groom.ron"])
+        .args(["--frames", "1", "--width", "64", "--height", "64", "--out"])
+        .arg(&out)
+        .current_dir(workspace_root())
+        .envs(HIDDEN_ADAPTER_ENV)
+        .output()
+        .expect("helixhair starts");
+    let text = describe(&output);
+    assert_eq!(output.status.code(), Some(1), "{text}");
+    assert!(!text.contains("panicked"), "{text}");
+    assert!(text.contains("no graphics adapter found"), "{text}");
+    assert!(!out.exists(), "no picture without an adapter");
+}
+
+/// The child's half: with the adapter hidden, the GPU engine falls back.
+fn fall_back_without_an_adapter() {
+    let roots: Vec<RootPose> = (0..10)
+        .map(|i| {
+            let a = f64::from(i) * 0.6;
+            let p = DVec3::new(0.1 * a.cos(), 0.05, 0.1 * a.sin());
+            RootPose::from_direction(p, p, DVec3::Y)
+        })
+        .collect();
+    let (mut stepper, message) =
+        Stepper::prefer_gpu(&SimSettings::default(), &StrandParams::default(), &roots)
+            .expect("valid parameters");
+    assert!(matches!(stepper, Stepper::Cpu(_)), "{message}");
+    assert!(message.contains("no graphics adapter found"), "{message}");
+    for _ in 0..10 {
+        stepper.step_frame(&RigidMotion::default());
+    }
+    println!("fell back: {message}");
+}
+
+#[test]
+fn the_gpu_engine_falls_back_to_the_cpu() {
+    if std::env::var(CHILD_VAR).is_ok() {
+        fall_back_without_an_adapter();
+        return;
+    }
+    // The adapter is hidden through the environment, which the process
+    // reads when wgpu starts: run this test again in a child process.
+    let output = Command::new(std::env::current_exe().expect("the test executable"))
+        .args([
+            "the_gpu_engine_falls_back_to_the_cpu",
+            "--exact",
+            "--nocapture",
+        ])
+        .env(CHILD_VAR, "1")
+        .envs(HIDDEN_ADAPTER_ENV)
+        .output()
+        .expect("the child starts");
+    let text = describe(&output);
+    assert!(output.status.success(), "{text}");
+    assert!(text.contains("fell back: "), "{text}");
+}
