@@ -725,3 +725,35 @@ fn the_batch_engine_guard_resets_a_blow_up_and_reports_it() {
         .expect("an event sentence");
     assert!(first.contains("reset to its rest shape"), "{first}");
 }
+
+#[test]
+fn every_example_comes_through_a_head_shake_at_60_hz_with_one_substep() {
+    // The 30 cm straight and wavy examples blew up under a shake at 1/60 s
+    // and 1/120 s before the velocity-implicit step, and ran 4 substeps to
+    // hide it. Now every example runs the window's shake clip at one
+    // substep with no guard event.
+    for style in example_styles() {
+        let style = style.as_str();
+        let report = sim_json(
+            "play-shake",
+            &["--style", style, "--play", "shake", "--steps", "120"],
+        );
+        assert_eq!(
+            report["guard"]["event_count"], 0,
+            "{style}: {}",
+            report["guard"]
+        );
+        assert!((num(&report, "time_secs") - 2.0).abs() < 1e-9, "{style}");
+    }
+    // An unknown clip is refused, naming the ones there are.
+    let output = run_helixhair(&[
+        "sim",
+        "--style",
+        "assets/styles/curly.ron",
+        "--play",
+        "twirl",
+    ]);
+    assert!(!output.status.success());
+    let text = describe(&output);
+    assert!(text.contains("nod, shake, turn, jerk"), "{text}");
+}
