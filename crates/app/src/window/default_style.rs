@@ -81,10 +81,9 @@ pub fn default_style(guides: usize) -> Style {
     Style {
         version: STYLE_VERSION,
         name: "default".into(),
-        sim: SimSettings {
-            substeps: 2,
-            ..SimSettings::default()
-        },
+        // One substep: the velocity-implicit step takes these curls through
+        // the head clips at 1/60 s (docs/RESULTS.md, section 9).
+        sim: SimSettings::default(),
         engine: EngineKind::Reference,
         accuracy_target: None,
         groups: vec![StrandGroup {
