@@ -702,7 +702,8 @@ fn bench_quick_writes_every_study_as_csv_and_svg() {
 /// Block-diagonal on the curly example at 60 Hz blows up (its largest
 /// stable step there is 1/120 s: docs/RESULTS.md, section 3). On the batch
 /// engine the guard resets the failing strands to rest, the run stays
-/// finite, and the report and summary say so.
+/// finite, and the report and summary say so; the run exits 1 (it is not
+/// the simulation asked for) unless `--accept-resets` accepts it.
 #[test]
 fn the_batch_engine_guard_resets_a_blow_up_and_reports_it() {
     let args = [
@@ -715,7 +716,15 @@ fn the_batch_engine_guard_resets_a_blow_up_and_reports_it() {
         "--method",
         "block",
     ];
-    let report = sim_json("batch-guard", &args);
+    let mut refused = vec!["sim"];
+    refused.extend_from_slice(&args);
+    let output = run_helixhair(&refused);
+    assert_eq!(output.status.code(), Some(1), "{}", describe(&output));
+    let text = describe(&output);
+    assert!(text.contains("--accept-resets"), "{text}");
+    let mut accepted = args.to_vec();
+    accepted.push("--accept-resets");
+    let report = sim_json("batch-guard", &accepted);
     let count = report["guard"]["event_count"]
         .as_u64()
         .expect("an event count");

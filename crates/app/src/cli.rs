@@ -95,6 +95,11 @@ pub struct SimArgs {
     /// jerk) from time zero, then hold it still, instead of a still head.
     #[arg(long, value_name = "CLIP", value_parser = parse_clip)]
     pub play: Option<Clip>,
+    /// Exit 0 even when the guard had to reset or pin strands (by default
+    /// such a run exits 1 after writing its report: it is not the
+    /// simulation that was asked for).
+    #[arg(long)]
+    pub accept_resets: bool,
     /// Accuracy target, instead of the style's `accuracy_target`: the
     /// tip-position RMS error allowed as a fraction of strand length (1e-4
     /// to 1); each group's solver and element count are then chosen from
@@ -207,7 +212,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     };
     summary_out.write_all(report.summary().as_bytes())?;
     let Some(json_path) = &args.json else {
-        return Ok(());
+        return refuse_lost_strands(sim.strands_lost(), args.accept_resets);
     };
     let mut json =
         serde_json::to_string_pretty(&report).context("cannot encode the JSON report")?;
@@ -218,6 +223,19 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         write_json(json_path, &json)
             .with_context(|| format!("cannot write the JSON report to {}", json_path.display()))?;
         writeln!(summary_out, "  wrote {}", json_path.display())?;
+    }
+    refuse_lost_strands(sim.strands_lost(), args.accept_resets)
+}
+
+/// An error when the guard reset or pinned strands `lost` times, unless the
+/// user accepts it (`--accept-resets`).
+fn refuse_lost_strands(lost: usize, accept: bool) -> anyhow::Result<()> {
+    if lost > 0 && !accept {
+        anyhow::bail!(
+            "the guard reset or pinned strands {lost} times (see the summary): this is not the \
+             simulation the style asks for; try more substeps or the Exact solver, or pass \
+             --accept-resets to accept the result"
+        );
     }
     Ok(())
 }

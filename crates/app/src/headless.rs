@@ -25,7 +25,9 @@ use std::ops::Range;
 use std::time::Instant;
 
 use helixhair_physics::engine::{Engine, EngineKind};
-use helixhair_physics::{GuardEvent, HairSystem, Method, ParamError, RigidMotion, StepScheme};
+use helixhair_physics::{
+    GuardAction, GuardEvent, HairSystem, Method, ParamError, RigidMotion, StepScheme,
+};
 use helixhair_render::head_generate::default_head;
 use thiserror::Error;
 
@@ -118,12 +120,20 @@ pub struct HeadlessSim {
     group_of_strand: Vec<usize>,
     head: RigidMotion,
     clip: Option<ClipTrajectory>,
+    strands_lost: usize,
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
     batch_resets: Vec<String>,
 }
 
 impl HeadlessSim {
+    /// How many times the guard reset or pinned a strand so far: each one
+    /// means the result is not the simulation the user asked for (a retry
+    /// with Exact or more substeps still is).
+    pub fn strands_lost(&self) -> usize {
+        self.strands_lost
+    }
+
     /// Plays `clip` on the head from time zero, then holds the head still
     /// (the window's clips; `helixhair sim --play`).
     pub fn play(&mut self, clip: Clip) {
@@ -239,6 +249,7 @@ impl HeadlessSim {
             group_of_strand,
             head: RigidMotion::default(),
             clip: None,
+            strands_lost: 0,
             choices,
             guard_events: Vec::new(),
             batch_resets: Vec::new(),
@@ -296,12 +307,17 @@ impl HeadlessSim {
         if let Some(reference) = self.engine.reference() {
             let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
             let events = reference.last_guard_events();
+            self.strands_lost += events
+                .iter()
+                .filter(|e| matches!(e.action, GuardAction::Reset | GuardAction::Pinned))
+                .count();
             self.guard_events
                 .extend_from_slice(&events[..events.len().min(room)]);
         }
         if let Some(batch) = self.engine.batch() {
             let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
             let time_secs = batch.time_secs();
+            self.strands_lost += batch.last_guard_resets().len() + batch.last_guard_pins().len();
             let resets = batch.last_guard_resets().iter().take(room).map(|&strand| {
                 format!(
                     "strand {strand} (group {}) failed the guard's checks at t = {time_secs:.4} s \
