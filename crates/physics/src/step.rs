@@ -81,6 +81,7 @@ pub struct StepWorkspace {
     /// How the step treats the velocity-dependent forces.
     pub scheme: StepScheme,
     velocity_terms: VelocityTerms,
+    krylov: Krylov,
     contact_weights: Vec<(usize, DMat3)>,
     step_mass: MassData,
     velocity_product: Vec<DVec3>,
@@ -100,6 +101,7 @@ impl StepWorkspace {
             solver: Solver::new(method),
             scheme: StepScheme::default(),
             velocity_terms: VelocityTerms::default(),
+            krylov: Krylov::default(),
             contact_weights: Vec::new(),
             step_mass: MassData::default(),
             velocity_product: Vec::new(),
@@ -277,7 +279,7 @@ fn velocity_corrections(
     in_contact: bool,
     ws: &mut StepWorkspace,
 ) {
-    let k_max = corrections as usize;
+    let k_max = (corrections as usize).min(MAX_GMRES);
     if k_max == 0 {
         return;
     }
@@ -297,23 +299,30 @@ fn velocity_corrections(
         &mut ws.velocity_product,
     );
     // r₀ = −h G Δv₀.
-    let r0: Vec<DVec3> = ws.velocity_product.iter().map(|g| -h * *g).collect();
-    let beta = dot(&r0, &r0).sqrt();
+    let beta = ws
+        .velocity_product
+        .iter()
+        .map(|g| (-h * *g).length_squared())
+        .sum::<f64>()
+        .sqrt();
     if beta.is_nan() || beta <= tol * rhs_norm {
         return;
     }
-    let mut basis: Vec<Vec<DVec3>> = vec![r0.iter().map(|x| *x / beta).collect()];
-    let mut directions: Vec<Vec<DVec3>> = Vec::with_capacity(k_max);
-    let mut hessenberg = vec![vec![0.0; k_max]; k_max + 1];
-    let mut rotations: Vec<(f64, f64)> = Vec::with_capacity(k_max);
-    let mut g = vec![0.0; k_max + 1];
+    let krylov = &mut ws.krylov;
+    krylov.reserve(k_max, n);
+    for (b, g) in krylov.basis[0].iter_mut().zip(&ws.velocity_product) {
+        *b = -h * *g / beta;
+    }
+    let mut hessenberg = [[0.0; MAX_GMRES]; MAX_GMRES + 1];
+    let mut rotations = [(1.0, 0.0); MAX_GMRES];
+    let mut g = [0.0; MAX_GMRES + 1];
     g[0] = beta;
     let mut used = 0;
     for j in 0..k_max {
         // z = P⁻¹ v_j; w = A z = v_j + h G z.
-        let mut z = vec![DVec3::ZERO; n];
         let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
-        ws.solver.solve(&ws.kinematics, matrix, &basis[j], &mut z);
+        let z = &mut krylov.directions[j];
+        ws.solver.solve(&ws.kinematics, matrix, &krylov.basis[j], z);
         ws.velocity_terms.apply(
             Difference::Forward,
             model,
@@ -321,25 +330,25 @@ fn velocity_corrections(
             q,
             v,
             root,
-            &z,
+            z,
             &mut ws.velocity_product,
         );
-        let mut w: Vec<DVec3> = basis[j]
-            .iter()
-            .zip(&ws.velocity_product)
-            .map(|(b, gz)| *b + h * *gz)
-            .collect();
-        for (i, b) in basis.iter().enumerate() {
-            let hij = dot(&w, b);
+        let (done, rest) = krylov.basis.split_at_mut(j + 1);
+        let w = &mut rest[0];
+        for ((x, b), gz) in w.iter_mut().zip(&done[j]).zip(&ws.velocity_product) {
+            *x = *b + h * *gz;
+        }
+        for (i, b) in done.iter().enumerate() {
+            let hij = dot(w, b);
             hessenberg[i][j] = hij;
             for (x, y) in w.iter_mut().zip(b) {
                 *x -= hij * *y;
             }
         }
-        let w_norm = dot(&w, &w).sqrt();
+        let w_norm = dot(w, w).sqrt();
         hessenberg[j + 1][j] = w_norm;
         // Apply the earlier rotations to the new column, then a new one.
-        for (i, (c, s)) in rotations.iter().enumerate() {
+        for (i, (c, s)) in rotations.iter().take(j).enumerate() {
             let (a, b) = (hessenberg[i][j], hessenberg[i + 1][j]);
             hessenberg[i][j] = c * a + s * b;
             hessenberg[i + 1][j] = -s * a + c * b;
@@ -347,31 +356,59 @@ fn velocity_corrections(
         let (a, b) = (hessenberg[j][j], hessenberg[j + 1][j]);
         let r = a.hypot(b);
         let (c, s) = if r == 0.0 { (1.0, 0.0) } else { (a / r, b / r) };
-        rotations.push((c, s));
+        rotations[j] = (c, s);
         hessenberg[j][j] = r;
         hessenberg[j + 1][j] = 0.0;
         g[j + 1] = -s * g[j];
         g[j] *= c;
-        directions.push(z);
         used = j + 1;
         if !g[j + 1].is_finite() || g[j + 1].abs() <= tol * rhs_norm || w_norm == 0.0 {
             break;
         }
-        basis.push(w.iter().map(|x| *x / w_norm).collect());
+        for x in w.iter_mut() {
+            *x /= w_norm;
+        }
     }
     // Back substitution for y, then Δv = Δv₀ + Σ y_j z_j.
-    let mut y = vec![0.0; used];
+    let mut y = [0.0; MAX_GMRES];
     for i in (0..used).rev() {
         let mut sum = g[i];
-        for (l, y_l) in y.iter().enumerate().skip(i + 1) {
+        for (l, y_l) in y.iter().enumerate().take(used).skip(i + 1) {
             sum -= hessenberg[i][l] * y_l;
         }
         y[i] = sum / hessenberg[i][i];
     }
-    if y.iter().all(|x| x.is_finite()) {
-        for (y_j, z) in y.iter().zip(&directions) {
+    if y[..used].iter().all(|x| x.is_finite()) {
+        for (y_j, z) in y[..used].iter().zip(&krylov.directions) {
             for (dv, zi) in ws.delta_v.iter_mut().zip(z) {
                 *dv += *y_j * *zi;
+            }
+        }
+    }
+}
+
+/// Most GMRES iterations a step runs: the range of
+/// [`StepScheme::VelocityImplicit`]'s `corrections`.
+const MAX_GMRES: usize = crate::settings::MAX_VELOCITY_CORRECTIONS as usize;
+
+/// GMRES's vectors, kept from step to step so that stepping allocates
+/// nothing: the Arnoldi basis v₀…v_k and the preconditioned directions
+/// z_j = P⁻¹ v_j.
+#[derive(Clone, Debug, Default)]
+struct Krylov {
+    basis: Vec<Vec<DVec3>>,
+    directions: Vec<Vec<DVec3>>,
+}
+
+impl Krylov {
+    /// Room for `k` iterations on vectors of `n` triples.
+    fn reserve(&mut self, k: usize, n: usize) {
+        for (vectors, count) in [(&mut self.basis, k + 1), (&mut self.directions, k)] {
+            if vectors.len() < count {
+                vectors.resize(count, Vec::new());
+            }
+            for x in vectors.iter_mut() {
+                x.resize(n, DVec3::ZERO);
             }
         }
     }

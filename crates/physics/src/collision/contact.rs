@@ -94,25 +94,51 @@ impl ContactInputs<'_> {
     /// Force per unit length (N/m) on a sample at world position `p_m`
     /// moving at `v_m_per_s`, for a strand of mass per length `rho_s`.
     pub fn force(&self, p_m: DVec3, v_m_per_s: DVec3, rho_s: f64) -> DVec3 {
+        let s = &self.settings;
+        let Some(surface) = self.surface(p_m, v_m_per_s) else {
+            return DVec3::ZERO;
+        };
+        if surface.distance_m >= s.skin_m {
+            return DVec3::ZERO;
+        }
+        let approach = surface.approach_m_per_s.min(0.0);
+        let k = s.stiffness_ratio * rho_s / (self.h_secs * self.h_secs);
+        let c = 2.0 * s.stiffness_ratio.sqrt() * rho_s / self.h_secs;
+        let push = (k * (s.skin_m - surface.distance_m) - c * approach)
+            .min(rho_s * s.max_acceleration_m_per_s2);
+        surface.normal * push.max(0.0)
+    }
+
+    /// The field at a sample at world position `p_m` moving at
+    /// `v_m_per_s`: signed distance, outward normal (world) and the
+    /// velocity along it relative to the moving surface; `None` outside the
+    /// field or where its gradient vanishes. The one lookup every contact
+    /// force and energy starts from.
+    fn surface(&self, p_m: DVec3, v_m_per_s: DVec3) -> Option<SurfacePoint> {
         let head = self.head;
         let offset = p_m - head.position_m;
         let local = head.world_from_body.transpose() * offset;
-        let Some((d, gradient)) = self.collider.sample(local) else {
-            return DVec3::ZERO;
-        };
-        let s = &self.settings;
-        if d >= s.skin_m || gradient == DVec3::ZERO {
-            return DVec3::ZERO;
+        let (distance_m, gradient) = self.collider.sample(local)?;
+        if gradient == DVec3::ZERO {
+            return None;
         }
-        let n = head.world_from_body * gradient;
+        let normal = head.world_from_body * gradient;
         let surface_velocity =
             head.velocity_m_per_s + head.angular_velocity_rad_per_s.cross(offset);
-        let approach = (v_m_per_s - surface_velocity).dot(n).min(0.0);
-        let k = s.stiffness_ratio * rho_s / (self.h_secs * self.h_secs);
-        let c = 2.0 * s.stiffness_ratio.sqrt() * rho_s / self.h_secs;
-        let push = (k * (s.skin_m - d) - c * approach).min(rho_s * s.max_acceleration_m_per_s2);
-        n * push.max(0.0)
+        Some(SurfacePoint {
+            distance_m,
+            normal,
+            approach_m_per_s: (v_m_per_s - surface_velocity).dot(normal),
+        })
     }
+}
+
+/// The collider's field at one sample (see `ContactInputs::surface`).
+#[derive(Clone, Copy, Debug)]
+struct SurfacePoint {
+    distance_m: f64,
+    normal: DVec3,
+    approach_m_per_s: f64,
 }
 
 /// What a sample's implicit contact means for the energy balance
@@ -144,25 +170,18 @@ impl ContactInputs<'_> {
     /// skin), with what the energy balance needs to take the spring's
     /// power out of the contact's work.
     pub fn implicit_energy(&self, p_m: DVec3, v_m_per_s: DVec3, rho_s: f64) -> ContactEnergy {
-        let head = self.head;
-        let offset = p_m - head.position_m;
-        let local = head.world_from_body.transpose() * offset;
-        let Some((d, gradient)) = self.collider.sample(local) else {
-            return ContactEnergy::default();
-        };
         let s = &self.settings;
-        if d >= s.skin_m || gradient == DVec3::ZERO {
-            return ContactEnergy::default();
-        }
-        let n = head.world_from_body * gradient;
-        let surface_velocity =
-            head.velocity_m_per_s + head.angular_velocity_rad_per_s.cross(offset);
-        let k = s.implicit_stiffness_ratio * rho_s / (self.h_secs * self.h_secs);
-        let depth = s.skin_m - d;
-        ContactEnergy {
-            stored_j_per_m: 0.5 * k * depth * depth,
-            spring_n_per_m: k * depth,
-            approach_m_per_s: (v_m_per_s - surface_velocity).dot(n),
+        match self.surface(p_m, v_m_per_s) {
+            Some(surface) if surface.distance_m < s.skin_m => {
+                let k = s.implicit_stiffness_ratio * rho_s / (self.h_secs * self.h_secs);
+                let depth = s.skin_m - surface.distance_m;
+                ContactEnergy {
+                    stored_j_per_m: 0.5 * k * depth * depth,
+                    spring_n_per_m: k * depth,
+                    approach_m_per_s: surface.approach_m_per_s,
+                }
+            }
+            _ => ContactEnergy::default(),
         }
     }
 
@@ -175,18 +194,9 @@ impl ContactInputs<'_> {
         v_m_per_s: DVec3,
         rho_s: f64,
     ) -> Option<ImplicitContact> {
-        let head = self.head;
-        let offset = p_m - head.position_m;
-        let local = head.world_from_body.transpose() * offset;
-        let (d, gradient) = self.collider.sample(local)?;
+        let surface = self.surface(p_m, v_m_per_s)?;
         let s = &self.settings;
-        if gradient == DVec3::ZERO {
-            return None;
-        }
-        let n = head.world_from_body * gradient;
-        let surface_velocity =
-            head.velocity_m_per_s + head.angular_velocity_rad_per_s.cross(offset);
-        let approach = (v_m_per_s - surface_velocity).dot(n);
+        let (d, n, approach) = (surface.distance_m, surface.normal, surface.approach_m_per_s);
         let h = self.h_secs;
         // A sample that will enter the skin during the step is in contact
         // already: otherwise it would end the step deep inside and be
