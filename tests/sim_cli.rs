@@ -766,3 +766,47 @@ fn every_example_comes_through_a_head_shake_at_60_hz_with_one_substep() {
     let text = describe(&output);
     assert!(text.contains("nod, shake, turn, jerk"), "{text}");
 }
+
+/// The soak study runs only when named; a short batch-engine soak writes
+/// its table and charts, and every sample is finite with no guard loss (a
+/// still-healthy full head under the first clips of the schedule).
+#[test]
+fn bench_soak_runs_when_named_and_records_memory_and_the_guard() {
+    let out = scratch_dir("bench-soak");
+    let out_arg = out.to_string_lossy().into_owned();
+    let output = run_helixhair(&[
+        "bench",
+        "--study",
+        "soak",
+        "--soak-engine",
+        "batch",
+        "--soak-steps",
+        "120",
+        "--out",
+        &out_arg,
+    ]);
+    assert!(output.status.success(), "{}", describe(&output));
+    let csv = std::fs::read_to_string(out.join("soak.csv")).expect("soak.csv");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).expect(name);
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_owned).collect())
+        .collect();
+    // Frames 0, 60 and 120.
+    assert_eq!(rows.len(), 3, "{csv}");
+    for row in &rows {
+        assert_eq!(row[column("engine")], "batch");
+        let rss: f64 = row[column("rss_mib")].parse().expect("a number");
+        assert!(rss > 1.0, "resident memory {rss} MiB");
+        let kinetic: f64 = row[column("kinetic_j")].parse().expect("a number");
+        assert!(kinetic.is_finite() && kinetic >= 0.0, "{kinetic}");
+        for lost in ["resets", "pins"] {
+            assert_eq!(row[column(lost)], "0", "{lost}: {csv}");
+        }
+    }
+    for file in ["soak_memory.svg", "soak_guard.svg"] {
+        let text = std::fs::read_to_string(out.join(file)).expect(file);
+        assert!(text.contains("</svg>"), "{file}");
+    }
+}

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 
 use crate::mesh::{HeadMesh, Mesh};
-use crate::obj_locate::locate_obj_error;
+use crate::obj_locate::{find_index_out_of_range, locate_obj_error};
 
 /// The name of the OBJ group or object that holds the scalp faces.
 pub const SCALP_GROUP: &str = "scalp";
@@ -88,6 +88,11 @@ pub fn parse_head_obj(text: &str, path: &Path) -> Result<HeadMesh, ObjError> {
         ignore_points: true,
         ignore_lines: true,
     };
+    // Indices are checked first: tobj's own arithmetic on an index that
+    // names nothing can overflow (see obj_locate).
+    if let Some((line, problem)) = find_index_out_of_range(text) {
+        return Err(invalid(path, Some(line), problem));
+    }
     // A head needs no materials: `mtllib` lines are ignored.
     let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
         Err(tobj::LoadError::OpenFileFailed)
@@ -227,6 +232,16 @@ mod tests {
         let message = error(text);
         assert!(message.starts_with("bad.obj:6: "), "{message}");
         assert!(message.contains("vertex 9"), "{message}");
+    }
+
+    /// The fuzzer's reproducer (crates/app/fuzz/found): tobj overflowed on
+    /// a relative texture index before any `vt`; now a located error.
+    #[test]
+    fn obj_head_tobj_texcoord_index_overflow() {
+        let text = "0\nl  1 1/-2   1 1/-2 2 1 11/-21  1 1/-2  0\nvt 0 0\nl 1/1 2/1\nl 2 3\nl -2 1\nv 1 1 0\nvt 0 0\nl  0\nvt 0 0\nl 1/1 2/1\nl 2 3\nl\n";
+        let message = error(text);
+        assert!(message.starts_with("bad.obj:2: "), "{message}");
+        assert!(message.contains("does not exist"), "{message}");
     }
 
     #[test]

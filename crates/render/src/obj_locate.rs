@@ -5,6 +5,12 @@
 //! returns the first line of that kind that is broken, with a short reason,
 //! so a user can open the file at the right place. It checks only what
 //! `tobj` checks, so it finds the line `tobj` stopped at.
+//!
+//! It also checks every element index *before* `tobj` reads the file
+//! ([`find_index_out_of_range`]): `tobj` 4 resolves a relative index such
+//! as `1/-2` with unchecked arithmetic, so a texture or normal index before
+//! the first `vt`/`vn` wraps to a huge number and overflows (a panic where
+//! overflow checks are on; found by fuzzing, see docs/reliability.md).
 
 /// Counts of the indexed statements read so far.
 #[derive(Default)]
@@ -43,6 +49,74 @@ fn corner_problem(corner: &str, counts: &Counts, total_positions: usize) -> Opti
         if !in_range {
             return Some(format!(
                 "{kind} {index} does not exist (the file has {available} before this line)"
+            ));
+        }
+    }
+    None
+}
+
+/// The first face, line or point statement (1-based line) whose vertex,
+/// texture or normal index names nothing, and why.
+///
+/// A negative (relative) index counts back from the elements read so far,
+/// as the OBJ format defines; a positive one may name any element of the
+/// file. Run before `tobj`, so that `tobj` never resolves an index that does
+/// not exist.
+pub fn find_index_out_of_range(text: &str) -> Option<(usize, String)> {
+    let mut total = Counts::default();
+    for line in text.lines() {
+        match line.split_whitespace().next() {
+            Some("v") => total.positions += 1,
+            Some("vt") => total.texcoords += 1,
+            Some("vn") => total.normals += 1,
+            _ => {}
+        }
+    }
+    let mut before = Counts::default();
+    for (i, line) in text.lines().enumerate() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let Some((&keyword, args)) = words.split_first() else {
+            continue;
+        };
+        match keyword {
+            "v" => before.positions += 1,
+            "vt" => before.texcoords += 1,
+            "vn" => before.normals += 1,
+            "f" | "l" | "p" => {
+                let problem = args
+                    .iter()
+                    .find_map(|corner| index_problem(corner, &before, &total));
+                if let Some(problem) = problem {
+                    return Some((i + 1, problem));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Why an index of `corner` names nothing: negative indices count back
+/// from `before`, positive ones may reach anything in `total`. Parse errors
+/// are left to `tobj` (and [`locate_obj_error`]).
+fn index_problem(corner: &str, before: &Counts, total: &Counts) -> Option<String> {
+    let kinds = [
+        ("vertex", before.positions, total.positions),
+        ("texture coordinate", before.texcoords, total.texcoords),
+        ("normal", before.normals, total.normals),
+    ];
+    for (part, (kind, so_far, in_file)) in corner.split('/').zip(kinds) {
+        let Ok(index) = part.parse::<i64>() else {
+            continue;
+        };
+        let (in_range, available) = match index {
+            0 => (false, in_file),
+            i if i > 0 => (i.unsigned_abs() as usize <= in_file, in_file),
+            i => (i.unsigned_abs() as usize <= so_far, so_far),
+        };
+        if !in_range {
+            return Some(format!(
+                "{kind} {index} in `{corner}` does not exist (there are {available} to refer to)"
             ));
         }
     }
@@ -121,6 +195,19 @@ mod tests {
         let (line, why) = face.expect("found");
         assert_eq!(line, 3);
         assert!(why.contains("`a`"), "{why}");
+    }
+
+    #[test]
+    fn relative_indices_count_back_from_what_was_read() {
+        // The fuzzer's find: `1/-2` before any `vt` overflowed inside tobj.
+        let text = "v 0 0 0\nl 1/-2 1\nvt 0 0\nvt 0 0\n";
+        let (line, why) = find_index_out_of_range(text).expect("found");
+        assert_eq!(line, 2);
+        assert!(why.contains("texture coordinate -2"), "{why}");
+        // Forward positive references and in-range relative ones are fine.
+        let fine = "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n";
+        assert_eq!(find_index_out_of_range(fine), None);
+        assert!(find_index_out_of_range("v 0 0 0\nf 0 1 1\n").is_some());
     }
 
     #[test]

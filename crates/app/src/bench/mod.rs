@@ -13,6 +13,7 @@
 //! | `stability` | stable, damped-out or blown-up over dt × stiffness × root speed | `stability.csv`, `stability.svg`, `curly_dt.csv` |
 //! | `modes` | first-mode frequency and damping against N and the analytic value | `modes.csv`, `modes_*.svg` |
 //! | `throughput` | element-steps per second and memory per strand, CPU (1 and all threads) and GPU, against strand count and N | `throughput.csv`, `throughput.svg` |
+//! | `soak` (only when named) | a full head for a million frames of random head motion per engine: NaN, guard loops, memory | `soak.csv`, `soak_memory.svg`, `soak_guard.svg` |
 
 pub mod accuracy;
 pub mod chart;
@@ -22,6 +23,8 @@ pub mod iterations;
 pub mod modes;
 pub mod pareto;
 pub mod scenes;
+pub mod soak;
+pub mod soak_motion;
 pub mod stability;
 pub mod table;
 pub mod throughput;
@@ -32,6 +35,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use clap::{Args, ValueEnum};
+use helixhair_physics::engine::EngineKind;
 
 /// The studies `helixhair bench` can run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -47,10 +51,14 @@ pub enum Study {
     /// Element-steps per second of the batch and GPU paths against strand
     /// count.
     Throughput,
+    /// A full head under random head motion for a million frames per
+    /// engine (hours): NaN, guard loops, memory. Runs only when named.
+    Soak,
 }
 
 impl Study {
-    /// Every study, in the order `--study` lists them.
+    /// The studies `helixhair bench` runs when none is named: all but the
+    /// soak, which takes hours.
     pub const ALL: [Study; 5] = [
         Study::Cost,
         Study::Accuracy,
@@ -73,6 +81,18 @@ pub struct BenchArgs {
     /// runs and draws, as CI does; the numbers are not the published ones.
     #[arg(long)]
     pub quick: bool,
+    /// Frames per engine of the `soak` study (default 1,000,000; 300 with
+    /// `--quick`).
+    #[arg(long, value_name = "FRAMES")]
+    pub soak_steps: Option<usize>,
+    /// Wall-clock budget per engine of the `soak` study, minutes; the run
+    /// stops there and reports how far it got.
+    #[arg(long, value_name = "MINUTES")]
+    pub soak_minutes: Option<f64>,
+    /// Engines the `soak` study runs (repeat the flag for both; both when
+    /// absent): reference or batch.
+    #[arg(long = "soak-engine", value_name = "ENGINE", value_parser = crate::cli::parse_engine)]
+    pub soak_engines: Vec<EngineKind>,
 }
 
 /// What every study gets: where to write, how big to go, where to report.
@@ -115,6 +135,18 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             Study::Stability => stability::run(&mut ctx),
             Study::Modes => modes::run(&mut ctx),
             Study::Throughput => throughput::run(&mut ctx),
+            Study::Soak => {
+                let engines = if args.soak_engines.is_empty() {
+                    &EngineKind::ALL[..]
+                } else {
+                    &args.soak_engines
+                };
+                let length = soak::SoakLength {
+                    steps: args.soak_steps,
+                    minutes: args.soak_minutes,
+                };
+                soak::run(&mut ctx, length, engines)
+            }
         }
         .with_context(|| format!("study {study:?}"))?;
         writeln!(ctx.log, "   ({:.1} s)", start.elapsed().as_secs_f64())?;
