@@ -10,6 +10,8 @@
 //! where the hardware allows them (lavapipe caps one storage binding at
 //! 128 MiB); what each user needs beyond that it checks itself.
 
+use std::sync::{Arc, Mutex};
+
 use thiserror::Error;
 
 /// Why no device could be made. Both are normal on a machine without a
@@ -32,6 +34,42 @@ pub enum DeviceError {
         /// What wgpu said.
         reason: String,
     },
+    /// The device stopped working after it was made: lost (driver reset,
+    /// GPU removed, destroyed) or an operation on it failed. Nothing drawn
+    /// or stepped on it since can be trusted; the caller reports it.
+    #[error("the graphics device stopped working: {0}")]
+    Lost(String),
+}
+
+/// What went wrong with a device after it was made, as wgpu reports it:
+/// through the device-lost callback and the uncaptured-error handler,
+/// which [`GpuContext`] installs so that neither panics (wgpu's default
+/// handler panics on the first error). Users ask [`GpuContext::check`]
+/// after waiting for the GPU.
+#[derive(Debug, Default)]
+pub struct DeviceHealth {
+    first_problem: Mutex<Option<String>>,
+}
+
+impl DeviceHealth {
+    /// Keeps `problem` unless an earlier one is kept (the first is the
+    /// cause; later ones follow from it).
+    fn record(&self, problem: String) {
+        // A poisoned lock still holds the first problem.
+        let mut first = self
+            .first_problem
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        first.get_or_insert(problem);
+    }
+
+    /// The first problem seen, if any.
+    pub fn problem(&self) -> Option<String> {
+        self.first_problem
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .clone()
+    }
 }
 
 /// An adapter, its device and queue, and what reports say about it.
@@ -50,6 +88,8 @@ pub struct GpuContext {
     pub backend: wgpu::Backend,
     /// The device's limits (the adapter's own).
     pub limits: wgpu::Limits,
+    /// Whether the device still works ([`Self::check`]).
+    pub health: Arc<DeviceHealth>,
 }
 
 impl GpuContext {
@@ -87,6 +127,15 @@ impl GpuContext {
             adapter: format!("{} ({:?})", info.name, info.backend),
             reason: e.to_string(),
         })?;
+        let health = Arc::new(DeviceHealth::default());
+        let on_lost = health.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            on_lost.record(format!("device lost ({reason:?}): {message}"));
+        });
+        let on_error = health.clone();
+        device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
+            on_error.record(error.to_string());
+        }));
         Ok(Self {
             adapter,
             device,
@@ -94,7 +143,18 @@ impl GpuContext {
             adapter_name: info.name,
             backend: info.backend,
             limits,
+            health,
         })
+    }
+
+    /// `Ok` while the device works; the first problem wgpu reported
+    /// otherwise (lost, or an operation that failed). Call it after waiting
+    /// for the GPU, before trusting what was read back.
+    pub fn check(&self) -> Result<(), DeviceError> {
+        match self.health.problem() {
+            None => Ok(()),
+            Some(problem) => Err(DeviceError::Lost(problem)),
+        }
     }
 
     /// Adapter name and backend for reports, e.g.

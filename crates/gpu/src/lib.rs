@@ -23,8 +23,10 @@
 
 pub mod context;
 pub mod require;
+pub mod upload;
 
-pub use context::{DeviceError, GpuContext};
+pub use context::{DeviceError, DeviceHealth, GpuContext};
 pub use require::{
     HIDDEN_ADAPTER_ENV, REQUIRE_GPU_VAR, context_or_skip, gpu_required, skip_or_fail,
 };
+pub use upload::upload_buffer;

@@ -220,6 +220,9 @@ impl WindowGpu {
         for id in &output.textures_delta.free {
             self.egui.free_texture(id);
         }
+        // A lost device (or any failed GPU operation) ends the window with
+        // wgpu's reason instead of drawing garbage; see helixhair_gpu.
+        self.gpu.check().context("the window cannot draw any more")?;
         let Some(buffer) = shot else {
             return Ok(None);
         };

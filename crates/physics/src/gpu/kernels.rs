@@ -18,7 +18,7 @@
 
 use std::borrow::Cow;
 
-use wgpu::util::DeviceExt;
+use helixhair_gpu::upload_buffer;
 
 use super::dense_kernels::{self, DENSE_WGSL};
 use super::layout::{
@@ -175,13 +175,7 @@ impl GpuSystem {
                     limit_bytes: limit,
                 });
             }
-            Ok(
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents: bytes,
-                    usage,
-                }),
-            )
+            Ok(upload_buffer(device, &ctx.queue, label, bytes, usage))
         };
         let params_buffer = init(
             "params",
@@ -444,8 +438,11 @@ impl GpuSystem {
         self.ctx
             .device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| GpuError::Readback(e.to_string()))
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        // A lost device or a failed operation (recorded by the context, not
+        // panicked on) fails the wait, so no state read after it is trusted.
+        self.ctx.check()?;
+        Ok(())
     }
 
     /// Reads (q, q̇) back: one vec4 per element, strand-major. For tests and

@@ -3,7 +3,7 @@
 
 use bytemuck::Pod;
 use glam::Vec3;
-use wgpu::util::DeviceExt as _;
+use helixhair_gpu::upload_buffer;
 
 use super::gpu_data::{Lighting, MeshVertex, View, mat, vec4};
 use super::settings::RenderSettings;
@@ -93,6 +93,7 @@ impl IndexedGeometry {
     /// draw.
     pub fn upload<V: Pod>(
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         label: &str,
         vertices: &[V],
         indices: &[u32],
@@ -100,13 +101,7 @@ impl IndexedGeometry {
         if indices.is_empty() {
             return None;
         }
-        let buffer = |contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
+        let buffer = |contents: &[u8], usage| upload_buffer(device, queue, label, contents, usage);
         Some(Self {
             vertices: buffer(bytemuck::cast_slice(vertices), wgpu::BufferUsages::VERTEX),
             indices: buffer(bytemuck::cast_slice(indices), wgpu::BufferUsages::INDEX),

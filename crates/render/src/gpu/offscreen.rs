@@ -13,7 +13,7 @@
 //! 4. The picture is copied into a buffer and read back
 //!    ([`super::readback`]).
 
-use wgpu::util::DeviceExt as _;
+use helixhair_gpu::upload_buffer;
 
 use super::context::{GpuContext, GpuError};
 use super::frame_data::{FrameUniforms, IndexedGeometry, head_vertices};
@@ -114,12 +114,9 @@ impl OffscreenRenderer {
                 entries: &entries,
             })
         };
+        let queue = &self.gpu.queue;
         let uniform = |bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("uniform"),
-                contents: bytes,
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
+            upload_buffer(device, queue, "uniform", bytes, wgpu::BufferUsages::UNIFORM)
         };
         let camera = uniform(bytemuck::bytes_of(&uniforms.camera));
         let light = uniform(bytemuck::bytes_of(&uniforms.light));
@@ -151,12 +148,16 @@ impl OffscreenRenderer {
         self.encode(scene, &mut encoder);
         copy_to_buffer(&mut encoder, &self.targets.picture, &self.targets.readback);
         self.gpu.queue.submit([encoder.finish()]);
-        read_buffer(
+        let picture = read_buffer(
             &self.gpu.device,
             &self.targets.readback,
             self.settings.width_px,
             self.settings.height_px,
-        )
+        );
+        // A lost device or a failed operation first: a readback error is
+        // then only its consequence, and a picture read back is not trusted.
+        self.gpu.check()?;
+        picture
     }
 
     /// Draws `scene` into the picture texture and submits it, without
@@ -201,12 +202,14 @@ impl OffscreenRenderer {
 
     /// Records the shadow and main passes of `scene` into `encoder`.
     fn encode(&mut self, scene: &Scene<'_>, encoder: &mut wgpu::CommandEncoder) {
-        let device = &self.gpu.device;
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
         let bindings = self.bindings(&FrameUniforms::new(scene, &self.settings));
         let (strand_vertices, strand_indices) = ribbon_mesh(scene.hair);
-        let hair = IndexedGeometry::upload(device, "strands", &strand_vertices, &strand_indices);
+        let hair =
+            IndexedGeometry::upload(device, queue, "strands", &strand_vertices, &strand_indices);
         let head = IndexedGeometry::upload(
             device,
+            queue,
             "head",
             &head_vertices(scene.head),
             &scene.head.mesh.indices,
