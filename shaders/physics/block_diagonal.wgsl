@@ -1,7 +1,8 @@
-// Block-diagonal step on the GPU (append to common.wgsl). Four stages per
-// step, each a dispatch:
-//   stage_frames   one invocation per strand: the root-to-tip frame chain
-//                  (R, ω, α, p, ṗ, p̈ at each element start) and A_Q, B_Q
+// Block-diagonal step on the GPU (appended to common.wgsl and chain.wgsl).
+// Four stages per step, each a dispatch:
+//   stage_frames   (chain.wgsl) one invocation per strand: the root-to-tip
+//                  frame chain (R, ω, α, p, ṗ, p̈ at each element start) and
+//                  A_Q (about the element's end), B_Q
 //   stage_elements one invocation per element: its quadrature samples and
 //                  own sums (forces, D_Q, mass moments)
 //   stage_suffix   one invocation per strand: tip-to-root suffix sums
@@ -10,32 +11,11 @@
 // The chain and the suffix are sequential per strand (N ≤ 200 steps of a
 // few hundred flops); the per-element stages carry the bulk of the work.
 
-@group(0) @binding(0) var<uniform> params: Params;
-@group(0) @binding(1) var<storage, read> elements_const: array<ElementConst>;
-@group(0) @binding(2) var<storage, read> roots: array<RootPose>;
-@group(0) @binding(3) var<storage, read_write> q: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read_write> v: array<vec4<f32>>;
-@group(0) @binding(5) var<storage, read_write> frames: array<Frame>;
-@group(0) @binding(6) var<storage, read_write> jacobians: array<Jacobians>;
+// Moments about each element's end (see chain.wgsl).
+const LOCAL_MOMENTS: bool = true;
+
 @group(0) @binding(7) var<storage, read_write> own: array<Own>;
 @group(0) @binding(8) var<storage, read_write> beyond: array<Beyond>;
-
-@compute @workgroup_size(64)
-fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let strand = flat_index(id, groups);
-    if strand >= params.strand_count {
-        return;
-    }
-    let n = params.elements;
-    var s = root_state(strand);
-    for (var e = 0u; e < n; e++) {
-        let i = strand * n + e;
-        frames[i] = frame_record(s);
-        let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
-        jacobians[i] = Jacobians(adv.a_local, adv.b, vec4<f32>(adv.span, 0.0));
-        s = adv.next;
-    }
-}
 
 @compute @workgroup_size(64)
 fn stage_elements(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {

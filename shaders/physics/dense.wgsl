@@ -1,9 +1,10 @@
-// Dense step on the GPU (append to common.wgsl): the whole 3N×3N step
+// Dense step on the GPU (appended to common.wgsl and chain.wgsl): the whole 3N×3N step
 // matrix S = s·M + diag(D) assembled and Cholesky-factored by one workgroup
 // per strand. The arithmetic is crates/physics/src/batch/dense.rs; the CPU
 // twins are crates/physics/src/gpu/dense_twin.rs. Three stages per step:
-//   stage_frames   one invocation per strand: the root-to-tip frame chain
-//                  and A_Q (about the root: Dense keeps root moments), B_Q
+//   stage_frames   (chain.wgsl) one invocation per strand: the root-to-tip
+//                  frame chain and A_Q (about the root: Dense keeps root
+//                  moments), B_Q
 //   stage_elements one invocation per element: own sums, with U_Q and V_Q
 //   stage_dense    one workgroup (DENSE_WORKGROUP invocations) per strand:
 //                  (1) invocation 0 runs the tip-to-root suffix: X_Q, Y_Q
@@ -23,13 +24,9 @@
 // too. X, Y and the two solution vectors sit in workgroup memory, which
 // caps N at MAX_DENSE_ELEMENTS = 64 (7.5 KiB).
 
-@group(0) @binding(0) var<uniform> params: Params;
-@group(0) @binding(1) var<storage, read> elements_const: array<ElementConst>;
-@group(0) @binding(2) var<storage, read> roots: array<RootPose>;
-@group(0) @binding(3) var<storage, read_write> q: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read_write> v: array<vec4<f32>>;
-@group(0) @binding(5) var<storage, read_write> frames: array<Frame>;
-@group(0) @binding(6) var<storage, read_write> jacobians: array<Jacobians>;
+// Moments about the root (see chain.wgsl).
+const LOCAL_MOMENTS: bool = false;
+
 @group(0) @binding(7) var<storage, read_write> own: array<DenseOwn>;
 @group(0) @binding(8) var<storage, read_write> matrix: array<f32>;
 
@@ -49,23 +46,6 @@ var<workgroup> column_y: array<mat3x3<f32>, MAX_DENSE_ELEMENTS>;
 // substitution), and Δv.
 var<workgroup> solution: array<f32, 192>;
 var<workgroup> delta_v: array<f32, 192>;
-
-@compute @workgroup_size(64)
-fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let strand = flat_index(id, groups);
-    if strand >= params.strand_count {
-        return;
-    }
-    let n = params.elements;
-    var s = root_state(strand);
-    for (var e = 0u; e < n; e++) {
-        let i = strand * n + e;
-        frames[i] = frame_record(s);
-        let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
-        jacobians[i] = Jacobians(adv.a, adv.b, vec4<f32>(0.0));
-        s = adv.next;
-    }
-}
 
 @compute @workgroup_size(64)
 fn stage_elements(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {

@@ -222,7 +222,9 @@ impl WindowGpu {
         }
         // A lost device (or any failed GPU operation) ends the window with
         // wgpu's reason instead of drawing garbage; see helixhair_gpu.
-        self.gpu.check().context("the window cannot draw any more")?;
+        self.gpu
+            .check()
+            .context("the window cannot draw any more")?;
         let Some(buffer) = shot else {
             return Ok(None);
         };

@@ -33,21 +33,26 @@ use crate::settings::{Method, SimSettings};
 
 /// `shaders/physics/common.wgsl`: structs and the arithmetic shared by the kernels.
 pub const COMMON_WGSL: &str = include_str!("../../../../shaders/physics/common.wgsl");
-/// `shaders/physics/block_diagonal.wgsl`: the four Block-diagonal stages.
+/// `shaders/physics/chain.wgsl`: the bindings and the `stage_frames` stage
+/// that Block-diagonal and Dense share (each sets `LOCAL_MOMENTS`).
+pub const CHAIN_WGSL: &str = include_str!("../../../../shaders/physics/chain.wgsl");
+/// `shaders/physics/block_diagonal.wgsl`: the Block-diagonal stages after
+/// the chain.
 pub const BLOCK_DIAGONAL_WGSL: &str =
     include_str!("../../../../shaders/physics/block_diagonal.wgsl");
 /// `shaders/physics/exact.wgsl`: the one-invocation-per-strand Exact step.
 pub const EXACT_WGSL: &str = include_str!("../../../../shaders/physics/exact.wgsl");
 
-/// The full source of a kernel module: the common part, then the kernel.
+/// The full source of a kernel module: the common part, the shared frame
+/// chain where the kernel uses it (Exact fuses its own), then the kernel.
 pub fn kernel_source(method: Method) -> Option<String> {
-    let kernel = match method {
-        Method::BlockDiagonal => BLOCK_DIAGONAL_WGSL,
-        Method::Exact => EXACT_WGSL,
-        Method::Dense => DENSE_WGSL,
+    let source = match method {
+        Method::BlockDiagonal => format!("{COMMON_WGSL}\n{CHAIN_WGSL}\n{BLOCK_DIAGONAL_WGSL}"),
+        Method::Exact => format!("{COMMON_WGSL}\n{EXACT_WGSL}"),
+        Method::Dense => format!("{COMMON_WGSL}\n{CHAIN_WGSL}\n{DENSE_WGSL}"),
         _ => return None,
     };
-    Some(format!("{COMMON_WGSL}\n{kernel}"))
+    Some(source)
 }
 
 const WORKGROUP: u32 = 64;

@@ -14,6 +14,7 @@
 //!   [`dense_twin`] those of the Dense kernel.
 //!
 //! The WGSL lives in the top-level `shaders/physics/` folder (`common.wgsl`,
+//! `chain.wgsl` (the frame chain Block-diagonal and Dense share),
 //! `block_diagonal.wgsl`, `exact.wgsl`, `dense.wgsl`; the renderer's shaders are the
 //! files directly in `shaders/`), included with `include_str!`.
 //! `docs/gpu.md` explains the stage split and how a renderer reads the
