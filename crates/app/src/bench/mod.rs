@@ -91,7 +91,7 @@ pub struct BenchArgs {
     pub soak_minutes: Option<f64>,
     /// Engines the `soak` study runs (repeat the flag for both; both when
     /// absent): reference or batch.
-    #[arg(long = "soak-engine", value_name = "ENGINE", value_parser = crate::cli::parse_engine)]
+    #[arg(long = "soak-engine", value_name = "ENGINE", value_parser = soak::parse_engine)]
     pub soak_engines: Vec<EngineKind>,
 }
 

@@ -55,6 +55,15 @@ pub fn sample_every(steps: usize) -> usize {
     (steps / 200).max(60)
 }
 
+/// `--soak-engine`'s parser: an engine as [`EngineKind::label`] spells it
+/// (the bench does not lean on the command line's module for it).
+pub fn parse_engine(name: &str) -> Result<EngineKind, String> {
+    EngineKind::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = EngineKind::ALL.iter().map(|k| k.label()).collect();
+        format!("unknown engine `{name}`; expected {}", names.join(" or "))
+    })
+}
+
 /// One row of `soak.csv`.
 #[derive(Clone, Debug, Serialize)]
 pub struct SoakRow {
