@@ -65,11 +65,13 @@ pub mod exact;
 pub mod forward;
 pub mod geometry;
 pub mod guard;
+pub mod implicit;
 pub mod lanes;
 pub mod layout;
 pub mod suffix;
 mod system;
 pub mod vec;
+pub mod velocity_terms;
 
 pub use lanes::{LANES, Lanes, Real};
 pub use system::{BatchSystem, MemoryUse};
