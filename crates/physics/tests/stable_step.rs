@@ -13,8 +13,8 @@ use glam::DVec3;
 use helixhair_physics::batch::BatchSystem;
 use helixhair_physics::motion::HeadTrajectory;
 use helixhair_physics::{
-    Bounce, ElementLayout, HairSystem, Method, NaturalShape, Oscillation, RigidMotion, RootPose,
-    SimSettings, StepScheme, StrandParams,
+    Bounce, HairSystem, Method, NaturalShape, RigidMotion, RootPose, SimSettings, StepScheme,
+    StrandParams,
 };
 
 fn system(settings: SimSettings, params: &StrandParams, roots: &[RootPose]) -> HairSystem {

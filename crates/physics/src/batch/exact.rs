@@ -219,7 +219,7 @@ pub fn solve_again<T: Real, const LOCAL: bool>(
         stored.rhs = r;
         if LOCAL {
             // The carried wrench's part of `shift_articulated`.
-            carried[1] = carried[1] + el.span.cross(carried[0]);
+            carried[1] += el.span.cross(carried[0]);
         }
     }
     back_substitute::<T, LOCAL>(scratch, elimination, |e, delta_v| x[e] = delta_v);

@@ -242,7 +242,8 @@ fn gmres<T: Real>(
             sum -= hessenberg[i][l] * y[l];
         }
         y[i] = sum / hessenberg[i][i];
-        finite = finite * (y[i] - y[i]).select_below(0.5, one, zero);
+        // y · 0 is 0 for a finite y and NaN otherwise.
+        finite = finite * (y[i] * zero).select_below(0.5, one, zero);
     }
     for (y_j, z) in y[..used].iter().zip(directions.iter()) {
         let y_j = pick(finite, *y_j, zero);
