@@ -75,14 +75,15 @@ fn run(settings: &SimSettings, params: &StrandParams, roots: &[RootPose]) -> (bo
             println!("  frame {f}: NOT FINITE");
             return (false, physics_secs, f64::NAN);
         }
-        if f + per_second >= frames {
-            for (i, p) in prev.iter_mut().enumerate() {
-                let now = sys.boundary_points_world(i);
+        let last_second = f + per_second >= frames;
+        for (i, p) in prev.iter_mut().enumerate() {
+            let now = sys.boundary_points_world(i);
+            if last_second {
                 for (a, b) in now.iter().zip(p.iter()) {
                     fastest = fastest.max((*a - *b).length() / settings.dt_secs as f32);
                 }
-                *p = now;
             }
+            *p = now;
         }
     }
     (true, physics_secs / frames as f64, f64::from(fastest))

@@ -10,6 +10,13 @@
 //! Sweep 3 (root to tip): x_Q = S̃⁻¹(r̃ − W̃ᵀ moved), moved += U x_Q, and
 //! integrate. Three passes against Block-diagonal's two, and about twice the
 //! arithmetic in the second.
+//!
+//! The pieces are public for the velocity-implicit step
+//! ([`super::implicit`]): [`eliminate`] (sweeps 1 and 2),
+//! [`back_substitute`] (sweep 3's solve, without integrating) and
+//! [`solve_again`], which solves P x = b for a new right-hand side with
+//! the elimination sweep 2 stored (b folded tip to root through W̃ and S̃⁻¹,
+//! then back-substituted): two light sweeps, no 3×3 inverse, no H.
 
 use super::contact::{EndPointForce, NoContact};
 use super::forward::forward_with;
