@@ -309,3 +309,33 @@ fn zero_corrections_is_the_explicit_step_bit_for_bit() {
         assert_eq!(explicit.q(i), zero.q(i));
     }
 }
+
+#[test]
+fn long_curly_strands_run_with_no_guard_event_on_the_batch_engine() {
+    // The reference's check (`stable_step.rs`) on the batch engine: the
+    // default window style dragged to 0.66 m (curly, 15 elements, Exact,
+    // still head), which the reference's explicit step had gain energy on
+    // 21 frames in 2 s.
+    let params = StrandParams {
+        length_m: 0.66,
+        elements: 15,
+        ellipticity: 1.35,
+        natural_shape: NaturalShape::Helix {
+            radius_m: 0.012,
+            step_m: 0.03,
+        },
+        ..StrandParams::default()
+    };
+    let mut hair = batch(exact(IMPLICIT), &params, &outward_roots(16));
+    let still = helixhair_physics::RigidMotion::default();
+    for _ in 0..120 {
+        hair.step_frame(&still);
+        assert_eq!(
+            hair.guard_reset_count(),
+            0,
+            "the guard reset {:?}",
+            hair.last_guard_resets()
+        );
+    }
+    assert!(hair.is_finite());
+}
