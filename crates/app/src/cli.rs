@@ -85,10 +85,11 @@ pub struct SimArgs {
     /// Frame time step in seconds, instead of the style's (1e-6 to 0.1).
     #[arg(long, value_name = "SECS", allow_negative_numbers = true)]
     pub dt: Option<f64>,
-    /// How the reference engine's step treats the centrifugal and Coriolis
-    /// terms, instead of the style's `sim.scheme`: implicit (the default:
-    /// in the step matrix) or explicit (frozen at the step's start, as the
-    /// batch engine and the GPU kernels step; for comparisons).
+    /// How the step (reference engine, and the batch engine's Exact)
+    /// treats the centrifugal and Coriolis terms, instead of the style's
+    /// `sim.scheme`: implicit (the default: in the step matrix) or explicit
+    /// (frozen at the step's start, as the GPU kernels step; for
+    /// comparisons).
     #[arg(long, value_name = "TERMS", value_parser = parse_velocity_terms)]
     pub velocity_terms: Option<StepScheme>,
     /// Move the head with one of the window's clips (nod, shake, turn or

@@ -6,62 +6,16 @@ mod common;
 
 use std::sync::Arc;
 
+use common::shake_scene::{ShakeThenStill, head_roots, ordinary_shake, straight_30_cm};
 use common::sphere::{RADIUS_M, sphere_field};
 use common::*;
 use glam::DVec3;
 use helixhair_physics::batch::BatchSystem;
 use helixhair_physics::motion::HeadTrajectory;
 use helixhair_physics::{
-    Bounce, ElementLayout, HairSystem, Method, NaturalShape, Oscillation, RigidMotion, RootPose,
-    SimSettings, StepScheme, StrandParams,
+    Bounce, HairSystem, Method, NaturalShape, RigidMotion, RootPose, SimSettings, StepScheme,
+    StrandParams,
 };
-
-/// The straight example's long strands (`assets/styles/straight.ron`).
-fn straight_30_cm() -> StrandParams {
-    StrandParams {
-        length_m: 0.3,
-        elements: 12,
-        layout: ElementLayout::Graded {
-            tip_to_root_ratio: 3.0,
-        },
-        radius_m: 40e-6,
-        ..StrandParams::default()
-    }
-}
-
-/// Roots on the side and the crown of a 10 cm head, growing outward.
-fn head_roots() -> Vec<RootPose> {
-    vec![
-        RootPose::from_direction(
-            DVec3::new(0.0966, 0.0259, 0.0),
-            DVec3::new(0.9659, 0.2588, 0.0),
-            DVec3::Z,
-        ),
-        RootPose::from_direction(
-            DVec3::new(0.0, 0.0866, 0.05),
-            DVec3::new(0.0, 0.866, 0.5),
-            DVec3::X,
-        ),
-    ]
-}
-
-/// An ordinary head shake, 0.5 rad at 1.5 Hz, that stops after
-/// `shake_secs` (a whole number of periods and a quarter, where the head's
-/// angular velocity is zero) and then holds still.
-struct ShakeThenStill {
-    shake: Oscillation,
-    shake_secs: f64,
-}
-
-impl HeadTrajectory for ShakeThenStill {
-    fn motion_at(&self, t_secs: f64) -> RigidMotion {
-        if t_secs < self.shake_secs {
-            self.shake.motion_at(t_secs)
-        } else {
-            self.shake.motion_at(self.shake_secs).motion_at(t_secs)
-        }
-    }
-}
 
 fn system(settings: SimSettings, params: &StrandParams, roots: &[RootPose]) -> HairSystem {
     let mut system = HairSystem::new(settings).expect("valid settings");
@@ -74,14 +28,7 @@ fn a_straight_30_cm_strand_survives_an_ordinary_shake_at_60_hz_and_then_settles(
     // It blew up: non-finite after 1.3 s at 1/60 s with Exact, because the
     // centrifugal and Coriolis terms were explicit in the step; the example
     // styles hid it with 4 substeps.
-    let head = ShakeThenStill {
-        shake: Oscillation {
-            axis: DVec3::Y,
-            amplitude_rad: 0.5,
-            frequency_hz: 1.5,
-        },
-        shake_secs: 4.25 / 1.5,
-    };
+    let head = ShakeThenStill::ordinary();
     for method in [Method::Exact, Method::Dense] {
         let settings = SimSettings {
             method,
@@ -117,11 +64,7 @@ fn a_straight_30_cm_strand_survives_an_ordinary_shake_at_60_hz_and_then_settles(
 #[test]
 fn the_velocity_explicit_step_blows_up_on_the_same_shake() {
     // The control for the test above: what the velocity terms cure.
-    let shake = Oscillation {
-        axis: DVec3::Y,
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    };
+    let shake = ordinary_shake();
     let settings = SimSettings {
         method: Method::Exact,
         scheme: StepScheme::VelocityExplicit,

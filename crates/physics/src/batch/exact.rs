@@ -10,6 +10,13 @@
 //! Sweep 3 (root to tip): x_Q = S̃⁻¹(r̃ − W̃ᵀ moved), moved += U x_Q, and
 //! integrate. Three passes against Block-diagonal's two, and about twice the
 //! arithmetic in the second.
+//!
+//! The pieces are public for the velocity-implicit step
+//! ([`super::implicit`]): [`eliminate`] (sweeps 1 and 2),
+//! [`back_substitute`] (sweep 3's solve, without integrating) and
+//! [`solve_again`], which solves P x = b for a new right-hand side with
+//! the elimination sweep 2 stored (b folded tip to root through W̃ and S̃⁻¹,
+//! then back-substituted): two light sweeps, no 3×3 inverse, no H.
 
 use super::contact::{EndPointForce, NoContact};
 use super::forward::forward_with;
@@ -97,11 +104,37 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     elimination: &mut [Elimination<T>],
     end_force: &mut H,
 ) {
+    eliminate::<T, LOCAL, H>(model, env, root, q, v, scratch, elimination, end_force);
+    back_substitute::<T, LOCAL>(scratch, elimination, |e, delta_v| {
+        integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
+    });
+}
+
+/// Sweeps 1 and 2 of [`step_exact_with`]: element data into `scratch`,
+/// the elimination and the folded right-hand side into `elimination`.
+/// Returns Σ|rhs|² per lane (the right-hand side before folding), for the
+/// velocity-implicit step's stopping test.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's buffers, as in `step_exact_with`"
+)]
+#[inline(always)]
+pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &[V3<T>],
+    v: &[V3<T>],
+    scratch: &mut [ElementData<T>],
+    elimination: &mut [Elimination<T>],
+    end_force: &mut H,
+) -> T {
     forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force);
     let s = T::splat(mass_scale(model, env));
     let mut beyond = Beyond::zero();
     let mut h = [M3::zero(); 4];
     let mut carried = [V3::zero(); 2];
+    let mut rhs_squared = T::splat(0.0);
     for e in (0..q.len()).rev() {
         let el = &scratch[e];
         let terms = element_terms(el, &beyond);
@@ -114,6 +147,7 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
         let [h_aa, h_ab, h_ba, h_bb] = &mut h;
         let [carried_a, carried_b] = &mut carried;
         let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);
+        rhs_squared += rhs.dot(rhs);
         let hu_top = h_aa.mul_mat(&el.a) + h_ab.mul_mat(&el.b);
         let hu_bottom = h_ba.mul_mat(&el.a) + h_bb.mul_mat(&el.b);
         let w_top = (el.u + terms.x_beyond).scale(s) - hu_top;
@@ -144,10 +178,19 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
         }
         beyond.add(el);
     }
+    rhs_squared
+}
+
+/// Sweep 3 of [`step_exact_with`], root to tip: hands element e's Δv to
+/// `out(e, Δv)` from the folded right-hand side in `elimination`.
+#[inline(always)]
+pub fn back_substitute<T: Real, const LOCAL: bool>(
+    scratch: &[ElementData<T>],
+    elimination: &[Elimination<T>],
+    mut out: impl FnMut(usize, V3<T>),
+) {
     let (mut moved_a, mut moved_b) = (V3::zero(), V3::zero());
-    for e in 0..q.len() {
-        let el = &scratch[e];
-        let x = &elimination[e];
+    for (e, (el, x)) in scratch.iter().zip(elimination).enumerate() {
         if LOCAL {
             moved_a = moved_a - el.span.cross(moved_b);
         }
@@ -155,6 +198,36 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
             x.s_inv * (x.rhs - (x.w_top.t_mul_vec(moved_a) + x.w_bottom.t_mul_vec(moved_b)));
         moved_a += el.a * delta_v;
         moved_b += el.b * delta_v;
-        integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
+        out(e, delta_v);
     }
+}
+
+/// x = P⁻¹ b with the elimination of the last [`eliminate`] (P = s M + D,
+/// the matrix it factored): the right-hand side `b` folded tip to root with
+/// the stored W̃ and S̃⁻¹ (overwriting `elimination`'s folded right-hand
+/// side), then [`back_substitute`]. Two light sweeps: the step matrix is
+/// not formed again.
+#[inline(always)]
+pub fn solve_again<T: Real, const LOCAL: bool>(
+    scratch: &[ElementData<T>],
+    elimination: &mut [Elimination<T>],
+    b: &[V3<T>],
+    x: &mut [V3<T>],
+) {
+    let mut carried = [V3::zero(); 2];
+    for e in (0..b.len()).rev() {
+        let el = &scratch[e];
+        let stored = &mut elimination[e];
+        let [carried_a, carried_b] = &mut carried;
+        let r = b[e] - (el.a.t_mul_vec(*carried_a) + el.b.t_mul_vec(*carried_b));
+        let y = stored.s_inv * r;
+        *carried_a += stored.w_top * y;
+        *carried_b += stored.w_bottom * y;
+        stored.rhs = r;
+        if LOCAL {
+            // The carried wrench's part of `shift_articulated`.
+            carried[1] += el.span.cross(carried[0]);
+        }
+    }
+    back_substitute::<T, LOCAL>(scratch, elimination, |e, delta_v| x[e] = delta_v);
 }

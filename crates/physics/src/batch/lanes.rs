@@ -49,6 +49,9 @@ pub trait Real:
     fn all_below(self, limit: f32) -> bool;
     /// Per lane: `if_below` where `self < limit`, else `otherwise`.
     fn select_below(self, limit: f32, if_below: Self, otherwise: Self) -> Self;
+    /// Per lane: `if_greater` where `self > than` (a per-lane bound),
+    /// else `otherwise` (a NaN compares false).
+    fn select_greater(self, than: Self, if_greater: Self, otherwise: Self) -> Self;
 }
 
 impl Real for f32 {
@@ -84,6 +87,10 @@ impl Real for f32 {
     #[inline(always)]
     fn select_below(self, limit: f32, if_below: Self, otherwise: Self) -> Self {
         if self < limit { if_below } else { otherwise }
+    }
+    #[inline(always)]
+    fn select_greater(self, than: Self, if_greater: Self, otherwise: Self) -> Self {
+        if self > than { if_greater } else { otherwise }
     }
 }
 
@@ -127,6 +134,10 @@ impl Real for f64 {
         } else {
             otherwise
         }
+    }
+    #[inline(always)]
+    fn select_greater(self, than: Self, if_greater: Self, otherwise: Self) -> Self {
+        if self > than { if_greater } else { otherwise }
     }
 }
 
@@ -248,5 +259,9 @@ impl Real for Lanes {
                 .simd_lt(f32x8::splat(limit))
                 .select(if_below.0, otherwise.0),
         )
+    }
+    #[inline(always)]
+    fn select_greater(self, than: Self, if_greater: Self, otherwise: Self) -> Self {
+        Lanes(self.0.simd_gt(than.0).select(if_greater.0, otherwise.0))
     }
 }

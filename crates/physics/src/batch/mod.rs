@@ -29,6 +29,22 @@
 //!   third, root-to-tip sweep. Per-element data is written in place: at
 //!   8 lanes an element's record is about 1.9 KB, and copying it was 15% of
 //!   a step.
+//! - **Velocity-implicit Exact** ([`implicit`], the default
+//!   `StepScheme::VelocityImplicit`, as in the f64 reference): the
+//!   derivative G = −∂Q/∂q̇ of the centrifugal, Coriolis and root-rotation
+//!   forces joins the step matrix. Sweep 3 gives Δv₀ = P⁻¹ rhs without
+//!   integrating; GMRES (at most `corrections` iterations, stopping at a
+//!   residual of 1e-3 of |rhs|) then corrects it, lane by lane: every dot
+//!   product, Givens rotation and stopping test is a [`Lanes`] value, so
+//!   each strand runs its own GMRES inside the batch's SIMD arithmetic.
+//!   Each iteration re-solves with the elimination sweep 2 stored
+//!   ([`exact::solve_again`]: two light sweeps) and forms G z by
+//!   polarisation, two kinematic sweeps with rates q̇ ± cz
+//!   ([`velocity_terms`]). `StepScheme::VelocityExplicit` (and 0
+//!   corrections) runs the explicit step bit for bit as before.
+//!   Block-diagonal stays velocity-explicit, as in the reference (its
+//!   truncated matrix is too far from the whole one for the iteration to
+//!   converge).
 //! - **Threads**: rayon over batches; a batch's arithmetic does not depend
 //!   on which thread runs it, so serial and parallel runs are bit-identical.
 //! - **Collide** ([`contact`], optional): the head's collider
@@ -54,7 +70,8 @@
 //! Exact (Exact gives Dense's answer in O(N)).
 //!
 //! Accuracy: f32 against the f64 reference, pinned by
-//! `tests/batch_parity.rs` with named tolerances; contact by
+//! `tests/batch_parity.rs` (velocity-explicit) and
+//! `tests/batch_stable_step.rs` (velocity-implicit) with named tolerances; contact by
 //! `tests/batch_contact.rs` (a drape over a sphere within 1 mm of the f64
 //! drape) and the guard by `tests/batch_guard.rs`.
 
@@ -65,11 +82,13 @@ pub mod exact;
 pub mod forward;
 pub mod geometry;
 pub mod guard;
+pub mod implicit;
 pub mod lanes;
 pub mod layout;
 pub mod suffix;
 mod system;
 pub mod vec;
+pub mod velocity_terms;
 
 pub use lanes::{LANES, Lanes, Real};
 pub use system::{BatchSystem, MemoryUse};

@@ -12,6 +12,7 @@ use super::contact::{EndPointForce, LaneContact, NearCells, NoContact};
 use super::exact::{Elimination, step_exact_with};
 use super::forward::{FrameState, advance};
 use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
+use super::implicit::{Krylov, step_exact_implicit};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::vec::V3;
@@ -22,7 +23,7 @@ use crate::guard::Guard;
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
-use crate::settings::{Method, SimSettings};
+use crate::settings::{Method, SimSettings, StepScheme};
 
 /// Strands sharing one model, in batches of [`LANES`].
 #[derive(Clone, Debug)]
@@ -59,13 +60,48 @@ type BatchRef<'a> = ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose])
 struct Scratch {
     elements: Vec<ElementData<Lanes>>,
     elimination: Vec<Elimination<Lanes>>,
+    /// GMRES's vectors (none without the velocity-implicit Exact step).
+    krylov: Krylov<Lanes>,
 }
 
 impl Scratch {
-    fn new(n: usize) -> Self {
+    /// Buffers for N elements and `iterations` GMRES iterations.
+    fn new(n: usize, iterations: usize) -> Self {
         Self {
             elements: vec![ElementData::zero(); n],
             elimination: vec![Elimination::zero(); n],
+            krylov: Krylov::new(n, iterations),
+        }
+    }
+}
+
+/// Which step a batch takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum BatchStep {
+    /// Block-diagonal, velocity terms explicit (as in the reference).
+    BlockDiagonal,
+    /// Exact, velocity terms explicit.
+    Exact,
+    /// Exact with at most this many GMRES iterations on the velocity terms.
+    ExactImplicit(usize),
+}
+
+impl BatchStep {
+    fn of(settings: &SimSettings) -> Self {
+        match (settings.method, settings.scheme) {
+            (Method::Exact, StepScheme::VelocityImplicit { corrections }) if corrections > 0 => {
+                BatchStep::ExactImplicit(corrections as usize)
+            }
+            (Method::Exact, _) => BatchStep::Exact,
+            _ => BatchStep::BlockDiagonal,
+        }
+    }
+
+    /// GMRES iterations the scratch must hold.
+    fn iterations(self) -> usize {
+        match self {
+            BatchStep::ExactImplicit(k) => k,
+            _ => 0,
         }
     }
 }
@@ -252,7 +288,7 @@ impl BatchSystem {
             gravity_m_per_s2: self.settings.gravity_m_per_s2.as_vec3().to_array(),
             air_velocity_m_per_s: self.settings.air_velocity_m_per_s.as_vec3().to_array(),
         };
-        let exact = self.settings.method == Method::Exact;
+        let step_kind = BatchStep::of(&self.settings);
         let start_secs = self.time_secs;
         let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
             Some(_) => {
@@ -281,7 +317,7 @@ impl BatchSystem {
                 (inputs, near)
             });
             for group in &mut self.groups {
-                group.step(&motion, &env, exact, contact, self.parallel);
+                group.step(&motion, &env, step_kind, contact, self.parallel);
             }
             self.time_secs += h;
         }
@@ -407,9 +443,21 @@ impl BatchSystem {
             bytes_per_strand: state as f64 / self.strand_count.max(1) as f64,
             scratch_bytes_per_thread: n_max
                 * (std::mem::size_of::<ElementData<Lanes>>()
-                    + std::mem::size_of::<Elimination<Lanes>>()),
+                    + std::mem::size_of::<Elimination<Lanes>>()
+                    + krylov_bytes_per_element(BatchStep::of(&self.settings).iterations())),
         }
     }
+}
+
+/// Bytes of GMRES buffers per element for `iterations` iterations: the
+/// basis (k + 1 vectors), the directions (k), Δv, the product and its
+/// partial sums.
+fn krylov_bytes_per_element(iterations: usize) -> usize {
+    if iterations == 0 {
+        return 0;
+    }
+    (2 * iterations + 3) * std::mem::size_of::<V3<Lanes>>()
+        + std::mem::size_of::<super::velocity_terms::OwnProduct<Lanes>>()
 }
 
 /// One step of one batch with `end_force` at the element end points.
@@ -422,28 +470,37 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
     model: &BatchModel,
     env: &StepEnv,
     root: &RootMotion<Lanes>,
-    exact: bool,
+    step: BatchStep,
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     scratch: &mut Scratch,
     end_force: &mut H,
 ) {
-    if exact {
-        let Scratch {
-            elements,
-            elimination,
-        } = scratch;
-        step_exact_with::<_, true, _>(model, env, root, q, v, elements, elimination, end_force);
-    } else {
-        step_block_diagonal_with::<_, true, _>(
-            model,
-            env,
-            root,
-            q,
-            v,
-            &mut scratch.elements,
-            end_force,
-        );
+    let Scratch {
+        elements,
+        elimination,
+        krylov,
+    } = scratch;
+    match step {
+        BatchStep::Exact => {
+            step_exact_with::<_, true, _>(model, env, root, q, v, elements, elimination, end_force);
+        }
+        BatchStep::ExactImplicit(_) => {
+            step_exact_implicit(
+                model,
+                env,
+                root,
+                q,
+                v,
+                elements,
+                elimination,
+                krylov,
+                end_force,
+            );
+        }
+        BatchStep::BlockDiagonal => {
+            step_block_diagonal_with::<_, true, _>(model, env, root, q, v, elements, end_force);
+        }
     }
 }
 
@@ -552,7 +609,7 @@ impl Group {
         &mut self,
         motion: &RigidMotion,
         env: &StepEnv,
-        exact: bool,
+        step_kind: BatchStep,
         contact: Option<(ContactInputs<'_>, &NearCells)>,
         parallel: bool,
     ) {
@@ -568,9 +625,11 @@ impl Group {
                 Some((inputs, near)) => {
                     let positions = std::array::from_fn(|i| motions[i].position_m);
                     let mut end_force = LaneContact::new(inputs, near, model, positions);
-                    step_batch_with(model, env, &root, exact, q, v, scratch, &mut end_force);
+                    step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
                 }
-                None => step_batch_with(model, env, &root, exact, q, v, scratch, &mut NoContact),
+                None => {
+                    step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut NoContact)
+                }
             }
         };
         if parallel {
@@ -578,9 +637,9 @@ impl Group {
                 .par_chunks_mut(n)
                 .zip(self.v.par_chunks_mut(n))
                 .zip(self.roots.par_chunks(LANES))
-                .for_each_init(|| Scratch::new(n), step_batch);
+                .for_each_init(|| Scratch::new(n, step_kind.iterations()), step_batch);
         } else {
-            let mut scratch = Scratch::new(n);
+            let mut scratch = Scratch::new(n, step_kind.iterations());
             self.q
                 .chunks_mut(n)
                 .zip(self.v.chunks_mut(n))

@@ -3,6 +3,7 @@
 
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod shake_scene;
 pub mod sphere;
 
 use std::sync::Arc;

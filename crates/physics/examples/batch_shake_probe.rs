@@ -1,0 +1,146 @@
+//! Probe: `shake_probe`'s scene on the f32 batch engine (Exact): the
+//! straight, wavy or curly example's strands on two roots of a 10 cm head,
+//! head shake 0.5 rad at 1.5 Hz, guard off. Prints whether the run stayed
+//! finite, the fastest boundary point per second, and the physics time per
+//! frame (median of `repeats` runs).
+//!
+//! `cargo run --release -p helixhair-physics --example batch_shake_probe --
+//! [straight|wavy|curly] [explicit|CORRECTIONS] [dt_secs] [repeats] [copies]`
+//!
+//! `copies` repeats the two roots (default 4: one full batch of 8 lanes).
+
+use glam::DVec3;
+use helixhair_physics::batch::BatchSystem;
+use helixhair_physics::{
+    ElementLayout, Method, NaturalShape, Oscillation, RootPose, SimSettings, StepScheme,
+    StrandParams,
+};
+
+fn params(shape: &str) -> StrandParams {
+    if shape == "curly" {
+        // assets/styles/curly.ron's crown.
+        return StrandParams {
+            length_m: 0.25,
+            elements: 15,
+            ellipticity: 1.35,
+            natural_shape: NaturalShape::Helix {
+                radius_m: 0.012,
+                step_m: 0.03,
+            },
+            ..StrandParams::default()
+        };
+    }
+    StrandParams {
+        length_m: 0.3,
+        elements: 12,
+        layout: ElementLayout::Graded {
+            tip_to_root_ratio: 3.0,
+        },
+        radius_m: 40e-6,
+        natural_shape: if shape == "wavy" {
+            NaturalShape::Helix {
+                radius_m: 0.025,
+                step_m: 0.12,
+            }
+        } else {
+            NaturalShape::Straight
+        },
+        ..StrandParams::default()
+    }
+}
+
+/// One run of `frames` frames: (finite, physics seconds, fastest point in
+/// the last second, m/s).
+fn run(settings: &SimSettings, params: &StrandParams, roots: &[RootPose]) -> (bool, f64, f64) {
+    let mut sys = BatchSystem::new(settings.clone()).expect("valid settings");
+    sys.set_guard(None);
+    sys.add_group(params, roots).expect("valid params");
+    let shake = Oscillation {
+        axis: DVec3::Y,
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    };
+    let frames = (10.0 / settings.dt_secs).round() as usize;
+    let per_second = (1.0 / settings.dt_secs).round() as usize;
+    let mut physics_secs = 0.0;
+    let mut fastest = 0.0f32;
+    let mut prev: Vec<_> = (0..roots.len())
+        .map(|i| sys.boundary_points_world(i))
+        .collect();
+    for f in 0..frames {
+        let started = std::time::Instant::now();
+        sys.step_frame(&shake);
+        physics_secs += started.elapsed().as_secs_f64();
+        if !sys.is_finite() {
+            println!("  frame {f}: NOT FINITE");
+            return (false, physics_secs, f64::NAN);
+        }
+        let last_second = f + per_second >= frames;
+        for (i, p) in prev.iter_mut().enumerate() {
+            let now = sys.boundary_points_world(i);
+            if last_second {
+                for (a, b) in now.iter().zip(p.iter()) {
+                    fastest = fastest.max((*a - *b).length() / settings.dt_secs as f32);
+                }
+            }
+            *p = now;
+        }
+    }
+    (true, physics_secs / frames as f64, f64::from(fastest))
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let shape = args.get(1).map(String::as_str).unwrap_or("straight");
+    let scheme = match args.get(2).map(String::as_str) {
+        Some("explicit") => StepScheme::VelocityExplicit,
+        Some(k) => StepScheme::VelocityImplicit {
+            corrections: k.parse().expect("corrections: a number or `explicit`"),
+        },
+        None => StepScheme::default(),
+    };
+    let dt_secs = args
+        .get(3)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1.0 / 60.0);
+    let repeats: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(1);
+    let copies: usize = args.get(5).and_then(|s| s.parse().ok()).unwrap_or(4);
+    let settings = SimSettings {
+        method: Method::Exact,
+        scheme,
+        dt_secs,
+        substeps: 1,
+        ..SimSettings::default()
+    };
+    let two = [
+        RootPose::from_direction(
+            DVec3::new(0.0966, 0.0259, 0.0),
+            DVec3::new(0.9659, 0.2588, 0.0),
+            DVec3::Z,
+        ),
+        RootPose::from_direction(
+            DVec3::new(0.0, 0.0866, 0.05),
+            DVec3::new(0.0, 0.866, 0.5),
+            DVec3::X,
+        ),
+    ];
+    let roots: Vec<RootPose> = two.iter().cycle().take(2 * copies).copied().collect();
+    let params = params(shape);
+    let mut times = Vec::new();
+    for _ in 0..repeats.max(1) {
+        let (finite, secs, fastest) = run(&settings, &params, &roots);
+        println!(
+            "{shape} {scheme:?} dt {dt_secs:.5} s: {}, fastest point in the last second \
+             {fastest:.2} m/s, {:.4} ms per frame",
+            if finite { "finite" } else { "BLEW UP" },
+            secs * 1e3
+        );
+        times.push(secs);
+    }
+    times.sort_by(f64::total_cmp);
+    println!(
+        "median physics time: {:.4} ms per frame ({} strands)",
+        times[times.len() / 2] * 1e3,
+        roots.len()
+    );
+}
