@@ -31,6 +31,7 @@ use super::app_state::{AppState, CompareMethods};
 use super::default_style::default_style;
 use super::drawn::DrawnCache;
 use super::ui::{ViewState, draw};
+use super::unsaved::Leave;
 use super::viewport::{HairLook, posed_head};
 use super::window_gpu::{WindowGpu, save_png};
 use super::{HEADLESS_HINT, WindowArgs};
@@ -47,8 +48,11 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     if let Some(clip) = args.play {
         app.play(clip);
     }
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow::anyhow!("cannot open a window ({e}).\n{HEADLESS_HINT}"))?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        let message = e.to_string();
+        let why = without_source_location(&message);
+        anyhow::anyhow!("cannot open a window ({why}).\n{HEADLESS_HINT}")
+    })?;
     let mut handler = Handler {
         args: args.clone(),
         look: HairLook::new(&app.head_mesh, args.render_strands),
@@ -66,6 +70,16 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     match handler.error {
         Some(e) => Err(e),
         None => Ok(()),
+    }
+}
+
+/// winit's OS errors start `os error at FILE:LINE: ` with FILE a path in
+/// the cargo registry of the machine that built the program: of no use to
+/// a user, so it is cut off, leaving the reason.
+pub fn without_source_location(message: &str) -> &str {
+    match message.strip_prefix("os error at ") {
+        Some(rest) => rest.split_once(": ").map_or(message, |(_, reason)| reason),
+        None => message,
     }
 }
 
@@ -190,6 +204,9 @@ impl Handler {
             self.summary(&adapter);
             event_loop.exit();
         }
+        if self.app.quit {
+            event_loop.exit();
+        }
         Ok(())
     }
 
@@ -239,7 +256,14 @@ impl ApplicationHandler for Handler {
         };
         let _ = open.egui.on_window_event(&open.gpu.window, &event);
         match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::CloseRequested => {
+                // Unsaved edits: ask first (the frame loop exits once the
+                // user has answered).
+                self.app.request_leave(Leave::Close);
+                if self.app.quit {
+                    event_loop.exit();
+                }
+            }
             WindowEvent::Resized(size) => open.gpu.resize(size.width, size.height),
             WindowEvent::RedrawRequested => {
                 if let Err(e) = self.frame(event_loop) {
@@ -255,5 +279,21 @@ impl ApplicationHandler for Handler {
         if let Some(open) = &self.open {
             open.gpu.window.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::without_source_location;
+
+    #[test]
+    fn os_errors_lose_the_source_location_and_keep_the_reason() {
+        let winit = "os error at /root/.cargo/registry/src/index/winit-0.30.13/src/platform_impl/\
+                     linux/mod.rs:766: neither WAYLAND_DISPLAY nor DISPLAY is set";
+        assert_eq!(
+            without_source_location(winit),
+            "neither WAYLAND_DISPLAY nor DISPLAY is set"
+        );
+        assert_eq!(without_source_location("no adapter"), "no adapter");
     }
 }

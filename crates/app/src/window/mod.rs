@@ -32,6 +32,7 @@ pub mod document;
 pub mod drawn;
 pub mod event_loop;
 pub mod file_picker;
+pub mod guard_status;
 pub mod head_motion;
 pub mod live_sim;
 pub mod presets;
@@ -42,6 +43,8 @@ pub mod style_panel;
 pub mod tool_bar;
 pub mod ui;
 pub mod undo;
+pub mod unsaved;
+pub mod value_slider;
 pub mod viewport;
 pub mod window_gpu;
 
