@@ -30,6 +30,7 @@ use crate::style::Style;
 use super::app_state::{AppState, CompareMethods};
 use super::default_style::default_style;
 use super::drawn::DrawnCache;
+use super::preview::{quality, wants_preview};
 use super::ui::{ViewState, draw};
 use super::unsaved::Leave;
 use super::viewport::{HairLook, posed_head};
@@ -63,6 +64,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         error: None,
         frames: 0,
         last_frame: None,
+        interacting: false,
     };
     event_loop
         .run_app(&mut handler)
@@ -107,6 +109,8 @@ struct Handler {
     error: Option<anyhow::Error>,
     frames: u32,
     last_frame: Option<Instant>,
+    /// The user was dragging (a slider, the view, the head) last frame.
+    interacting: bool,
 }
 
 impl Handler {
@@ -155,6 +159,8 @@ impl Handler {
         let pose = (head.world_from_body, head.position_m);
         let head_mesh = posed_head(&self.app.head_mesh, pose);
         let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
+        let preview = wants_preview(self.args.preview, open.gpu.is_software(), self.interacting);
+        let quality = quality(self.args.render_strands, self.view.view_px, preview);
         for (slot, run) in runs.enumerate() {
             let guides = run.strand_buffers();
             let hair = self
@@ -164,9 +170,9 @@ impl Handler {
                     &self.app.head_mesh,
                     &guides,
                     pose,
-                    self.args.render_strands,
+                    quality.render_strands,
                 )
-                .unwrap_or_else(|| self.look.strands(&guides, pose));
+                .unwrap_or_else(|| self.look.strands(&guides, pose, quality.render_strands));
             let scene = Scene {
                 hair: &hair,
                 head: &head_mesh,
@@ -174,7 +180,7 @@ impl Handler {
                 light: Light::default(),
             };
             self.view.textures[slot] =
-                Some(open.gpu.draw_scene(slot, &scene, self.view.view_px)?);
+                Some(open.gpu.draw_scene(slot, &scene, quality.picture_px)?);
         }
         let raw = open.egui.take_egui_input(&open.gpu.window);
         let ctx = open.egui.egui_ctx().clone();
@@ -182,6 +188,7 @@ impl Handler {
         let platform = std::mem::take(&mut output.platform_output);
         open.egui.handle_platform_output(&open.gpu.window, platform);
         self.app.doc.settle(ctx.egui_is_using_pointer());
+        self.interacting = ctx.egui_is_using_pointer() || ctx.input(|i| i.pointer.any_down());
         let title = self.app.doc.title();
         if title != open.title {
             open.gpu.window.set_title(&title);

@@ -36,6 +36,7 @@ pub mod guard_status;
 pub mod head_motion;
 pub mod live_sim;
 pub mod presets;
+pub mod preview;
 pub mod readout_panel;
 pub mod readouts;
 pub mod resample;
@@ -91,6 +92,11 @@ pub struct WindowArgs {
     /// Quit after K frames and print frame and physics times.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub frames: Option<u32>,
+    /// Always draw the interactive preview (fewer strands, half
+    /// resolution), as on a software adapter while the user drags; for
+    /// measuring it with --frames.
+    #[arg(long)]
+    pub preview: bool,
     /// Save the window as a PNG after the last frame (--frames, default 120)
     /// and quit.
     #[arg(long, value_name = "PNG")]
