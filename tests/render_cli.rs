@@ -181,3 +181,71 @@ fn a_bad_camera_says_what_is_expected() {
         "{stderr}"
     );
 }
+
+/// `render` of `style` after `frames` frames into a 48 × 32 picture `out`.
+fn small_render<'a>(style: &'a str, frames: &'a str, out: &'a str) -> Vec<&'a str> {
+    vec![
+        "render", "--style", style, "--frames", frames, "--width", "48", "--height", "32", "--out",
+        out,
+    ]
+}
+
+/// A style whose strands the guard resets (issue 14, item 3): the picture
+/// is written, but the summary warns and the run exits 1, unless
+/// `--accept-resets` accepts the result (as `helixhair sim` does).
+#[test]
+fn a_render_whose_strands_the_guard_reset_warns_and_fails_unless_accepted() {
+    let dir = scratch_dir("render-resets");
+    let out = dir.join("resets.png");
+    let out = out.to_str().expect("UTF-8 path");
+    let style = "tests/render_fixtures/guard_resets.ron";
+    let mut args = small_render(style, "60", out);
+    let output = run_helixhair(&args);
+    if skipped_for_lack_of_a_gpu(&output, "render-resets") {
+        return;
+    }
+    let text = describe(&output);
+    assert_eq!(output.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("warning: the stability guard reset"),
+        "{text}"
+    );
+    assert!(text.contains("--accept-resets"), "{text}");
+    assert!(Path::new(out).exists(), "the picture is still written");
+    args.push("--accept-resets");
+    let output = run_helixhair(&args);
+    let text = describe(&output);
+    assert!(output.status.success(), "{text}");
+    assert!(
+        text.contains("warning: the stability guard reset"),
+        "{text}"
+    );
+}
+
+/// A head without a `scalp` group (issue 14, item 10) draws a style that
+/// lists its roots; a style that grows hair on the scalp is refused, and
+/// the message says how to mark one.
+#[test]
+fn a_head_without_a_scalp_group_draws_listed_roots_and_explains_scalp_placements() {
+    let dir = scratch_dir("render-no-scalp");
+    let head = dir.join("bald.obj");
+    let obj = std::fs::read_to_string(helixhair_e2e::workspace_root().join("assets/head.obj"))
+        .expect("the default head");
+    std::fs::write(&head, obj.replace("g scalp", "g crown")).expect("written");
+    let out = dir.join("listed.png");
+    let head_arg = head.to_str().expect("UTF-8 path");
+    let out = out.to_str().expect("UTF-8 path");
+    let mut args = small_render("assets/styles/curly.ron", "2", out);
+    args.extend(["--head", head_arg]);
+    let output = run_helixhair(&args);
+    if skipped_for_lack_of_a_gpu(&output, "render-no-scalp") {
+        return;
+    }
+    assert!(output.status.success(), "{}", describe(&output));
+    args[2] = STYLE;
+    let output = run_helixhair(&args);
+    let text = describe(&output);
+    assert_eq!(output.status.code(), Some(1), "{text}");
+    assert!(text.contains("g scalp"), "{text}");
+    assert!(text.contains("groups[0].scalp"), "{text}");
+}

@@ -40,6 +40,8 @@ pub const NO_WINDOW: &str = "this helixhair was built without the styling window
     name = "helixhair",
     version,
     about,
+    after_help = "Without a command, helixhair opens the styling window (the options above \
+                  are the window's); every command runs headless.",
     args_conflicts_with_subcommands = true
 )]
 pub struct Cli {
@@ -230,7 +232,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
 
 /// An error when the guard reset or pinned strands `lost` times, unless the
 /// user accepts it (`--accept-resets`).
-fn refuse_lost_strands(lost: usize, accept: bool) -> anyhow::Result<()> {
+pub(crate) fn refuse_lost_strands(lost: usize, accept: bool) -> anyhow::Result<()> {
     if lost > 0 && !accept {
         anyhow::bail!(
             "the guard reset or pinned strands {lost} times (see the summary): this is not the \

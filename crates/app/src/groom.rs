@@ -69,7 +69,7 @@ impl Groom {
 /// through it. Other parts (the default head's neck, a separate body)
 /// are left out: the field finds its inside by flooding the outside,
 /// and where two closed surfaces meet, the band around one leaks that
-/// flood into the other.
+/// flood into the other. A head with no scalp faces collides as a whole.
 pub fn head_collider(head: &HeadMesh) -> Result<SignedDistanceField, CollisionError> {
     let mesh = &head.mesh;
     let positions: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
@@ -83,7 +83,8 @@ pub fn head_collider(head: &HeadMesh) -> Result<SignedDistanceField, CollisionEr
         .indices
         .chunks_exact(3)
         .enumerate()
-        .filter(|(t, _)| scalp_parts.contains(&part[*t]))
+        // A head without a scalp group collides as a whole.
+        .filter(|(t, _)| scalp_parts.is_empty() || scalp_parts.contains(&part[*t]))
         .map(|(_, c)| [c[0], c[1], c[2]])
         .collect();
     SignedDistanceField::from_triangles(&positions, &triangles, COLLIDER_CELL_M)

@@ -6,6 +6,10 @@
 //! first ([`crate::groom`]), and the drawn strands are interpolated from
 //! the simulated guides. Any wgpu adapter works, Mesa's lavapipe included
 //! (`WGPU_BACKEND=vulkan` on a machine without a GPU).
+//!
+//! When the stability guard had to reset or pin strands, the picture is
+//! still written, but the summary warns and the run exits 1, as
+//! `helixhair sim` does, unless `--accept-resets` accepts the result.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -15,13 +19,14 @@ use std::time::Instant;
 use anyhow::Context as _;
 use clap::Args;
 use helixhair_render::head_generate::default_head;
-use helixhair_render::obj::load_head_obj;
+use helixhair_render::obj::{NO_SCALP_HINT, load_head_obj};
 use helixhair_render::{
     GpuContext, HeadMesh, Light, OffscreenRenderer, OrbitCamera, RenderSettings, RgbaImage, Scene,
 };
 
 use crate::atomic_write::write_atomically;
 use crate::camera_arg::CameraArg;
+use crate::cli::refuse_lost_strands;
 use crate::drawn_hair::drawn_hair;
 use crate::field_path::FieldPath;
 use crate::groom::Groom;
@@ -56,11 +61,11 @@ pub struct RenderArgs {
     #[arg(long, value_name = "PX", default_value_t = 720,
           value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SIDE_PX)))]
     pub height: u32,
-    /// A head mesh (OBJ, with the scalp faces in a group `scalp`) instead
-    /// of the default head.
+    /// A head mesh (OBJ) instead of the default head; styles that grow
+    /// hair on the scalp need its scalp faces in a group `scalp`.
     #[arg(long, value_name = "OBJ")]
     pub head: Option<PathBuf>,
-    /// The PNG to write; with --sequence, frame N goes to OUT with `_NNNN`
+    /// The picture to write (.png, or .jpg for JPEG); with --sequence, frame N goes to OUT with `_NNNN`
     /// before the extension.
     #[arg(long, value_name = "OUT")]
     pub out: PathBuf,
@@ -68,6 +73,11 @@ pub struct RenderArgs {
     /// video, with a progress bar.
     #[arg(long)]
     pub sequence: bool,
+    /// Exit 0 even when the guard had to reset or pin strands (by default
+    /// the picture is written, a warning says what happened, and the run
+    /// exits 1: the picture is not the simulation that was asked for).
+    #[arg(long)]
+    pub accept_resets: bool,
 }
 
 /// The head to grow hair on: `path`'s OBJ, or the default head.
@@ -91,18 +101,65 @@ pub fn numbered_path(out: &Path, frame: u32) -> PathBuf {
     out.with_file_name(format!("{stem}_{frame:04}.{ext}"))
 }
 
-/// Encodes `image` as PNG and writes it atomically, creating its folder.
-pub fn write_png(path: &Path, image: &RgbaImage) -> anyhow::Result<()> {
+/// The picture formats `--out` may name, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PictureFormat {
+    /// `.png` (lossless; the default when there is no extension).
+    Png,
+    /// `.jpg` or `.jpeg`, quality [`JPEG_QUALITY`].
+    Jpeg,
+}
+
+/// JPEG quality (1 to 100): high enough that single hairs survive.
+pub const JPEG_QUALITY: u8 = 92;
+
+/// The format `path`'s extension names; an error for any other extension,
+/// so `--out x.bmp` is refused rather than written as PNG bytes.
+pub fn picture_format(path: &Path) -> anyhow::Result<PictureFormat> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        None | Some("png") => Ok(PictureFormat::Png),
+        Some("jpg" | "jpeg") => Ok(PictureFormat::Jpeg),
+        Some(other) => anyhow::bail!(
+            "--out {}: cannot write `.{other}` pictures; name a .png or .jpg file",
+            path.display()
+        ),
+    }
+}
+
+/// Encodes `image` in the format `path`'s extension names (PNG or JPEG)
+/// and writes it atomically, creating its folder.
+pub fn write_picture(path: &Path, image: &RgbaImage) -> anyhow::Result<()> {
     use image::ImageEncoder as _;
     let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(
-            &image.rgba,
-            image.width_px,
-            image.height_px,
-            image::ExtendedColorType::Rgba8,
-        )
-        .context("cannot encode the PNG")?;
+    match picture_format(path)? {
+        PictureFormat::Png => image::codecs::png::PngEncoder::new(&mut bytes)
+            .write_image(
+                &image.rgba,
+                image.width_px,
+                image.height_px,
+                image::ExtendedColorType::Rgba8,
+            )
+            .context("cannot encode the PNG")?,
+        PictureFormat::Jpeg => {
+            // JPEG has no alpha: drop it (the pictures are opaque).
+            let rgb: Vec<u8> = image
+                .rgba
+                .chunks_exact(4)
+                .flat_map(|p| [p[0], p[1], p[2]])
+                .collect();
+            image::codecs::jpeg::JpegEncoder::new_with_quality(&mut bytes, JPEG_QUALITY)
+                .write_image(
+                    &rgb,
+                    image.width_px,
+                    image.height_px,
+                    image::ExtendedColorType::Rgb8,
+                )
+                .context("cannot encode the JPEG")?
+        }
+    }
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
@@ -117,9 +174,10 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
         || "the default head".to_owned(),
         |p| p.display().to_string(),
     );
+    let no_scalp = groom.head.scalp_triangles.is_empty();
     for (i, (group, grown)) in groom.groups().enumerate() {
         let Some(scalp) = &group.scalp else { continue };
-        if grown.roots.len() > group.roots.len() {
+        if grown.roots.len() > group.roots.len() && !no_scalp {
             continue;
         }
         let at = FieldPath::root().field("groups").index(i).field("scalp");
@@ -136,7 +194,11 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
             position,
             field,
             kind: StyleErrorKind::InvalidValue,
-            message: format!("places no roots: it covers none of the scalp of {head}"),
+            message: if no_scalp {
+                format!("grows hair on the scalp of {head}, but {NO_SCALP_HINT}")
+            } else {
+                format!("places no roots: it covers none of the scalp of {head}")
+            },
         }
         .into());
     }
@@ -145,6 +207,7 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
 
 /// Runs `helixhair render`.
 pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    picture_format(&args.out)?;
     let style = Style::load(&args.style)?;
     let style_path = args.style.display().to_string();
     let head = load_head(args.head.as_deref())?;
@@ -189,7 +252,7 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
                     .with_context(|| format!("simulating {style_path}"))?[0];
             }
             let (image, c, secs) = frame(&sim)?;
-            write_png(&numbered_path(&args.out, k), &image)?;
+            write_picture(&numbered_path(&args.out, k), &image)?;
             counts = c;
             render_secs.push(secs);
             bar.inc(1);
@@ -203,7 +266,7 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             .iter()
             .sum();
         let (image, c, secs) = frame(&sim)?;
-        write_png(&args.out, &image)?;
+        write_picture(&args.out, &image)?;
         (counts, render_secs) = (c, vec![secs]);
     }
     // The first frame also compiles the shaders; later ones show the
@@ -238,7 +301,15 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             args.out.display().to_string()
         },
     )?;
-    Ok(())
+    let lost = sim.strands_lost();
+    if lost > 0 {
+        writeln!(
+            stdout,
+            "  warning: the stability guard reset or pinned strands {lost} times; the picture \
+             is not the simulation the style asks for"
+        )?;
+    }
+    refuse_lost_strands(lost, args.accept_resets)
 }
 
 /// What one frame drew.
@@ -246,4 +317,40 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
 struct FrameCounts {
     strands: usize,
     points: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grey(width_px: u32, height_px: u32) -> RgbaImage {
+        RgbaImage {
+            width_px,
+            height_px,
+            rgba: vec![128; (4 * width_px * height_px) as usize],
+        }
+    }
+
+    #[test]
+    fn the_out_extension_picks_the_format_and_jpg_writes_jpeg_bytes() {
+        let dir = std::env::temp_dir().join(format!("helixhair-pictures-{}", std::process::id()));
+        let (jpg, png) = (dir.join("x.jpg"), dir.join("x.png"));
+        write_picture(&jpg, &grey(8, 4)).unwrap();
+        write_picture(&png, &grey(8, 4)).unwrap();
+        // JPEG starts with its SOI marker, PNG with its signature.
+        assert_eq!(std::fs::read(&jpg).unwrap()[..3], [0xFF, 0xD8, 0xFF]);
+        assert_eq!(std::fs::read(&png).unwrap()[..4], [0x89, b'P', b'N', b'G']);
+        let decoded = image::open(&jpg).unwrap();
+        assert_eq!((decoded.width(), decoded.height()), (8, 4));
+        assert_eq!(
+            picture_format(Path::new("a.JPEG")).unwrap(),
+            PictureFormat::Jpeg
+        );
+        let refused = picture_format(Path::new("a.bmp")).unwrap_err().to_string();
+        assert!(
+            refused.contains("a.bmp") && refused.contains(".png or .jpg"),
+            "{refused}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -23,6 +23,9 @@ fn without_a_display_the_window_points_to_the_headless_commands() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("cannot open a window"), "{stderr}");
     assert!(stderr.contains("helixhair sim --style"), "{stderr}");
+    // No source file of the machine that built the program (issue 14).
+    assert!(!stderr.contains(".cargo"), "{stderr}");
+    assert!(!stderr.contains(".rs:"), "{stderr}");
 }
 
 #[cfg(not(feature = "window"))]
@@ -41,6 +44,10 @@ fn window_options_are_documented() {
     let output = helixhair(&["--help"]);
     assert!(output.status.success());
     let help = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        help.contains("Without a command, helixhair opens the styling window"),
+        "{help}"
+    );
     for option in [
         "--style <FILE>",
         "--play <MOTION>",

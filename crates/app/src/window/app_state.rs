@@ -24,12 +24,14 @@ use crate::style::Style;
 
 use super::collision::HeadCollider;
 use super::document::StyleDoc;
+use super::guard_status::GuardStatus;
 use super::head_motion::{Clip, HeadDriver};
 use super::live_sim::{LiveSim, tip_difference_m};
 use super::presets::{
     Preset, apply_preset, built_in_presets, load_user_presets, save_user_presets, user_presets_path,
 };
 use super::readouts::{PhysicsSample, Readouts};
+use super::unsaved::Leave;
 
 /// The compare view's setting: which solver each side runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,6 +79,12 @@ pub struct AppState {
     pub user_presets: Vec<Preset>,
     /// Where the user's presets are saved.
     pub user_presets_path: PathBuf,
+    /// An action waiting for "save your changes?" ([`super::unsaved`]).
+    pub leaving: Option<Leave>,
+    /// The window should close (the user asked, and nothing is unsaved).
+    pub quit: bool,
+    /// What the stability guard did since the last edit, in words.
+    pub guard: GuardStatus,
 }
 
 impl AppState {
@@ -112,6 +120,9 @@ impl AppState {
             presets: built_in_presets(),
             user_presets,
             user_presets_path,
+            leaving: None,
+            quit: false,
+            guard: GuardStatus::default(),
         })
     }
 
@@ -169,8 +180,21 @@ impl AppState {
     }
 
     /// Applies a preset to group `group` as one undo step.
+    /// The message says so when the preset also raised the style's
+    /// substeps, which every group shares.
     pub fn apply_preset(&mut self, group: usize, preset: &Preset) {
+        let substeps = self.doc.style().sim.substeps;
         self.doc.edit(|s| apply_preset(s, group, preset));
+        let now = self.doc.style().sim.substeps;
+        let name = &preset.name;
+        self.message = Some(if now != substeps {
+            format!(
+                "preset `{name}` applied; the style's substeps (all groups) rose from {substeps} \
+                 to {now}, the fewest it is stable with"
+            )
+        } else {
+            format!("preset `{name}` applied")
+        });
     }
 
     /// Saves group `group`'s parameters as the user's preset `name`
@@ -238,6 +262,12 @@ impl AppState {
         };
         self.readouts
             .record_physics(sample, self.sim.guard_events(), &label);
+        let guard = self.sim.guard_frame();
+        if self.sim.kind() == EngineKind::Batch {
+            let now = self.sim.now_secs();
+            self.readouts.record_batch_losses(&guard.lost, now, &label);
+        }
+        self.guard.record(self.doc.style(), &guard);
         if let Some((right, m)) = &self.compare {
             let events = right.guard_events().to_vec();
             self.readouts

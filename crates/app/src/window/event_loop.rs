@@ -30,7 +30,9 @@ use crate::style::Style;
 use super::app_state::{AppState, CompareMethods};
 use super::default_style::default_style;
 use super::drawn::DrawnCache;
+use super::preview::{quality, wants_preview};
 use super::ui::{ViewState, draw};
+use super::unsaved::Leave;
 use super::viewport::{HairLook, posed_head};
 use super::window_gpu::{WindowGpu, save_png};
 use super::{HEADLESS_HINT, WindowArgs};
@@ -47,8 +49,11 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     if let Some(clip) = args.play {
         app.play(clip);
     }
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow::anyhow!("cannot open a window ({e}).\n{HEADLESS_HINT}"))?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        let message = e.to_string();
+        let why = without_source_location(&message);
+        anyhow::anyhow!("cannot open a window ({why}).\n{HEADLESS_HINT}")
+    })?;
     let mut handler = Handler {
         args: args.clone(),
         look: HairLook::new(&app.head_mesh, args.render_strands),
@@ -59,6 +64,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         error: None,
         frames: 0,
         last_frame: None,
+        interacting: false,
     };
     event_loop
         .run_app(&mut handler)
@@ -66,6 +72,16 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     match handler.error {
         Some(e) => Err(e),
         None => Ok(()),
+    }
+}
+
+/// winit's OS errors start `os error at FILE:LINE: ` with FILE a path in
+/// the cargo registry of the machine that built the program: of no use to
+/// a user, so it is cut off, leaving the reason.
+pub fn without_source_location(message: &str) -> &str {
+    match message.strip_prefix("os error at ") {
+        Some(rest) => rest.split_once(": ").map_or(message, |(_, reason)| reason),
+        None => message,
     }
 }
 
@@ -93,6 +109,8 @@ struct Handler {
     error: Option<anyhow::Error>,
     frames: u32,
     last_frame: Option<Instant>,
+    /// The user was dragging (a slider, the view, the head) last frame.
+    interacting: bool,
 }
 
 impl Handler {
@@ -141,6 +159,8 @@ impl Handler {
         let pose = (head.world_from_body, head.position_m);
         let head_mesh = posed_head(&self.app.head_mesh, pose);
         let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
+        let preview = wants_preview(self.args.preview, open.gpu.is_software(), self.interacting);
+        let quality = quality(self.args.render_strands, self.view.view_px, preview);
         for (slot, run) in runs.enumerate() {
             let guides = run.strand_buffers();
             let hair = self
@@ -150,9 +170,9 @@ impl Handler {
                     &self.app.head_mesh,
                     &guides,
                     pose,
-                    self.args.render_strands,
+                    quality.render_strands,
                 )
-                .unwrap_or_else(|| self.look.strands(&guides, pose));
+                .unwrap_or_else(|| self.look.strands(&guides, pose, quality.render_strands));
             let scene = Scene {
                 hair: &hair,
                 head: &head_mesh,
@@ -160,7 +180,7 @@ impl Handler {
                 light: Light::default(),
             };
             self.view.textures[slot] =
-                Some(open.gpu.draw_scene(slot, &scene, self.view.view_px)?);
+                Some(open.gpu.draw_scene(slot, &scene, quality.picture_px)?);
         }
         let raw = open.egui.take_egui_input(&open.gpu.window);
         let ctx = open.egui.egui_ctx().clone();
@@ -168,6 +188,7 @@ impl Handler {
         let platform = std::mem::take(&mut output.platform_output);
         open.egui.handle_platform_output(&open.gpu.window, platform);
         self.app.doc.settle(ctx.egui_is_using_pointer());
+        self.interacting = ctx.egui_is_using_pointer() || ctx.input(|i| i.pointer.any_down());
         let title = self.app.doc.title();
         if title != open.title {
             open.gpu.window.set_title(&title);
@@ -188,6 +209,9 @@ impl Handler {
         if done {
             let adapter = open.gpu.adapter_label();
             self.summary(&adapter);
+            event_loop.exit();
+        }
+        if self.app.quit {
             event_loop.exit();
         }
         Ok(())
@@ -239,7 +263,14 @@ impl ApplicationHandler for Handler {
         };
         let _ = open.egui.on_window_event(&open.gpu.window, &event);
         match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::CloseRequested => {
+                // Unsaved edits: ask first (the frame loop exits once the
+                // user has answered).
+                self.app.request_leave(Leave::Close);
+                if self.app.quit {
+                    event_loop.exit();
+                }
+            }
             WindowEvent::Resized(size) => open.gpu.resize(size.width, size.height),
             WindowEvent::RedrawRequested => {
                 if let Err(e) = self.frame(event_loop) {
@@ -255,5 +286,21 @@ impl ApplicationHandler for Handler {
         if let Some(open) = &self.open {
             open.gpu.window.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::without_source_location;
+
+    #[test]
+    fn os_errors_lose_the_source_location_and_keep_the_reason() {
+        let winit = "os error at /root/.cargo/registry/src/index/winit-0.30.13/src/platform_impl/\
+                     linux/mod.rs:766: neither WAYLAND_DISPLAY nor DISPLAY is set";
+        assert_eq!(
+            without_source_location(winit),
+            "neither WAYLAND_DISPLAY nor DISPLAY is set"
+        );
+        assert_eq!(without_source_location("no adapter"), "no adapter");
     }
 }

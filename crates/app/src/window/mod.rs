@@ -32,9 +32,11 @@ pub mod document;
 pub mod drawn;
 pub mod event_loop;
 pub mod file_picker;
+pub mod guard_status;
 pub mod head_motion;
 pub mod live_sim;
 pub mod presets;
+pub mod preview;
 pub mod readout_panel;
 pub mod readouts;
 pub mod resample;
@@ -42,6 +44,8 @@ pub mod style_panel;
 pub mod tool_bar;
 pub mod ui;
 pub mod undo;
+pub mod unsaved;
+pub mod value_slider;
 pub mod viewport;
 pub mod window_gpu;
 
@@ -88,6 +92,11 @@ pub struct WindowArgs {
     /// Quit after K frames and print frame and physics times.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub frames: Option<u32>,
+    /// Always draw the interactive preview (fewer strands, half
+    /// resolution), as on a software adapter while the user drags; for
+    /// measuring it with --frames.
+    #[arg(long)]
+    pub preview: bool,
     /// Save the window as a PNG after the last frame (--frames, default 120)
     /// and quit.
     #[arg(long, value_name = "PNG")]

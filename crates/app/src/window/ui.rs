@@ -17,6 +17,7 @@ use super::head_motion::Clip;
 use super::readout_panel::readouts;
 use super::style_panel::{count_field, group_params, sim_settings};
 use super::tool_bar::{open_picker, tool_bar};
+use super::unsaved::{AfterAnswer, Leave, confirm_dialog};
 use super::viewport::{framed_camera, move_head, orbit, pan, turn_head};
 
 /// What the window keeps between frames besides the app state.
@@ -34,6 +35,9 @@ pub struct ViewState {
     pub preset_name: String,
     /// Guide strand count field.
     pub guides: usize,
+    /// Open (`Some(true)`) or close every group's section in the next
+    /// frame ("expand all", "collapse all").
+    pub open_groups: Option<bool>,
 }
 
 impl ViewState {
@@ -46,6 +50,7 @@ impl ViewState {
             picker: None,
             preset_name: "my style".into(),
             guides,
+            open_groups: None,
         }
     }
 }
@@ -60,6 +65,14 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
                 egui::Color32::from_rgb(255, 120, 90),
                 format!("not simulated: {e}"),
             );
+        }
+        if let Some(guard) = app.guard.sentence() {
+            let colour = if app.guard.losses() > 0 {
+                egui::Color32::from_rgb(255, 190, 90)
+            } else {
+                ui.visuals().text_color()
+            };
+            ui.colored_label(colour, guard);
         }
         ui.label(app.message.as_deref().unwrap_or("ready"));
     });
@@ -86,8 +99,8 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         }
         if let Some(path) = chosen {
             match mode {
-                PickerMode::Open => app.load(&path),
-                PickerMode::SaveAs => app.save(Some(&path)),
+                PickerMode::Open => app.request_leave(Leave::Open(path)),
+                PickerMode::SaveAs => app.saved_as(&path),
             }
         }
     }
@@ -95,7 +108,12 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         .ctx()
         .input(|i| i.raw.dropped_files.first().map(|f| f.path().to_owned()));
     if let Some(path) = dropped {
-        app.load(&path);
+        app.request_leave(Leave::Open(path));
+    }
+    if let Some(answer) = confirm_dialog(ui.ctx(), app)
+        && app.answer_leave(answer) == AfterAnswer::PickSaveAs
+    {
+        view.picker = Some(open_picker(app, PickerMode::SaveAs));
     }
 }
 
@@ -126,54 +144,105 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
 }
 
 fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    let before = app.doc.style().clone();
+    let mut notes = Vec::new();
     ui.heading("Simulation");
-    sim_settings(ui, app.doc.style_mut());
+    sim_settings(ui, app.doc.style_mut(), &mut notes);
     ui.horizontal(|ui| {
-        count_field(ui, "guide strands", &mut view.guides, 2000);
+        count_field(ui, "guide strands", &mut view.guides, MAX_GUIDES);
         if ui.button("regrow on scalp").clicked() {
             let (head, count) = (&app.head_mesh, view.guides);
             app.doc.edit(|s| regrow_roots(s, head, count));
         }
     });
+    ui.horizontal(|ui| {
+        ui.heading("Groups");
+        if ui.small_button("expand all").clicked() {
+            view.open_groups = Some(true);
+        }
+        if ui.small_button("collapse all").clicked() {
+            view.open_groups = Some(false);
+        }
+    });
+    let open_groups = view.open_groups.take();
     let groups = app.doc.style().groups.len();
     for g in 0..groups {
-        let name = app.doc.style().groups[g].name.clone();
         let group = &app.doc.style().groups[g];
-        let placed = if group.scalp.is_some() {
-            " + grown on the scalp"
-        } else {
-            ""
-        };
-        let roots = group.roots.len();
-        egui::CollapsingHeader::new(format!("group `{name}` ({roots} strands{placed})"))
+        let title = format!("group `{}` ({})", group.name, strand_count_words(group));
+        egui::CollapsingHeader::new(title)
+            .id_salt(("group", g))
             .default_open(g == 0)
+            .open(open_groups)
             .show(ui, |ui| {
-                ui.horizontal_wrapped(|ui| {
-                    ui.label("preset:");
-                    let presets: Vec<_> = app
-                        .presets
-                        .iter()
-                        .chain(&app.user_presets)
-                        .cloned()
-                        .collect();
-                    for p in presets {
-                        if ui.button(&p.name).clicked() {
-                            app.apply_preset(g, &p);
-                        }
-                    }
-                });
-                ui.horizontal(|ui| {
-                    ui.text_edit_singleline(&mut view.preset_name);
-                    if ui.button("save as preset").clicked() {
-                        let name = view.preset_name.trim().to_string();
-                        if !name.is_empty() {
-                            app.save_user_preset(g, &name);
-                        }
-                    }
-                });
-                group_params(ui, &mut app.doc.style_mut().groups[g].params);
+                preset_row(ui, app, view, g);
+                group_params(ui, &mut app.doc.style_mut().groups[g].params, &mut notes);
             });
     }
+    if let Some(note) = typed_value_check(app, &before) {
+        notes.push(note);
+    }
+    if let Some(last) = notes.pop() {
+        app.message = Some(last);
+    }
+}
+
+/// Most guide strands the "regrow on scalp" field accepts (as `--guides`
+/// and a group's `scalp.count`).
+const MAX_GUIDES: usize = 5000;
+
+/// How many strands a group has, in words: listed roots, roots grown on
+/// the scalp, or both.
+pub fn strand_count_words(group: &crate::style::StrandGroup) -> String {
+    let listed = group.roots.len();
+    match &group.scalp {
+        None => format!("{listed} strands"),
+        Some(scalp) if listed == 0 => format!("{} strands grown on the scalp", scalp.count),
+        Some(scalp) => format!("{listed} listed + {} grown on the scalp", scalp.count),
+    }
+}
+
+/// A typed value the style format refuses (out of its range) is taken
+/// back, and the message names the field and its allowed range. Sliders
+/// cannot leave the format's range, so only typed values land here.
+fn typed_value_check(app: &mut AppState, before: &crate::style::Style) -> Option<String> {
+    if app.doc.style() == before || before.validate().is_err() {
+        return None;
+    }
+    let problem = app.doc.validity().err()?;
+    *app.doc.style_mut() = before.clone();
+    Some(format!("not applied: {problem}"))
+}
+
+/// The preset buttons, the preset name field and "save as preset".
+fn preset_row(ui: &mut Ui, app: &mut AppState, view: &mut ViewState, g: usize) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label("preset:");
+        let presets: Vec<_> = app
+            .presets
+            .iter()
+            .chain(&app.user_presets)
+            .cloned()
+            .collect();
+        for p in presets {
+            let hint = format!(
+                "this group's parameters; the style's substeps (all groups) rise to at least {}",
+                p.min_substeps
+            );
+            if ui.button(&p.name).on_hover_text(hint).clicked() {
+                app.apply_preset(g, &p);
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("preset name");
+        ui.text_edit_singleline(&mut view.preset_name);
+        if ui.button("save as preset").clicked() {
+            let name = view.preset_name.trim().to_string();
+            if !name.is_empty() {
+                app.save_user_preset(g, &name);
+            }
+        }
+    });
 }
 
 fn head_controls(ui: &mut Ui, app: &mut AppState) {
@@ -261,3 +330,7 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "ui_tests.rs"]
+mod tests;

@@ -100,13 +100,21 @@ impl HairLook {
     }
 
     /// Render strands following `guides` on a head at `pose` (rotation,
-    /// position).
-    pub fn strands(&self, guides: &StrandBuffers, pose: (DMat3, DVec3)) -> HairStrands {
+    /// position): the first `max_strands` of them (the interactive preview
+    /// draws fewer; the roots come in dart-throwing order, so any first
+    /// part of them is spread over the whole scalp).
+    pub fn strands(
+        &self,
+        guides: &StrandBuffers,
+        pose: (DMat3, DVec3),
+        max_strands: usize,
+    ) -> HairStrands {
         let rotation = pose.0.as_mat3();
         let position = pose.1.as_vec3();
         let roots: Vec<Vec3> = self
             .roots_head_m
             .iter()
+            .take(max_strands)
             .map(|&r| rotation * r + position)
             .collect();
         let spec = InterpolationSpec {
@@ -117,7 +125,7 @@ impl HairLook {
         };
         HairStrands {
             strands: interpolate_strands(guides, &roots, &spec),
-            colours: self.colours.clone(),
+            colours: self.colours[..roots.len()].to_vec(),
             root_width_m: 4e-4,
             tip_width_m: 1e-4,
         }
@@ -165,8 +173,12 @@ mod tests {
         let look = HairLook::new(&head, 50);
         let mut guides = StrandBuffers::default();
         guides.push_strand([Vec3::new(0.0, 0.1, 0.0), Vec3::new(0.0, 0.0, -0.1)]);
-        let still = look.strands(&guides, (DMat3::IDENTITY, DVec3::ZERO));
-        let moved = look.strands(&guides, (DMat3::IDENTITY, DVec3::new(0.0, 0.0, 0.5)));
+        let still = look.strands(&guides, (DMat3::IDENTITY, DVec3::ZERO), usize::MAX);
+        let moved = look.strands(
+            &guides,
+            (DMat3::IDENTITY, DVec3::new(0.0, 0.0, 0.5)),
+            usize::MAX,
+        );
         assert_eq!(still.strands.strand_count(), 50);
         let (a, b) = (still.strands.strand(7)[0], moved.strands.strand(7)[0]);
         assert!((b - a - Vec3::new(0.0, 0.0, 0.5)).length() < 1e-5);

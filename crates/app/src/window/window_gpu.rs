@@ -99,6 +99,13 @@ impl WindowGpu {
         self.gpu.adapter_label()
     }
 
+    /// Whether the adapter is a CPU rasteriser (lavapipe, SwiftShader):
+    /// the window then previews while the user drags
+    /// ([`super::preview`]).
+    pub fn is_software(&self) -> bool {
+        self.gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu
+    }
+
     /// Follows a window resize.
     pub fn resize(&mut self, width_px: u32, height_px: u32) {
         if width_px > 0 && height_px > 0 {
