@@ -248,6 +248,12 @@ fn head_pose(engine: &Engine, time_code: f64) -> MeshPose {
     }
 }
 
+/// Whether a head pose is the rest pose (a still head needs no
+/// transform in the file).
+fn is_rest(pose: &MeshPose) -> bool {
+    pose.rotation == glam::DMat3::IDENTITY && pose.translation_m == glam::DVec3::ZERO
+}
+
 /// Frames captured for one export, written as they come (sequences) or at
 /// the end (`.usda`, the last frame).
 #[derive(Debug)]
@@ -280,6 +286,16 @@ impl ExportRecorder {
         &self.spec
     }
 
+    /// The strands of `engine` now, as the spec asks.
+    fn curves_now(&self, engine: &Engine, groom: Option<&Groom>) -> anyhow::Result<CurveSet> {
+        capture_curves(
+            engine,
+            groom,
+            self.spec.strands,
+            self.spec.points_per_strand,
+        )
+    }
+
     /// Captures frame `frame` (0: the start) of an animation: a time sample
     /// for `.usda`, or the next file of a numbered sequence, written now.
     pub fn capture(
@@ -288,12 +304,7 @@ impl ExportRecorder {
         groom: Option<&Groom>,
         frame: usize,
     ) -> anyhow::Result<()> {
-        let curves = capture_curves(
-            engine,
-            groom,
-            self.spec.strands,
-            self.spec.points_per_strand,
-        )?;
+        let curves = self.curves_now(engine, groom)?;
         let time_code = frame as f64;
         self.head_poses.push(head_pose(engine, time_code));
         if self.spec.format == Format::Usda {
@@ -315,20 +326,13 @@ impl ExportRecorder {
         groom: Option<&Groom>,
         head: Option<&TriangleMesh>,
     ) -> anyhow::Result<()> {
-        let curves = capture_curves(
-            engine,
-            groom,
-            self.spec.strands,
-            self.spec.points_per_strand,
-        )?;
+        let curves = self.curves_now(engine, groom)?;
         let path = self.spec.path.clone();
         if self.spec.format != Format::Usda {
             return self.write_one(&path, &curves);
         }
         let pose = head_pose(engine, 0.0);
-        let moved =
-            pose.rotation != glam::DMat3::IDENTITY || pose.translation_m != glam::DVec3::ZERO;
-        let poses = if moved && head.is_some() {
+        let poses = if !is_rest(&pose) && head.is_some() {
             vec![pose]
         } else {
             Vec::new()
@@ -345,9 +349,7 @@ impl ExportRecorder {
                 time_codes_per_second: 1.0 / self.dt_secs,
                 frames: std::mem::take(&mut self.frames),
             };
-            let still = self.head_poses.iter().all(|p| {
-                p.rotation == glam::DMat3::IDENTITY && p.translation_m == glam::DVec3::ZERO
-            });
+            let still = self.head_poses.iter().all(is_rest);
             let poses = if still || head.is_none() {
                 Vec::new()
             } else {
