@@ -353,3 +353,28 @@ fn the_app_without_default_features_leaves_the_window_and_the_bench_out() {
         assert!(default.contains(*c), "the default app lacks {c}");
     }
 }
+
+#[test]
+fn the_formats_crate_reaches_no_other_layer_and_none_below_the_app_reaches_it() {
+    let meta = Metadata::get();
+    let formats = names(meta, &closure(meta, "helixhair-formats", &[], true));
+    assert_none_of(
+        &formats,
+        &[
+            "helixhair-physics",
+            "helixhair-render",
+            "helixhair-app",
+            "helixhair-gpu",
+            "wgpu",
+            "winit",
+            "egui",
+            "ron",
+            "serde_json",
+        ],
+        "helixhair-formats",
+    );
+    for below in ["helixhair-physics", "helixhair-render"] {
+        let reached = names(meta, &closure(meta, below, &[], true));
+        assert_none_of(&reached, &["helixhair-formats"], below);
+    }
+}

@@ -15,7 +15,9 @@ use helixhair_physics::{Method, StepScheme};
 use crate::atomic_write::write_atomically;
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
+use crate::export_cmd::{SimExport, SimExportArgs, run_export};
 use crate::head_clip::Clip;
+use crate::head_playback::{Playback, parse_play};
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::sim_report::SimReport;
 use crate::style::Style;
@@ -67,6 +69,10 @@ pub enum Command {
     /// Simulate a style, then draw it offscreen into a PNG (or one PNG per
     /// frame) on any graphics adapter, lavapipe included.
     Render(crate::render_cmd::RenderArgs),
+    /// Export a style's hair (at rest, or after some frames, or every
+    /// frame) as .usda, .hair, .tfx or .obj, simulated on a head as
+    /// `render` does.
+    Export(crate::export_cmd::ExportArgs),
 }
 
 /// Arguments of `helixhair sim`.
@@ -95,9 +101,10 @@ pub struct SimArgs {
     #[arg(long, value_name = "TERMS", value_parser = parse_velocity_terms)]
     pub velocity_terms: Option<StepScheme>,
     /// Move the head with one of the window's clips (nod, shake, turn or
-    /// jerk) from time zero, then hold it still, instead of a still head.
-    #[arg(long, value_name = "CLIP", value_parser = parse_clip)]
-    pub play: Option<Clip>,
+    /// jerk) or a motion file (FILE.ron, docs/motion-format.md) from time
+    /// zero, then hold it still, instead of a still head.
+    #[arg(long, value_name = "CLIP|FILE", value_parser = parse_play)]
+    pub play: Option<Playback>,
     /// Exit 0 even when the guard had to reset or pin strands (by default
     /// such a run exits 1 after writing its report: it is not the
     /// simulation that was asked for).
@@ -117,6 +124,9 @@ pub struct SimArgs {
     /// needed; `-` writes it to stdout, and the summary then goes to stderr.
     #[arg(long, value_name = "OUT")]
     pub json: Option<PathBuf>,
+    /// Export options (`--export FILE`).
+    #[command(flatten)]
+    pub export: SimExportArgs,
 }
 
 /// Parses `--play`: a clip's name.
@@ -182,6 +192,7 @@ pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow:
         #[cfg(feature = "bench")]
         Some(Command::Bench(args)) => run_bench(args, stdout),
         Some(Command::Render(args)) => crate::render_cmd::run_render(args, stdout),
+        Some(Command::Export(args)) => run_export(args, stdout),
     }
 }
 
@@ -198,13 +209,27 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;
-    if let Some(clip) = args.play {
-        sim.play(clip);
+    if let Some(play) = &args.play {
+        sim.play_motion(play.load()?);
     }
+    let export = match &args.export.export {
+        Some(path) => Some(SimExport::prepare(path, &args.export.shape, &style)?),
+        None => None,
+    };
     let steps = usize::try_from(args.steps).context("--steps does not fit this machine")?;
-    let per_step_secs = sim
-        .run(steps)
-        .with_context(|| format!("simulating {style_path}"))?;
+    let (per_step_secs, exported) = match export {
+        Some(export) => {
+            let (secs, outcome) = export
+                .run(&mut sim, steps)
+                .with_context(|| format!("simulating and exporting {style_path}"))?;
+            (secs, Some(outcome))
+        }
+        None => (
+            sim.run(steps)
+                .with_context(|| format!("simulating {style_path}"))?,
+            None,
+        ),
+    };
     let report = SimReport::new(&style_path, &style.name, &sim, per_step_secs);
 
     let json_to_stdout = args.json.as_deref() == Some(Path::new("-"));
@@ -214,6 +239,9 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         &mut *stdout
     };
     summary_out.write_all(report.summary().as_bytes())?;
+    if let Some(outcome) = &exported {
+        writeln!(summary_out, "  {}", outcome.summary())?;
+    }
     let Some(json_path) = &args.json else {
         return refuse_lost_strands(sim.strands_lost(), args.accept_resets);
     };

@@ -36,6 +36,7 @@ use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
 use crate::groom::{grow_scalp_roots, needs_head};
 use crate::head_clip::{Clip, ClipTrajectory};
+use crate::head_playback::HeadPlayback;
 use crate::style::Style;
 use crate::style_error::StyleIssue;
 use crate::style_validate::{check_accuracy_target, param_issue};
@@ -119,7 +120,7 @@ pub struct HeadlessSim {
     group_names: Vec<String>,
     group_of_strand: Vec<usize>,
     head: RigidMotion,
-    clip: Option<ClipTrajectory>,
+    clip: Option<HeadPlayback>,
     strands_lost: usize,
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
@@ -137,7 +138,13 @@ impl HeadlessSim {
     /// Plays `clip` on the head from time zero, then holds the head still
     /// (the window's clips; `helixhair sim --play`).
     pub fn play(&mut self, clip: Clip) {
-        self.clip = Some(ClipTrajectory(clip));
+        self.clip = Some(HeadPlayback::Clip(ClipTrajectory(clip)));
+    }
+
+    /// Plays a clip or a motion file on the head from time zero, then
+    /// holds the head still (`--play NAME|FILE`).
+    pub fn play_motion(&mut self, playback: HeadPlayback) {
+        self.clip = Some(playback);
     }
 
     /// Builds the hair system of `style`, with `overrides` applied to its

@@ -205,20 +205,27 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
     Ok(())
 }
 
-/// Runs `helixhair render`.
-pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
-    picture_format(&args.out)?;
-    let style = Style::load(&args.style)?;
-    let style_path = args.style.display().to_string();
-    let head = load_head(args.head.as_deref())?;
-    let groom = Groom::new(style, head);
-    check_placements(&groom, &args.style, args.head.as_deref())?;
+/// The style at `style_path` grown on `head` (an OBJ, or the default
+/// head), and its simulation colliding with that head: what `render` and
+/// `export` step.
+pub fn grown_sim(style_path: &Path, head: Option<&Path>) -> anyhow::Result<(Groom, HeadlessSim)> {
+    let style = Style::load(style_path)?;
+    let groom = Groom::new(style, load_head(head)?);
+    check_placements(&groom, style_path, head)?;
     let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default())
-        .with_context(|| format!("cannot simulate {style_path}"))?;
+        .with_context(|| format!("cannot simulate {}", style_path.display()))?;
     let collider = groom
         .collider()
         .context("cannot build the head's collision field")?;
     sim.engine_mut().set_collider(Some(Arc::new(collider)));
+    Ok((groom, sim))
+}
+
+/// Runs `helixhair render`.
+pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    picture_format(&args.out)?;
+    let style_path = args.style.display().to_string();
+    let (groom, mut sim) = grown_sim(&args.style, args.head.as_deref())?;
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;

@@ -221,7 +221,11 @@ fn locate_issue(src: &str, path: &Path, issue: StyleIssue) -> StyleError {
 }
 
 /// Names the field of a `ron` error from the position `ron` reports.
-fn locate_ron_error(src: &str, path: &Path, error: &ron::error::SpannedError) -> StyleError {
+pub(crate) fn locate_ron_error(
+    src: &str,
+    path: &Path,
+    error: &ron::error::SpannedError,
+) -> StyleError {
     let map = SourceMap::new(src);
     let position = map.skip_whitespace(TextPosition {
         line: error.span.start.line,

@@ -7,6 +7,10 @@
 //! `HELIXHAIR_REQUIRE_USD=1` (as CI sets), which makes it fail instead.
 
 mod common;
+#[path = "support/pxr.rs"]
+mod pxr;
+
+use pxr::pxr_available;
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -16,25 +20,6 @@ use helixhair_formats::{Animation, Format, Frame, ReadOptions, TriangleMesh, rea
 
 /// Transforms are composed in `f64` by both sides, then rounded to `f32`.
 const TRANSFORM_TOLERANCE_M: f32 = 2e-6;
-
-/// Whether pxr can be used; fails the test when it must be and cannot.
-fn pxr_available() -> bool {
-    let works = Command::new("python3")
-        .args(["-c", "import pxr"])
-        .output()
-        .is_ok_and(|output| output.status.success());
-    if !works {
-        let required = std::env::var("HELIXHAIR_REQUIRE_USD").is_ok_and(|v| v == "1");
-        assert!(
-            !required,
-            "HELIXHAIR_REQUIRE_USD=1 but `python3 -c \"import pxr\"` fails: pip install usd-core"
-        );
-        println!(
-            "SKIPPED: Pixar's USD (python3 -c \"import pxr\") is not installed; pip install usd-core"
-        );
-    }
-    works
-}
 
 fn temp_path(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("helixhair-formats-{}-{name}", std::process::id()))

@@ -52,6 +52,7 @@ pub mod params;
 pub mod quadrature;
 pub mod reconstruct;
 pub mod settings;
+pub mod shape;
 pub mod solve;
 pub mod step;
 pub mod strand;

@@ -9,7 +9,7 @@ use crate::animation::Animation;
 use crate::curve_set::{CurveSet, StrandValue, bounds_of};
 use crate::error::WriteError;
 use crate::format::Format;
-use crate::mesh::TriangleMesh;
+use crate::mesh::{MeshPose, TriangleMesh};
 use crate::write_checks::{all_or_none, finite_points};
 
 /// Writes one layer:
@@ -34,6 +34,23 @@ pub fn write_usda(
     curves: &CurveSet,
     animation: Option<&Animation>,
     head: Option<&TriangleMesh>,
+) -> Result<(), WriteError> {
+    write_usda_with_head_poses(out, curves, animation, head, &[])
+}
+
+/// [`write_usda`], with the head moving: `head_poses` become the head
+/// `Mesh`'s `xformOp:transform` time samples (`matrix4d`, USD's row-vector
+/// convention: the rotation's columns are the matrix's first three rows,
+/// the translation its last), so the head turns with the hair in
+/// usdview, Blender or Houdini. Empty: a still head, as [`write_usda`].
+/// Refused (before writing) without a head, with non-finite poses or
+/// with time codes that do not increase.
+pub fn write_usda_with_head_poses(
+    out: &mut impl Write,
+    curves: &CurveSet,
+    animation: Option<&Animation>,
+    head: Option<&TriangleMesh>,
+    head_poses: &[MeshPose],
 ) -> Result<(), WriteError> {
     let invalid = |message: String| WriteError::invalid(Format::Usda, message);
     finite_points(Format::Usda, curves)?;
@@ -81,6 +98,7 @@ pub fn write_usda(
             return Err(invalid("a head vertex is not finite".to_string()));
         }
     }
+    check_head_poses(head.is_some(), head_poses)?;
     let animated = animation.filter(|a| !a.frames.is_empty());
 
     let mut text = String::with_capacity(64 * point_count + 1024);
@@ -211,11 +229,52 @@ pub fn write_usda(
         vec3_array(&mut text, head.vertices_m.iter().copied());
         text.push_str("\n        float3[] extent = ");
         extent(&mut text, head.vertices_m.iter());
-        text.push_str("\n    }\n");
+        text.push('\n');
+        head_transform(&mut text, head_poses);
+        text.push_str("    }\n");
     }
     text.push_str("}\n");
     out.write_all(text.as_bytes())
         .map_err(WriteError::io(Format::Usda))
+}
+
+/// Refuses head poses without a head, non-finite ones, and time codes that
+/// do not increase.
+fn check_head_poses(has_head: bool, poses: &[MeshPose]) -> Result<(), WriteError> {
+    let invalid = |message: String| Err(WriteError::invalid(Format::Usda, message));
+    if !has_head && !poses.is_empty() {
+        return invalid("head poses were given without a head".to_string());
+    }
+    for (index, pose) in poses.iter().enumerate() {
+        let finite = pose.time_code.is_finite()
+            && pose.rotation.is_finite()
+            && pose.translation_m.is_finite();
+        if !finite {
+            return invalid(format!("head pose {index} is not finite"));
+        }
+        if index > 0 && pose.time_code <= poses[index - 1].time_code {
+            return invalid(format!("head pose {index}'s time code does not increase"));
+        }
+    }
+    Ok(())
+}
+
+/// The head's `xformOp:transform` time samples (nothing for no poses).
+fn head_transform(text: &mut String, poses: &[MeshPose]) {
+    if poses.is_empty() {
+        return;
+    }
+    text.push_str("        uniform token[] xformOpOrder = [\"xformOp:transform\"]\n");
+    text.push_str("        matrix4d xformOp:transform.timeSamples = {\n");
+    for pose in poses {
+        let (r, t) = (pose.rotation, pose.translation_m);
+        let _ = write!(text, "            {}: (", pose.time_code);
+        for column in [r.x_axis, r.y_axis, r.z_axis] {
+            let _ = write!(text, "({}, {}, {}, 0), ", column.x, column.y, column.z);
+        }
+        let _ = writeln!(text, "({}, {}, {}, 1)),", t.x, t.y, t.z);
+    }
+    text.push_str("        }\n");
 }
 
 fn join<T>(
