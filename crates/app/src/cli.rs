@@ -258,19 +258,6 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     refuse_lost_strands(sim.strands_lost(), args.accept_resets)
 }
 
-/// An error when the guard reset or pinned strands `lost` times, unless the
-/// user accepts it (`--accept-resets`).
-pub(crate) fn refuse_lost_strands(lost: usize, accept: bool) -> anyhow::Result<()> {
-    if lost > 0 && !accept {
-        anyhow::bail!(
-            "the guard reset or pinned strands {lost} times (see the summary): this is not the \
-             simulation the style asks for; try more substeps or the Exact solver, or pass \
-             --accept-resets to accept the result"
-        );
-    }
-    Ok(())
-}
-
 /// Writes the report atomically, creating the folder it goes in.
 fn write_json(path: &Path, json: &str) -> std::io::Result<()> {
     if let Some(dir) = path.parent()

@@ -26,7 +26,7 @@ use helixhair_render::{
 
 use crate::atomic_write::write_atomically;
 use crate::camera_arg::CameraArg;
-use crate::cli::refuse_lost_strands;
+use crate::sim_report::refuse_lost_strands;
 use crate::drawn_hair::drawn_hair;
 use crate::field_path::FieldPath;
 use crate::groom::Groom;

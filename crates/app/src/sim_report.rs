@@ -313,6 +313,19 @@ impl SimReport {
     }
 }
 
+/// An error when the guard reset or pinned strands `lost` times, unless the
+/// user accepts it (`--accept-resets`).
+pub fn refuse_lost_strands(lost: usize, accept: bool) -> anyhow::Result<()> {
+    if lost > 0 && !accept {
+        anyhow::bail!(
+            "the guard reset or pinned strands {lost} times (see the summary): this is not the \
+             simulation the style asks for; try more substeps or the Exact solver, or pass \
+             --accept-resets to accept the result"
+        );
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
