@@ -65,6 +65,9 @@ pub enum Command {
     /// Simulate a style, then draw it offscreen into a PNG (or one PNG per
     /// frame) on any graphics adapter, lavapipe included.
     Render(crate::render_cmd::RenderArgs),
+    /// Import a groom (TressFX, .hair, USD, OBJ curves): fit Super-Helices,
+    /// solve a sag-free rest shape, and write a style (docs/import.md).
+    Import(crate::import_cmd::ImportArgs),
 }
 
 /// Arguments of `helixhair sim`.
@@ -179,6 +182,7 @@ pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow:
         #[cfg(feature = "bench")]
         Some(Command::Bench(args)) => run_bench(args, stdout),
         Some(Command::Render(args)) => crate::render_cmd::run_render(args, stdout),
+        Some(Command::Import(args)) => crate::import_cmd::run_import(args, stdout, stderr),
     }
 }
 

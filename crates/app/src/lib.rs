@@ -56,6 +56,10 @@ pub mod groom;
 pub mod guide_curves;
 pub mod head_clip;
 pub mod headless;
+pub mod import_cmd;
+pub mod import_fit;
+pub mod import_report;
+pub mod import_roots;
 pub mod render_cmd;
 pub mod sim_report;
 pub mod source_map;
@@ -65,6 +69,7 @@ pub mod style_checks;
 pub mod style_error;
 pub mod style_groom;
 pub mod style_groom_validate;
+pub mod style_imported;
 pub mod style_validate;
 #[cfg(feature = "window")]
 pub mod window;

@@ -80,8 +80,25 @@ pub fn load_head_obj(path: &Path) -> Result<HeadMesh, ObjError> {
     parse_head_obj(&text, path)
 }
 
+/// Loads any closed mesh as a head: its `scalp` group if it has one, and
+/// every face as scalp otherwise (an imported groom brings its own roots,
+/// so it needs no scalp to grow on; `helixhair import --head`).
+pub fn load_mesh_obj(path: &Path) -> Result<HeadMesh, ObjError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ObjError::Read {
+        path: path.to_owned(),
+        source,
+    })?;
+    parse_obj(&text, path, false)
+}
+
 /// Parses a head from OBJ text; `path` only names the file in errors.
 pub fn parse_head_obj(text: &str, path: &Path) -> Result<HeadMesh, ObjError> {
+    parse_obj(text, path, true)
+}
+
+/// Parses OBJ text; without a `scalp` group, an error if `require_scalp`,
+/// else every face is scalp.
+fn parse_obj(text: &str, path: &Path, require_scalp: bool) -> Result<HeadMesh, ObjError> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
@@ -126,6 +143,9 @@ pub fn parse_head_obj(text: &str, path: &Path) -> Result<HeadMesh, ObjError> {
     check_head(&head.mesh, path)?;
     if !every_face_has_normals {
         head.mesh.compute_normals();
+    }
+    if head.scalp_triangles.is_empty() && !require_scalp {
+        head.scalp_triangles = (0..head.mesh.triangle_count() as u32).collect();
     }
     if head.scalp_triangles.is_empty() {
         return Err(invalid(

@@ -12,7 +12,26 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::helix::{centreline_and_jacobian, left_jacobian, rotation, skew};
+use crate::helix::{HelixCoefficients, centreline_jacobian_with, left_jacobian_with, skew};
+
+/// Centreline h(σ, k), its Jacobian (when asked) and the frame's turn
+/// exp(σ[k]×), from one evaluation of the coefficients A, B, C (the fit
+/// evaluates the chain thousands of times per strand: this sharing halves
+/// its cost).
+fn element_at(sigma: f64, k: DVec3, jacobian: bool) -> (DVec3, DMat3, DMat3, HelixCoefficients) {
+    let phi = k * sigma;
+    let co = HelixCoefficients::at(phi.length_squared());
+    let e0 = DVec3::X;
+    let h = sigma * (e0 + co.b[0] * phi.cross(e0) + co.c[0] * phi.cross(phi.cross(e0)));
+    let s = skew(phi);
+    let turn = DMat3::IDENTITY + s * co.a[0] + s * s * co.b[0];
+    let dh = if jacobian {
+        centreline_jacobian_with(sigma, phi, &co)
+    } else {
+        DMat3::ZERO
+    };
+    (h, dh, turn, co)
+}
 
 /// A strand of equal elements, positions relative to its root point.
 #[derive(Clone, Debug, PartialEq)]
@@ -62,51 +81,64 @@ impl UniformHelixChain {
         self.element_length_m * self.elements() as f64
     }
 
-    /// One root-to-tip sweep: element frames, points and Jacobian factors.
-    pub fn sweep(&self) -> ChainSweep {
+    /// One root-to-tip sweep: element frames, points and, with
+    /// `jacobians`, the Jacobian factors.
+    pub fn sweep_with(&self, jacobians: bool) -> ChainSweep {
         let l = self.element_length_m;
         let mut out = ChainSweep::default();
         let mut frame = self.root_frame;
         let mut point = DVec3::ZERO;
         out.points_m.push(point);
         for k in &self.strains_per_m {
-            let (h, dh) = centreline_and_jacobian(l, *k);
+            let (h, dh, turn, co) = element_at(l, *k, jacobians);
             let next = point + frame * h;
-            let a = frame * dh;
-            let b = frame * left_jacobian(*k * l) * l;
             out.frames.push(frame);
-            out.a.push(a + skew(next) * b);
-            out.b.push(b);
-            frame *= rotation(*k * l);
+            if jacobians {
+                let a = frame * dh;
+                let b = frame * left_jacobian_with(*k * l, &co) * l;
+                out.a.push(a + skew(next) * b);
+                out.b.push(b);
+            }
+            frame *= turn;
             point = next;
             out.points_m.push(point);
         }
         out
     }
 
-    /// The point at arc length `s_m` (clamped to the strand), from a sweep.
-    pub fn point(&self, sweep: &ChainSweep, s_m: f64) -> ChainPoint {
+    /// One root-to-tip sweep: element frames, points and Jacobian factors.
+    pub fn sweep(&self) -> ChainSweep {
+        self.sweep_with(true)
+    }
+
+    /// The point at arc length `s_m` (clamped to the strand), from a sweep;
+    /// `own_jacobian` is zero unless `jacobian`.
+    pub fn point_with(&self, sweep: &ChainSweep, s_m: f64, jacobian: bool) -> ChainPoint {
         let n = self.elements();
         let l = self.element_length_m;
         let e = ((s_m / l).floor().max(0.0) as usize).min(n - 1);
         let sigma = (s_m - e as f64 * l).clamp(0.0, l);
-        let k = self.strains_per_m[e];
         let frame = sweep.frames[e];
-        let (h, dh) = centreline_and_jacobian(sigma, k);
+        let (h, dh, turn, _) = element_at(sigma, self.strains_per_m[e], jacobian);
         ChainPoint {
             position_m: sweep.points_m[e] + frame * h,
-            tangent: frame * rotation(k * sigma).col(0),
+            tangent: frame * turn.col(0),
             element: e,
             own_jacobian: frame * dh,
         }
     }
 
+    /// The point at arc length `s_m` (clamped to the strand), from a sweep.
+    pub fn point(&self, sweep: &ChainSweep, s_m: f64) -> ChainPoint {
+        self.point_with(sweep, s_m, true)
+    }
+
     /// Positions (relative to the root) at the given arc lengths.
     pub fn positions(&self, arc_lengths_m: &[f64]) -> Vec<DVec3> {
-        let sweep = self.sweep();
+        let sweep = self.sweep_with(false);
         arc_lengths_m
             .iter()
-            .map(|&s| self.point(&sweep, s).position_m)
+            .map(|&s| self.point_with(&sweep, s, false).position_m)
             .collect()
     }
 }

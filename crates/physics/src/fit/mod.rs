@@ -111,7 +111,7 @@ pub fn fit_polyline(
     let length = arc[m];
     let mut best = None;
     for n in 1..=cap {
-        let fit = fit_with_elements(points_m, n, reference, &arc);
+        let fit = fit_with_elements(points_m, n, reference, &arc, options);
         let error = fit.error_over_length;
         best = Some(fit);
         if error <= options.tolerance_over_length {
@@ -124,17 +124,21 @@ pub fn fit_polyline(
     Ok(fit)
 }
 
-/// Fits `points_m` with exactly `elements` elements (no tolerance search);
-/// `arc` holds the polyline's chord arc lengths.
+/// Fits `points_m` with exactly `elements` elements (no search over N);
+/// `arc` holds the polyline's chord arc lengths. The refinement stops once
+/// every point is within a tenth of the tolerance: closer is invisible,
+/// and the search over N only needs to know the tolerance is met.
 pub fn fit_with_elements(
     points_m: &[DVec3],
     elements: usize,
     reference: DVec3,
     arc: &[f64],
+    options: &FitOptions,
 ) -> StrandFit {
     let length = *arc.last().unwrap_or(&0.0);
     let start = initial::initial_chain(points_m, elements, reference);
-    let mut refined = refine::refine(points_m, start, arc);
+    let good_enough = 0.1 * options.tolerance_over_length * length;
+    let mut refined = refine::refine(points_m, start, arc, good_enough);
     refine::fix_roll(&mut refined.chain, reference);
     let worst = refined.deviations_m.iter().copied().fold(0.0, f64::max);
     StrandFit {

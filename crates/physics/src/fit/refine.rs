@@ -40,12 +40,23 @@ use nalgebra::{DMatrix, DVector};
 use super::curve::UniformHelixChain;
 use crate::helix::{rotation, skew};
 
-/// Most Levenberg–Marquardt iterations: converged fits take 5 to 30.
+/// Most Levenberg–Marquardt iterations: exact fits converge in 5 to 15;
+/// a curve the chain cannot follow stops earlier, on the decrease test.
 const MAX_ITERATIONS: usize = 200;
-/// Retries with a larger λ before an iteration gives up.
-const MAX_RETRIES: usize = 40;
-/// Stop when an accepted step lowers the cost by less than this fraction.
-const RELATIVE_DECREASE_STOP: f64 = 1e-14;
+/// Retries with a larger λ before an iteration gives up (λ grows 4¹⁰ ≈ 1e6).
+const MAX_RETRIES: usize = 10;
+/// Stop when an accepted step lowers the cost by less than this fraction:
+/// the deviations then change by under 1e-5 of themselves, far below any
+/// tolerance an import uses.
+const RELATIVE_DECREASE_STOP: f64 = 1e-10;
+/// With a target: an iteration lowering the cost by less than this
+/// fraction is slow progress...
+const STALL_DECREASE: f64 = 1e-3;
+/// ...and a worst deviation this many times the target is far: stop.
+const STALL_FAR: f64 = 30.0;
+/// Stop when the RMS deviation falls below this fraction of the length:
+/// round-off of positions summed along the strand.
+const EXACT_RMS_OVER_LENGTH: f64 = 1e-14;
 /// Floor of the Marquardt scaling, relative to JᵀJ's largest diagonal
 /// entry: keeps unobservable directions (twist of a straight element)
 /// damped instead of singular.
@@ -66,8 +77,14 @@ pub struct Refined {
 
 /// Refines `chain` (root at `points_m[0]`) to the polyline, starting the
 /// points' places at `arc_lengths_m` (e.g. chord lengths scaled to the
-/// chain's length).
-pub fn refine(points_m: &[DVec3], mut chain: UniformHelixChain, arc_lengths_m: &[f64]) -> Refined {
+/// chain's length). Stops early once every point is within `good_enough_m`
+/// of the strand (0 refines to convergence).
+pub fn refine(
+    points_m: &[DVec3],
+    mut chain: UniformHelixChain,
+    arc_lengths_m: &[f64],
+    good_enough_m: f64,
+) -> Refined {
     let n = chain.elements();
     let m = points_m.len() - 1;
     let targets: Vec<DVec3> = points_m[1..].iter().map(|p| *p - points_m[0]).collect();
@@ -80,7 +97,8 @@ pub fn refine(points_m: &[DVec3], mut chain: UniformHelixChain, arc_lengths_m: &
     let mut cost = cost_of(&chain, &u, &targets);
     let mut lambda = 1e-3;
     let mut iterations = 0;
-    while iterations < MAX_ITERATIONS && cost > 0.0 {
+    let exact = 0.5 * m as f64 * (EXACT_RMS_OVER_LENGTH * l0 * n as f64).powi(2);
+    while iterations < MAX_ITERATIONS && cost > exact {
         iterations += 1;
         let (jac, res) = jacobian(&chain, &u, &targets);
         let jt = jac.transpose();
@@ -117,15 +135,26 @@ pub fn refine(points_m: &[DVec3], mut chain: UniformHelixChain, arc_lengths_m: &
         if decrease <= RELATIVE_DECREASE_STOP * (cost + decrease) {
             break;
         }
+        if good_enough_m > 0.0 {
+            // Done once close enough; given up once progress is slow while
+            // still far (this N will not meet the tolerance: try the next).
+            let worst = worst_deviation(&chain, &u, &targets);
+            if worst <= good_enough_m
+                || (decrease <= STALL_DECREASE * (cost + decrease)
+                    && worst > STALL_FAR * good_enough_m)
+            {
+                break;
+            }
+        }
     }
-    let sweep = chain.sweep();
+    let sweep = chain.sweep_with(false);
     let l = chain.element_length_m;
     let mut arc = vec![0.0];
     let mut deviations = vec![0.0];
     for (ui, target) in u.iter().zip(&targets) {
         let s = ui * l;
         arc.push(s);
-        deviations.push((chain.point(&sweep, s).position_m - *target).length());
+        deviations.push((chain.point_with(&sweep, s, false).position_m - *target).length());
     }
     Refined {
         chain,
@@ -135,12 +164,23 @@ pub fn refine(points_m: &[DVec3], mut chain: UniformHelixChain, arc_lengths_m: &
     }
 }
 
-fn cost_of(chain: &UniformHelixChain, u: &[f64], targets: &[DVec3]) -> f64 {
-    let sweep = chain.sweep();
+fn worst_deviation(chain: &UniformHelixChain, u: &[f64], targets: &[DVec3]) -> f64 {
+    let sweep = chain.sweep_with(false);
     let l = chain.element_length_m;
     u.iter()
         .zip(targets)
-        .map(|(ui, t)| 0.5 * (chain.point(&sweep, ui * l).position_m - *t).length_squared())
+        .map(|(ui, t)| (chain.point_with(&sweep, ui * l, false).position_m - *t).length())
+        .fold(0.0, f64::max)
+}
+
+fn cost_of(chain: &UniformHelixChain, u: &[f64], targets: &[DVec3]) -> f64 {
+    let sweep = chain.sweep_with(false);
+    let l = chain.element_length_m;
+    u.iter()
+        .zip(targets)
+        .map(|(ui, t)| {
+            0.5 * (chain.point_with(&sweep, ui * l, false).position_m - *t).length_squared()
+        })
         .sum()
 }
 
