@@ -147,7 +147,14 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
 pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
     let style = Style::load(&args.style)?;
     let style_path = args.style.display().to_string();
-    let head = load_head(args.head.as_deref())?;
+    // A style that grows no hair on the scalp (an imported groom brings its
+    // own roots) accepts any mesh as its head, `scalp` group or not.
+    let head = match args.head.as_deref() {
+        Some(path) if !crate::groom::needs_head(&style) => {
+            helixhair_render::obj::load_mesh_obj(path)?
+        }
+        path => load_head(path)?,
+    };
     let groom = Groom::new(style, head);
     check_placements(&groom, &args.style, args.head.as_deref())?;
     let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default())
@@ -159,7 +166,19 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;
-    let camera: OrbitCamera = args.camera.camera();
+    let mut camera: OrbitCamera = args.camera.camera();
+    if args.head.is_some() && !crate::groom::needs_head(&groom.style) {
+        // An imported groom's head need not sit at the origin (Sintel's
+        // bust stands 1.4 m up): aim at the middle of its hair instead.
+        let hair = guide_curves(sim.engine());
+        let (lo, hi) = hair.points.iter().fold(
+            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        if lo.x <= hi.x {
+            camera.target_m = 0.5 * (lo + hi);
+        }
+    }
     let mut frame = |sim: &HeadlessSim| -> anyhow::Result<(RgbaImage, FrameCounts, f64)> {
         let hair = drawn_hair(&groom, &guide_curves(sim.engine()));
         let scene = Scene {

@@ -13,9 +13,10 @@
 //! friction, drag); their `length_m`, `elements`, `layout` and
 //! `natural_shape` are replaced per strand ([`ImportedStrand::params`]).
 //!
-//! `guide: false` marks a strand that is not simulated but drawn following
-//! its nearest guides ([`crate::imported_drawn`]); a group whose strands
-//! are all guides simulates every one.
+//! `guide: false` marks a strand that is not simulated (`--guides K`); a
+//! group whose strands are all guides simulates every one. Drawing the
+//! other strands following their nearest guides is not implemented yet:
+//! only guides are drawn.
 
 use glam::DVec3;
 use helixhair_physics::natural_shape::MAX_NATURAL_STRAIN_PER_M;
@@ -60,8 +61,7 @@ pub struct ImportedStrand {
     pub strains: Vec<DVec3>,
     /// Natural strains per element, m⁻¹ (as many as `strains`).
     pub natural: Vec<DVec3>,
-    /// Whether the strand is simulated (a guide) or drawn following the
-    /// guides. Default true.
+    /// Whether the strand is simulated (a guide). Default true.
     #[serde(default = "yes", skip_serializing_if = "is_true")]
     pub guide: bool,
 }
