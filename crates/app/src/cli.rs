@@ -19,7 +19,7 @@ use crate::export_cmd::{SimExport, SimExportArgs, run_export};
 use crate::head_clip::Clip;
 use crate::head_playback::{Playback, parse_play};
 use crate::headless::{HeadlessSim, SimOverrides};
-use crate::sim_report::SimReport;
+use crate::sim_report::{SimReport, refuse_lost_strands};
 use crate::style::Style;
 #[cfg(feature = "window")]
 use crate::window::{WindowArgs, run_window};
@@ -73,6 +73,9 @@ pub enum Command {
     /// frame) as .usda, .hair, .tfx or .obj, simulated on a head as
     /// `render` does.
     Export(crate::export_cmd::ExportArgs),
+    /// Import a groom (TressFX, .hair, USD, OBJ curves): fit Super-Helices,
+    /// solve a sag-free rest shape, and write a style (docs/import.md).
+    Import(crate::import_cmd::ImportArgs),
 }
 
 /// Arguments of `helixhair sim`.
@@ -193,6 +196,7 @@ pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow:
         Some(Command::Bench(args)) => run_bench(args, stdout),
         Some(Command::Render(args)) => crate::render_cmd::run_render(args, stdout),
         Some(Command::Export(args)) => run_export(args, stdout),
+        Some(Command::Import(args)) => crate::import_cmd::run_import(args, stdout, stderr),
     }
 }
 

@@ -154,7 +154,7 @@ pub fn drawn_hair(groom: &Groom, guides: &StrandBuffers) -> HairStrands {
     let mut colours = Vec::new();
     let mut first = 0;
     for (i, (group, grown)) in groom.groups().enumerate() {
-        let end = (first + grown.roots.len()).min(guides.strand_count());
+        let end = (first + grown.simulated_count()).min(guides.strand_count());
         let mut own = StrandBuffers::default();
         for g in first..end {
             own.push_strand(guides.strand(g).iter().copied());

@@ -39,6 +39,7 @@ use crate::head_clip::{Clip, ClipTrajectory};
 use crate::head_playback::HeadPlayback;
 use crate::style::Style;
 use crate::style_error::StyleIssue;
+use crate::style_imported::ImportedStrands;
 use crate::style_validate::{check_accuracy_target, param_issue};
 
 /// Command-line overrides of the style's settings.
@@ -125,6 +126,23 @@ pub struct HeadlessSim {
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
     batch_resets: Vec<String>,
+}
+
+/// Adds the guides of an imported group, one engine group per strand (each
+/// has its own length, elements and natural strains), each started in its
+/// fitted shape; returns their indices.
+pub fn add_imported(
+    system: &mut Engine,
+    material: &helixhair_physics::StrandParams,
+    imported: &ImportedStrands,
+) -> Result<Range<usize>, ParamError> {
+    let start = system.strand_count();
+    for strand in imported.guides() {
+        let range = system.add_group(&strand.params(material), &[strand.pose()])?;
+        let rest = vec![glam::DVec3::ZERO; strand.strains.len()];
+        system.set_state(range.start, &strand.strains, &rest);
+    }
+    Ok(start..system.strand_count())
 }
 
 impl HeadlessSim {
@@ -249,6 +267,12 @@ impl HeadlessSim {
                 choices.push(choice);
             }
             group_of_strand.extend(range.map(|_| i));
+            if let Some(imported) = &group.imported {
+                let at = FieldPath::root().field("groups").index(i).field("imported");
+                let added = add_imported(&mut system, &group.params, imported)
+                    .map_err(|e| style_issue(param_issue(&at, &e)))?;
+                group_of_strand.extend(added.map(|_| i));
+            }
         }
         Ok(Self {
             engine: system,

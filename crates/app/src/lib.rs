@@ -59,6 +59,10 @@ pub mod guide_curves;
 pub mod head_clip;
 pub mod head_playback;
 pub mod headless;
+pub mod import_cmd;
+pub mod import_fit;
+pub mod import_report;
+pub mod import_roots;
 pub mod motion_file;
 pub mod render_cmd;
 pub mod sim_report;
@@ -70,6 +74,7 @@ pub mod style_checks;
 pub mod style_error;
 pub mod style_groom;
 pub mod style_groom_validate;
+pub mod style_imported;
 pub mod style_validate;
 #[cfg(feature = "window")]
 pub mod window;

@@ -26,12 +26,12 @@ use helixhair_render::{
 
 use crate::atomic_write::write_atomically;
 use crate::camera_arg::CameraArg;
-use crate::sim_report::refuse_lost_strands;
 use crate::drawn_hair::drawn_hair;
 use crate::field_path::FieldPath;
 use crate::groom::Groom;
 use crate::guide_curves::guide_curves;
 use crate::headless::{HeadlessSim, SimOverrides};
+use crate::sim_report::refuse_lost_strands;
 use crate::source_map::SourceMap;
 use crate::style::Style;
 use crate::style_error::{StyleError, StyleErrorKind};
@@ -210,7 +210,16 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
 /// `export` step.
 pub fn grown_sim(style_path: &Path, head: Option<&Path>) -> anyhow::Result<(Groom, HeadlessSim)> {
     let style = Style::load(style_path)?;
-    let groom = Groom::new(style, load_head(head)?);
+    // A style that grows no hair on the scalp (an imported groom brings its
+    // own roots) takes any mesh as its head, every face scalp when it has
+    // no `scalp` group.
+    let head_mesh = match head {
+        Some(path) if !crate::groom::needs_head(&style) => {
+            helixhair_render::obj::load_mesh_obj(path)?
+        }
+        path => load_head(path)?,
+    };
+    let groom = Groom::new(style, head_mesh);
     check_placements(&groom, style_path, head)?;
     let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default())
         .with_context(|| format!("cannot simulate {}", style_path.display()))?;
@@ -229,7 +238,19 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;
-    let camera: OrbitCamera = args.camera.camera();
+    let mut camera: OrbitCamera = args.camera.camera();
+    if args.head.is_some() && !crate::groom::needs_head(&groom.style) {
+        // An imported groom's head need not sit at the origin (Sintel's
+        // bust stands 1.4 m up): aim at the middle of its hair instead.
+        let hair = guide_curves(sim.engine());
+        let (lo, hi) = hair.points.iter().fold(
+            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        if lo.x <= hi.x {
+            camera.target_m = 0.5 * (lo + hi);
+        }
+    }
     let mut frame = |sim: &HeadlessSim| -> anyhow::Result<(RgbaImage, FrameCounts, f64)> {
         let hair = drawn_hair(&groom, &guide_curves(sim.engine()));
         let scene = Scene {

@@ -25,6 +25,7 @@ use crate::field_path::FieldPath;
 use crate::source_map::{SourceMap, TextPosition};
 use crate::style_error::{StyleError, StyleErrorKind, StyleIssue};
 use crate::style_groom::{RenderStrands, ScalpPlacement};
+use crate::style_imported::ImportedStrands;
 
 /// The style format version this build reads and writes. Files with any
 /// other version are refused (see "Version policy" in the format docs).
@@ -91,6 +92,15 @@ pub struct StrandGroup {
         with = "crate::style_groom::inline_option"
     )]
     pub render: Option<RenderStrands>,
+    /// Strands fitted from an imported groom, each with its own length,
+    /// elements and natural strains (`helixhair import`; see
+    /// [`crate::style_imported`]). Simulated after the listed roots.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::style_groom::inline_option"
+    )]
+    pub imported: Option<ImportedStrands>,
 }
 
 /// Where a strand grows from, in head coordinates (metres, y up, z towards
@@ -205,6 +215,12 @@ impl StrandGroup {
     /// The physics root frames of the group's strands.
     pub fn root_poses(&self) -> Vec<RootPose> {
         self.roots.iter().map(Root::pose).collect()
+    }
+
+    /// Strands the simulation runs for this group (once grown): its listed
+    /// roots, then its imported guides.
+    pub fn simulated_count(&self) -> usize {
+        self.roots.len() + self.imported.as_ref().map_or(0, |i| i.guides().count())
     }
 }
 

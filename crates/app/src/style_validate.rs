@@ -48,7 +48,7 @@ impl Style {
                 .validate()
                 .map_err(|e| param_issue(&at.field("params"), &e))?;
             let roots = at.field("roots");
-            if group.roots.is_empty() && group.scalp.is_none() {
+            if group.roots.is_empty() && group.scalp.is_none() && group.imported.is_none() {
                 return Err(invalid(
                     roots,
                     "must list at least one root (one per strand), or give a `scalp` placement",
@@ -59,6 +59,9 @@ impl Style {
             }
             if let Some(render) = &group.render {
                 validate_render(render, &at.field("render"))?;
+            }
+            if let Some(imported) = &group.imported {
+                imported.validate(&group.params, &at.field("imported"))?;
             }
             for (j, root) in group.roots.iter().enumerate() {
                 validate_root(root, &roots.index(j))?;

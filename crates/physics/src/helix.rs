@@ -119,7 +119,8 @@ pub fn left_jacobian(phi: DVec3) -> DMat3 {
     left_jacobian_with(phi, &HelixCoefficients::at(phi.length_squared()))
 }
 
-fn left_jacobian_with(phi: DVec3, co: &HelixCoefficients) -> DMat3 {
+/// [`left_jacobian`] from coefficients already evaluated at y = |φ|².
+pub fn left_jacobian_with(phi: DVec3, co: &HelixCoefficients) -> DMat3 {
     let s = skew(phi);
     DMat3::IDENTITY + s * co.b[0] + s * s * co.c[0]
 }
@@ -136,7 +137,7 @@ pub fn centreline_and_jacobian(sigma: f64, k: DVec3) -> (DVec3, DMat3) {
 
 /// ∂h(σ, k)/∂k = σ² ∂f/∂φ at φ = σk, with f(φ) = J_l(φ) e₀:
 /// ∂f/∂φ = B(−[e₀]×) + C(φe₀ᵀ + (φ·e₀)I − 2e₀φᵀ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ.
-fn centreline_jacobian_with(sigma: f64, phi: DVec3, co: &HelixCoefficients) -> DMat3 {
+pub fn centreline_jacobian_with(sigma: f64, phi: DVec3, co: &HelixCoefficients) -> DMat3 {
     let e0 = DVec3::X;
     let phi_x_e0 = phi.cross(e0);
     let phi_x_phi_x_e0 = phi.cross(phi_x_e0);

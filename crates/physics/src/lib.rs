@@ -36,6 +36,7 @@ pub mod collision;
 pub mod energy;
 pub mod engine;
 pub mod error;
+pub mod fit;
 pub mod forces;
 pub mod frame_balance;
 #[cfg(feature = "gpu")]

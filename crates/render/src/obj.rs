@@ -90,8 +90,25 @@ pub fn load_head_obj(path: &Path) -> Result<HeadMesh, ObjError> {
     parse_head_obj(&text, path)
 }
 
+/// Loads any closed mesh as a head: its `scalp` group if it has one, and
+/// every face as scalp otherwise (an imported groom brings its own roots,
+/// so it needs no scalp to grow on; `helixhair import --head`).
+pub fn load_mesh_obj(path: &Path) -> Result<HeadMesh, ObjError> {
+    let text = std::fs::read_to_string(path).map_err(|error| ObjError::Read {
+        path: path.to_owned(),
+        error,
+    })?;
+    parse_obj(&text, path, true)
+}
+
 /// Parses a head from OBJ text; `path` only names the file in errors.
 pub fn parse_head_obj(text: &str, path: &Path) -> Result<HeadMesh, ObjError> {
+    parse_obj(text, path, false)
+}
+
+/// Parses OBJ text; without a `scalp` group the mesh has no scalp, or,
+/// with `all_scalp_without_group`, every face is scalp.
+fn parse_obj(text: &str, path: &Path, all_scalp_without_group: bool) -> Result<HeadMesh, ObjError> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
@@ -141,6 +158,12 @@ pub fn parse_head_obj(text: &str, path: &Path) -> Result<HeadMesh, ObjError> {
     check_head(&head.mesh, path)?;
     if !every_face_has_normals {
         head.mesh.compute_normals();
+    }
+    // A mesh read for another use than a head (an imported groom's bust,
+    // `load_mesh_obj`) has every face as scalp; a head without a scalp
+    // group loads with none, and the caller refuses styles that need one.
+    if head.scalp_triangles.is_empty() && all_scalp_without_group {
+        head.scalp_triangles = (0..head.mesh.triangle_count() as u32).collect();
     }
     Ok(head)
 }

@@ -92,6 +92,7 @@ pub fn default_style(guides: usize) -> Style {
             roots: scalp_roots(&default_head(), guides.max(1)),
             scalp: None,
             render: None,
+            imported: None,
         }],
     }
 }

@@ -25,3 +25,4 @@ mod sdf_build;
 pub use contact::{ContactInputs, ContactSettings};
 pub use error::CollisionError;
 pub use sdf::SignedDistanceField;
+pub use sdf_build::closest_point_on_triangle;

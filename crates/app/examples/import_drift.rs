@@ -1,0 +1,59 @@
+//! Drift of an imported groom on a still head, and the physics cost per
+//! frame (docs/import.md, "Measured on Sintel"):
+//!
+//! `cargo run --release -p helixhair-app --example import_drift -- STYLE.ron HEAD.obj FRAMES`
+//!
+//! Builds the style's engine (the import writes `engine: Batch`), gives it
+//! the head as a collider, records every simulated strand's element
+//! boundary points, steps FRAMES frames of 1/60 s on a still head and
+//! prints the largest and median distance any point moved, and the median
+//! and 90th-percentile wall time of a frame.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use anyhow::Context as _;
+use helixhair_app::groom::head_collider;
+use helixhair_app::headless::{HeadlessSim, SimOverrides};
+use helixhair_app::style::Style;
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let [_, style, head, frames] = &args[..] else {
+        anyhow::bail!("usage: import_drift STYLE.ron HEAD.obj FRAMES");
+    };
+    let frames: usize = frames.parse().context("FRAMES must be a count")?;
+    let style = Style::load(Path::new(style))?;
+    let head = helixhair_render::obj::load_mesh_obj(Path::new(head))?;
+    let mut sim = HeadlessSim::new(&style, SimOverrides::default())?;
+    sim.engine_mut()
+        .set_collider(Some(Arc::new(head_collider(&head)?)));
+    let count = sim.engine().strand_count();
+    let start: Vec<_> = (0..count)
+        .map(|i| sim.engine().boundary_points_world(i))
+        .collect();
+    let mut secs = sim.run(frames)?;
+    let mut moved: Vec<f64> = (0..count)
+        .flat_map(|i| {
+            let now = sim.engine().boundary_points_world(i);
+            start[i]
+                .iter()
+                .zip(now)
+                .map(|(a, b)| (*a - b).length())
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    moved.sort_by(f64::total_cmp);
+    secs.sort_by(f64::total_cmp);
+    let pick = |v: &[f64], p: f64| v[((p * v.len() as f64) as usize).min(v.len() - 1)];
+    println!(
+        "{count} strands, {frames} frames: points moved median {:.3} mm, p95 {:.3} mm, max {:.3} mm; \
+         frame median {:.1} ms, p90 {:.1} ms",
+        1e3 * pick(&moved, 0.5),
+        1e3 * pick(&moved, 0.95),
+        1e3 * moved[moved.len() - 1],
+        1e3 * pick(&secs, 0.5),
+        1e3 * pick(&secs, 0.9),
+    );
+    Ok(())
+}

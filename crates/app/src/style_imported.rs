@@ -1,0 +1,186 @@
+//! Imported strands in a style: a group's strands fitted from a groom made
+//! elsewhere (`helixhair import`, docs/import.md).
+//!
+//! A procedural group shares one [`StrandParams`] among its strands: one
+//! length, one element count, one natural shape. An imported groom has
+//! none of that in common: each strand has its own length, its own number
+//! of elements (the fewest that reproduce it) and its own rest strains. So
+//! an `imported` section lists, per strand, its root (position, growth
+//! direction, frame reference: the [`Root`] of listed roots), its element
+//! length, the fitted strains it starts in (`strains`) and its natural
+//! strains (`natural`: sag-free, or the fitted ones with `--no-sag-free`).
+//! The group's `params` still give the material (radius, density, moduli,
+//! friction, drag); their `length_m`, `elements`, `layout` and
+//! `natural_shape` are replaced per strand ([`ImportedStrand::params`]).
+//!
+//! `guide: false` marks a strand that is not simulated (`--guides K`); a
+//! group whose strands are all guides simulates every one. Drawing the
+//! other strands following their nearest guides is not implemented yet:
+//! only guides are drawn.
+
+use glam::DVec3;
+use helixhair_physics::natural_shape::MAX_NATURAL_STRAIN_PER_M;
+use helixhair_physics::params::MAX_ELEMENTS;
+use helixhair_physics::{ElementLayout, NaturalShape, RootPose, StrandParams};
+use serde::{Deserialize, Serialize};
+
+use crate::field_path::FieldPath;
+use crate::style::Root;
+use crate::style_checks::invalid as issue;
+use crate::style_error::StyleIssue;
+
+/// Most imported strands one group may hold (a dense real groom has about
+/// 100,000 hairs; public grooms ship 10,000 to 50,000 guides).
+pub const MAX_IMPORTED_STRANDS: usize = 200_000;
+
+/// The strands of an imported groom.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImportedStrands {
+    /// The groom file it came from, relative to the style's folder (a
+    /// record: the strands below are complete without it).
+    pub source: String,
+    /// The head mesh the roots were attached to, relative to the style's
+    /// folder, if one was given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub head: Option<String>,
+    /// One entry per strand, in the groom's order.
+    pub strands: Vec<ImportedStrand>,
+}
+
+/// One fitted strand.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImportedStrand {
+    /// Root point, growth direction and frame reference (head coordinates).
+    pub root: Root,
+    /// Length of each of the strand's elements, metres.
+    pub element_length_m: f64,
+    /// Fitted strains (τ, κ₁, κ₂) per element, m⁻¹: the imported shape,
+    /// which the simulation starts in.
+    pub strains: Vec<DVec3>,
+    /// Natural strains per element, m⁻¹ (as many as `strains`).
+    pub natural: Vec<DVec3>,
+    /// Whether the strand is simulated (a guide). Default true.
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub guide: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
+}
+
+impl ImportedStrand {
+    /// The strand's physics: `material`'s fields with this strand's length,
+    /// elements and natural strains.
+    pub fn params(&self, material: &StrandParams) -> StrandParams {
+        StrandParams {
+            length_m: self.element_length_m * self.strains.len() as f64,
+            elements: self.strains.len(),
+            layout: ElementLayout::Uniform,
+            natural_shape: NaturalShape::PerElement(
+                self.natural.iter().map(|k| k.to_array()).collect(),
+            ),
+            ..material.clone()
+        }
+    }
+
+    /// The strand's root frame.
+    pub fn pose(&self) -> RootPose {
+        self.root.pose()
+    }
+}
+
+impl ImportedStrands {
+    /// The strands that are simulated, in order.
+    pub fn guides(&self) -> impl Iterator<Item = &ImportedStrand> {
+        self.strands.iter().filter(|s| s.guide)
+    }
+
+    /// Checks every strand; issues name `at.strands[i].field`.
+    pub fn validate(&self, material: &StrandParams, at: &FieldPath) -> Result<(), StyleIssue> {
+        let strands = at.field("strands");
+        if self.strands.is_empty() || self.strands.len() > MAX_IMPORTED_STRANDS {
+            return Err(issue(
+                strands,
+                format!(
+                    "must list 1 to {MAX_IMPORTED_STRANDS} strands, not {}",
+                    self.strands.len()
+                ),
+            ));
+        }
+        if self.guides().next().is_none() {
+            return Err(issue(
+                strands,
+                "needs at least one strand with `guide: true`",
+            ));
+        }
+        for (i, strand) in self.strands.iter().enumerate() {
+            let at = strands.index(i);
+            let n = strand.strains.len();
+            if n == 0 || n > MAX_ELEMENTS {
+                return Err(issue(
+                    at.field("strains"),
+                    format!("must list 1 to {MAX_ELEMENTS} elements, not {n}"),
+                ));
+            }
+            if strand.natural.len() != n {
+                return Err(issue(
+                    at.field("natural"),
+                    format!(
+                        "lists {} elements but `strains` lists {n}",
+                        strand.natural.len()
+                    ),
+                ));
+            }
+            let length = strand.element_length_m * n as f64;
+            if !(strand.element_length_m.is_finite() && length > 0.0 && length <= 2.0) {
+                return Err(issue(
+                    at.field("element_length_m"),
+                    format!(
+                        "times the element count must give a length in (0, 2] m; found {}",
+                        strand.element_length_m
+                    ),
+                ));
+            }
+            for (field, list) in [("strains", &strand.strains), ("natural", &strand.natural)] {
+                if let Some(e) = list.iter().position(|k| {
+                    !k.is_finite() || k.abs().max_element() > MAX_NATURAL_STRAIN_PER_M
+                }) {
+                    return Err(issue(
+                        at.field(field).index(e),
+                        format!("must be finite and within ±{MAX_NATURAL_STRAIN_PER_M} m⁻¹"),
+                    ));
+                }
+            }
+            let root = &strand.root;
+            if !(root.position_m.is_finite()
+                && root.position_m.abs().max_element()
+                    <= crate::style_validate::MAX_ROOT_COORDINATE_M)
+            {
+                return Err(issue(
+                    at.field("root").field("position_m"),
+                    "must be finite and within 10 m",
+                ));
+            }
+            if !root.direction.is_finite()
+                || root.direction.length() < 1e-9
+                || !root.reference.is_finite()
+            {
+                return Err(issue(
+                    at.field("root").field("direction"),
+                    "must be finite and non-zero",
+                ));
+            }
+            strand
+                .params(material)
+                .validate()
+                .map_err(|e| crate::style_validate::param_issue(&at, &e))?;
+        }
+        Ok(())
+    }
+}

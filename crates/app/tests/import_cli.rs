@@ -1,0 +1,178 @@
+//! `helixhair import` end to end: grooms written by the test (clean and
+//! hostile) through the binary; the style it writes runs with `sim` and
+//! survives a save and load.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use helixhair_app::style::Style;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("helixhair-import-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn helixhair(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_helixhair"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// A TressFX 4 file: `strands` strands of `points` points, each an arc
+/// hanging from y = 0.1 (metres).
+fn tfx(strands: u32, points: u32, declared_strands: u32) -> Vec<u8> {
+    let mut b = Vec::new();
+    b.extend_from_slice(&4.0f32.to_le_bytes());
+    b.extend_from_slice(&declared_strands.to_le_bytes());
+    b.extend_from_slice(&points.to_le_bytes());
+    b.extend_from_slice(&160u32.to_le_bytes());
+    for _ in 0..4 + 32 {
+        b.extend_from_slice(&0u32.to_le_bytes());
+    }
+    for s in 0..strands {
+        for p in 0..points {
+            let t = p as f32 / (points - 1) as f32;
+            let x = 0.01 * s as f32 + 0.1 * (t * 1.2).sin();
+            let y = 0.1 - 0.1 * (1.0 - (t * 1.2).cos());
+            for v in [x, y, 0.0, if p == 0 { 0.0 } else { 1.0 }] {
+                b.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+    }
+    b
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).expect("write groom");
+    path.display().to_string()
+}
+
+#[test]
+fn an_obj_groom_imports_reports_and_simulates() {
+    let dir = scratch("obj");
+    // Two clean arcs and two degenerate strands: one point only, and a NaN.
+    let mut obj = String::new();
+    let mut v = 0;
+    for s in 0..2 {
+        let first = v + 1;
+        for p in 0..8 {
+            let t = p as f64 / 7.0;
+            obj += &format!(
+                "v {} {} 0\n",
+                0.02 * s as f64 + 0.1 * t.sin(),
+                0.1 * t.cos()
+            );
+            v += 1;
+        }
+        let list: Vec<String> = (first..=v).map(|i| i.to_string()).collect();
+        obj += &format!("l {}\n", list.join(" "));
+    }
+    obj += "v 0 0 0\nv nan 0 0\nv 0 1 0\n";
+    obj += &format!("l {} {}\n", v + 1, v + 2);
+    obj += &format!("l {}\n", v + 3);
+    let groom = write(&dir, "groom.obj", obj.as_bytes());
+    let style = dir.join("style.ron").display().to_string();
+    let report = dir.join("report.json").display().to_string();
+    let out = helixhair(&["import", &groom, "--out", &style, "--json", &report]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).expect("report")).expect("JSON");
+    assert_eq!(json["strands_imported"], 2, "{json}");
+    assert!(json["strands_read"].as_u64().expect("count") >= 3, "{json}");
+    assert!(
+        json["skipped"].as_object().expect("map").values().count() >= 1,
+        "{json}"
+    );
+    let max = json["fit_error_over_length"]["max"].as_f64().expect("max");
+    assert!(max <= 0.005, "{json}");
+    assert!(json["sag_free"]["held"].as_u64().is_some(), "{json}");
+
+    // The style loads, saves and loads back the same, and `sim` runs it.
+    let loaded = Style::load(Path::new(&style)).expect("the written style loads");
+    let again = dir.join("again.ron");
+    loaded.save(&again).expect("saves");
+    assert_eq!(Style::load(&again).expect("reloads"), loaded);
+    let imported = loaded.groups[0].imported.as_ref().expect("imported group");
+    assert_eq!(imported.source, "groom.obj");
+    let out = helixhair(&["sim", "--style", &style, "--steps", "3"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+}
+
+#[test]
+fn guides_are_a_subset_and_the_rest_follow() {
+    let dir = scratch("guides");
+    let groom = write(&dir, "g.tfx", &tfx(6, 8, 6));
+    let style = dir.join("s.ron").display().to_string();
+    let out = helixhair(&[
+        "import",
+        &groom,
+        "--guides",
+        "2",
+        "--no-sag-free",
+        "--out",
+        &style,
+        "--json",
+        "-",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON on stdout");
+    assert_eq!(
+        (json["guides"].as_u64(), json["strands_imported"].as_u64()),
+        (Some(2), Some(6))
+    );
+    assert!(json["sag_free"].is_null());
+    let loaded = Style::load(Path::new(&style)).expect("loads");
+    let imported = loaded.groups[0].imported.as_ref().expect("imported");
+    // Farthest-point sampling: the first strand and the one farthest from it.
+    let guides: Vec<usize> = (0..6).filter(|&i| imported.strands[i].guide).collect();
+    assert_eq!(guides, vec![0, 5]);
+    assert!(imported.strands.iter().all(|s| s.natural == s.strains));
+}
+
+/// Each hostile groom must fail with exit code 1 and a message naming the
+/// file and what is wrong.
+#[test]
+fn malformed_grooms_are_clear_errors_with_exit_code_1() {
+    let dir = scratch("bad");
+    let good = tfx(3, 8, 3);
+    let mut wrong_magic = good.clone();
+    wrong_magic[..4].copy_from_slice(&7.5f32.to_le_bytes());
+    let mut nan = tfx(2, 8, 2);
+    for s in 0..2 {
+        let at = 160 + s * 8 * 16 + 16;
+        nan[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    }
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "truncated.tfx",
+            good[..good.len() - 40].to_vec(),
+            "not a valid groom",
+        ),
+        ("header.tfx", good[..20].to_vec(), "not a valid groom"),
+        ("magic.tfx", wrong_magic, "not a valid groom"),
+        ("counts.tfx", tfx(3, 8, 5), "not a valid groom"),
+        ("absurd.tfx", tfx(1, 8, u32::MAX), "not a valid groom"),
+        ("nan.tfx", nan, "no strand could be imported"),
+        ("groom.xyz", good.clone(), "unknown groom format"),
+        ("bad.hair", b"HAIRxx".to_vec(), "not a valid groom"),
+    ];
+    for (name, bytes, expect) in cases {
+        let groom = write(&dir, name, &bytes);
+        let style = dir.join(format!("{name}.ron"));
+        let out = helixhair(&["import", &groom, "--out", &style.display().to_string()]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+        assert!(err.contains(name) && err.contains(expect), "{name}: {err}");
+        assert!(!style.exists(), "{name}: no style may be written");
+    }
+    let missing = helixhair(&["import", "no/such/groom.tfx", "--out", "x.ron"]);
+    assert_eq!(missing.status.code(), Some(1));
+    assert!(text(&missing.stderr).contains("no/such/groom.tfx"));
+}

@@ -1,0 +1,306 @@
+//! Fitting polylines with Super-Helices and the sag-free rest shape,
+//! against known answers (docs/import.md): curves sampled from a chain of
+//! helices by the physics' own reconstruction are fitted back to their
+//! strains and element count; the equilibrium of a heavy straight strand,
+//! computed by the dynamics, imported sag-free gives straight natural
+//! strains and stays put; Greenhill's self-weight column decides which
+//! upright strands the stability check flags.
+
+mod common;
+
+use std::sync::Arc;
+
+use common::*;
+use glam::{DMat3, DVec3};
+use helixhair_physics::fit::{
+    FitError, FitOptions, SagFreeInputs, SagFreeStatus, fit_polyline, sag_free,
+};
+use helixhair_physics::{
+    Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
+};
+
+/// The bar for strains recovered from an exact Super-Helix curve.
+const STRAIN_RECOVERY_TOL: f64 = 1e-6;
+/// A tolerance no chain with fewer elements than the truth can meet, while
+/// the true N fits to round-off (~1e-15 of the length).
+const EXACT_FIT_TOL: f64 = 1e-9;
+
+/// The polyline the physics draws for strains `q`: the root, then per
+/// element its 4 Gauss samples and its end point (world coordinates).
+fn sampled_polyline(model: &StrandModel, q: &[DVec3], root: &RigidMotion) -> Vec<DVec3> {
+    let kin = kinematics(model, q, &vec![DVec3::ZERO; q.len()], root);
+    let points = model.quadrature.len();
+    let mut out = vec![root.position_m + kin.points_m[0]];
+    for e in 0..model.elements() {
+        for s in &kin.samples[e * points..(e + 1) * points] {
+            out.push(root.position_m + s.position_m);
+        }
+        out.push(root.position_m + kin.points_m[e + 1]);
+    }
+    out
+}
+
+fn relative_strain_error(got: &[DVec3], want: &[DVec3]) -> f64 {
+    let scale = want
+        .iter()
+        .map(|k| k.abs().max_element())
+        .fold(0.0, f64::max);
+    max_diff(got, want) / scale
+}
+
+#[test]
+fn a_sampled_super_helix_is_fitted_back_to_its_strains_and_element_count() {
+    let mut rng = Rng::new(11);
+    for (case, n) in [2usize, 3, 5, 8].into_iter().enumerate() {
+        let p = params(0.15 + 0.05 * case as f64, n);
+        let model = model(&p, 4);
+        let q = random_strains(&mut rng, n, 40.0);
+        let direction = rng.vec3(1.0).normalize();
+        let reference = rng.vec3(1.0);
+        let pose = RootPose::from_direction(rng.vec3(0.1), direction, reference);
+        let root = RigidMotion::at_rest(pose.position_m, pose.head_from_root);
+        let polyline = sampled_polyline(&model, &q, &root);
+        let options = FitOptions {
+            tolerance_over_length: EXACT_FIT_TOL,
+            max_elements: 20,
+        };
+        let fit = fit_polyline(&polyline, reference, &options).expect("a clean polyline");
+        assert_eq!(fit.chain.elements(), n, "case {case}: wrong N");
+        assert!(
+            fit.within_tolerance,
+            "case {case}: {}",
+            fit.error_over_length
+        );
+        let err = relative_strain_error(&fit.chain.strains_per_m, &q);
+        assert!(
+            err < STRAIN_RECOVERY_TOL,
+            "case {case} (N = {n}): strains off by {err}"
+        );
+        let length = fit.chain.length_m();
+        assert!(
+            (length - p.length_m).abs() < STRAIN_RECOVERY_TOL * p.length_m,
+            "case {case}: length {length} vs {}",
+            p.length_m
+        );
+        assert!(
+            fit.chain
+                .root_frame
+                .abs_diff_eq(pose.head_from_root, STRAIN_RECOVERY_TOL),
+            "case {case}: root frame"
+        );
+        assert!((fit.root_m - pose.position_m).length() < 1e-15);
+    }
+}
+
+#[test]
+fn the_default_tolerance_picks_fewer_elements_within_half_a_percent() {
+    // A gentle arc sampled finely: one element reproduces a circular arc
+    // exactly, so the default tolerance must stop at N = 1.
+    let radius = 0.1;
+    let arc: Vec<DVec3> = (0..=30)
+        .map(|i| {
+            let t = i as f64 / 30.0 * 1.5;
+            DVec3::new(radius * t.sin(), radius * (1.0 - t.cos()), 0.0)
+        })
+        .collect();
+    let fit = fit_polyline(&arc, DVec3::Z, &FitOptions::default()).expect("clean");
+    assert_eq!(fit.chain.elements(), 1);
+    assert!(
+        fit.error_over_length <= 0.1 * 0.005,
+        "{}",
+        fit.error_over_length
+    );
+    // Refined to convergence, the fit finds the arc itself (the polyline's
+    // chords are shorter than the arc).
+    let exact = FitOptions {
+        tolerance_over_length: EXACT_FIT_TOL,
+        max_elements: 20,
+    };
+    let fit = fit_polyline(&arc, DVec3::Z, &exact).expect("clean");
+    assert_eq!(fit.chain.elements(), 1);
+    assert!(
+        fit.error_over_length < EXACT_FIT_TOL,
+        "{}",
+        fit.error_over_length
+    );
+    assert!((fit.chain.length_m() - radius * 1.5).abs() < 1e-9);
+    let kappa = fit.chain.strains_per_m[0];
+    assert!((kappa.length() - 1.0 / radius).abs() < 1e-6, "{kappa}");
+}
+
+#[test]
+fn degenerate_polylines_are_refused_with_a_reason() {
+    let o = FitOptions::default();
+    assert_eq!(
+        fit_polyline(&[DVec3::ZERO], DVec3::Y, &o),
+        Err(FitError::TooFewPoints(1))
+    );
+    let nan = [DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 0.0)];
+    assert_eq!(
+        fit_polyline(&nan, DVec3::Y, &o),
+        Err(FitError::NotFinite(1))
+    );
+    let repeated = [DVec3::ZERO, DVec3::X, DVec3::X];
+    assert_eq!(
+        fit_polyline(&repeated, DVec3::Y, &o),
+        Err(FitError::RepeatedPoint(1))
+    );
+}
+
+/// Strains recovered from a settled strand, relative: the fit's accuracy.
+const EQUILIBRIUM_FIT_TOL: f64 = 1e-6;
+/// Natural strains of the sag-free import, relative to the shape's strains:
+/// the fit's accuracy plus how far the settled state is from exact rest.
+const SAG_FREE_STRAIGHT_TOL: f64 = 1e-5;
+/// Largest movement of any boundary point over 10 s from the imported
+/// shape, metres (1 µm: the settled state's own residual motion).
+const STAYS_PUT_M: f64 = 1e-6;
+
+#[test]
+fn a_heavy_straight_strand_at_equilibrium_imports_straight_and_stays_put() {
+    // α = ρS g L³/EI = 20: the tip hangs 0.83 L below the root.
+    let (p, g) = elastica(20.0, 10);
+    let mut s = strand(&p, Method::Dense);
+    let root = at_rest(DMat3::IDENTITY);
+    settle(&mut s, &root, g, 0.01, 1e-10, 20_000);
+    let settled = s.q().to_vec();
+    let model = s.model().clone();
+    let polyline = sampled_polyline(&model, &settled, &root);
+
+    let options = FitOptions {
+        tolerance_over_length: EXACT_FIT_TOL,
+        max_elements: 20,
+    };
+    let fit = fit_polyline(&polyline, DVec3::Y, &options).expect("clean");
+    assert_eq!(fit.chain.elements(), 10);
+    let err = relative_strain_error(&fit.chain.strains_per_m, &settled);
+    assert!(err < EQUILIBRIUM_FIT_TOL, "fit off by {err}");
+
+    let fitted_root = RigidMotion::at_rest(fit.root_m, fit.chain.root_frame);
+    let inputs = SagFreeInputs {
+        root: &fitted_root,
+        gravity_m_per_s2: g,
+        support: None,
+    };
+    let rest = sag_free(&model, &fit.chain.strains_per_m, &inputs);
+    assert_eq!(rest.status, SagFreeStatus::Held);
+    let scale = settled
+        .iter()
+        .map(|k| k.abs().max_element())
+        .fold(0.0, f64::max);
+    let bent = rest
+        .natural_per_m
+        .iter()
+        .map(|k| k.abs().max_element())
+        .fold(0.0, f64::max);
+    assert!(
+        bent < SAG_FREE_STRAIGHT_TOL * scale,
+        "natural strains {bent} vs shape {scale}"
+    );
+
+    // Simulate the import: natural shape q⁰, starting at the fitted shape.
+    let drift = drift_over(
+        &p,
+        &rest.natural_per_m,
+        &fit.chain.strains_per_m,
+        &fitted_root,
+        g,
+    );
+    assert!(drift < STAYS_PUT_M, "sag-free strand moved {drift} m");
+    // Without sag-free the fitted shape is the rest shape and it sags again.
+    let sagged = drift_over(
+        &p,
+        &fit.chain.strains_per_m,
+        &fit.chain.strains_per_m,
+        &fitted_root,
+        g,
+    );
+    assert!(sagged > 0.01, "the control should sag, moved {sagged} m");
+}
+
+/// Largest boundary-point movement over 10 s at 60 Hz of a strand with
+/// natural strains `natural`, started at rest in shape `start`.
+fn drift_over(
+    p: &StrandParams,
+    natural: &[DVec3],
+    start: &[DVec3],
+    root: &RigidMotion,
+    g: DVec3,
+) -> f64 {
+    let mut p = p.clone();
+    p.natural_shape = NaturalShape::PerElement(natural.iter().map(|k| k.to_array()).collect());
+    let model = Arc::new(model(&p, 4));
+    let pose = RootPose {
+        position_m: DVec3::ZERO,
+        head_from_root: root.world_from_body,
+    };
+    let mut s = Strand::new(model, pose, Method::Exact);
+    s.set_state(start, &vec![DVec3::ZERO; start.len()]);
+    let motion = RigidMotion::at_rest(DVec3::ZERO, DMat3::IDENTITY);
+    let before = s.boundary_points_world(&motion);
+    let mut worst: f64 = 0.0;
+    for _ in 0..600 {
+        s.step(&motion, g, DVec3::ZERO, 1.0 / 60.0);
+        let now = s.boundary_points_world(&motion);
+        for (a, b) in now.iter().zip(&before) {
+            worst = worst.max((*a - *b).length());
+        }
+    }
+    worst
+}
+
+#[test]
+fn upright_strands_are_flagged_unstable_past_greenhills_column() {
+    // A vertical strand under its own weight buckles at ρS g L³/EI = 7.8373
+    // (7.8616 with N = 10 elements, docs/physics.md section 7). Straight
+    // and upright, it needs no natural curvature: only the stability check
+    // tells the two apart.
+    let up = RigidMotion::at_rest(DVec3::ZERO, DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X));
+    for (alpha, status) in [(7.5, SagFreeStatus::Held), (8.2, SagFreeStatus::Unstable)] {
+        let (p, g) = elastica(alpha, 10);
+        let model = model(&p, 4);
+        let q = vec![DVec3::ZERO; 10];
+        let inputs = SagFreeInputs {
+            root: &up,
+            gravity_m_per_s2: g,
+            support: None,
+        };
+        let rest = sag_free(&model, &q, &inputs);
+        assert_eq!(
+            rest.status, status,
+            "α = {alpha}: stability {}",
+            rest.stability
+        );
+        assert!(
+            rest.natural_per_m
+                .iter()
+                .all(|k| k.abs().max_element() < 1e-12)
+        );
+    }
+}
+
+#[test]
+fn absurd_rest_curvature_is_clamped_and_reported() {
+    // A 1 m strand of thin hair held out horizontally would need a rest
+    // curvature of ρS g L²/(2EI) ≈ 2000 m⁻¹ at the root.
+    let mut p = params(1.0, 10);
+    p.radius_m = 20e-6;
+    let model = model(&p, 4);
+    let q = vec![DVec3::ZERO; 10];
+    let root = at_rest(DMat3::IDENTITY);
+    let inputs = SagFreeInputs {
+        root: &root,
+        gravity_m_per_s2: DVec3::new(0.0, -9.81, 0.0),
+        support: None,
+    };
+    let rest = sag_free(&model, &q, &inputs);
+    // So far beyond its stiffness (α ≈ 3e4) the strand is also unstable,
+    // which takes precedence in the status; the clamp happens either way.
+    assert_ne!(rest.status, SagFreeStatus::Held);
+    assert!(rest.max_strain_per_m > 1000.0, "{}", rest.max_strain_per_m);
+    assert!(
+        rest.natural_per_m
+            .iter()
+            .all(|k| k.abs().max_element() <= 1000.0)
+    );
+}
