@@ -18,7 +18,7 @@ use std::path::PathBuf;
 use anyhow::Context as _;
 use glam::Vec3;
 use helixhair_app::camera_arg::CameraArg;
-use helixhair_app::render_cmd::write_png;
+use helixhair_app::render_cmd::write_picture;
 use helixhair_formats::{CurveSet, Format, ReadOptions, StrandValue, read};
 use helixhair_render::head_generate::default_head;
 use helixhair_render::{
@@ -123,7 +123,7 @@ fn main() -> anyhow::Result<()> {
         height_px: HEIGHT,
         rgba,
     };
-    write_png(&output, &picture)?;
+    write_picture(&output, &picture)?;
     println!(
         "{}: {} strands, {} time samples; wrote {}",
         input.display(),
