@@ -75,6 +75,8 @@ pub mod style_error;
 pub mod style_groom;
 pub mod style_groom_validate;
 pub mod style_imported;
+pub mod style_imported_validate;
+pub mod style_root;
 pub mod style_validate;
 #[cfg(feature = "window")]
 pub mod window;

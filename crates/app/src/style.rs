@@ -15,7 +15,6 @@
 
 use std::path::Path;
 
-use glam::DVec3;
 use helixhair_physics::engine::EngineKind;
 use helixhair_physics::{RootPose, SimSettings, StrandParams};
 use serde::{Deserialize, Serialize};
@@ -26,14 +25,11 @@ use crate::source_map::{SourceMap, TextPosition};
 use crate::style_error::{StyleError, StyleErrorKind, StyleIssue};
 use crate::style_groom::{RenderStrands, ScalpPlacement};
 use crate::style_imported::ImportedStrands;
+pub use crate::style_root::{DEFAULT_REFERENCE, Root};
 
 /// The style format version this build reads and writes. Files with any
 /// other version are refused (see "Version policy" in the format docs).
 pub const STYLE_VERSION: u32 = 1;
-
-/// The reference direction of a root when the file gives none: +z, the
-/// direction the face looks in head coordinates.
-pub const DEFAULT_REFERENCE: DVec3 = DVec3::Z;
 
 /// A hair style: simulation settings and groups of strands.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -101,53 +97,6 @@ pub struct StrandGroup {
         with = "crate::style_groom::inline_option"
     )]
     pub imported: Option<ImportedStrands>,
-}
-
-/// Where a strand grows from, in head coordinates (metres, y up, z towards
-/// the face; the head sits at the origin).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Root {
-    /// Root point in metres.
-    pub position_m: DVec3,
-    /// Growth direction at the root: the strand's first tangent. Any
-    /// non-zero length; it is normalised.
-    pub direction: DVec3,
-    /// Sets the strand's material frame: its first material axis n₁ is the
-    /// part of `reference` orthogonal to `direction` (any orthogonal axis
-    /// when they are parallel). The natural curvature κ₁ bends the strand
-    /// about n₁, so this turns the plane in which a curl starts. Default
-    /// [`DEFAULT_REFERENCE`].
-    #[serde(
-        default = "default_reference",
-        skip_serializing_if = "is_default_reference"
-    )]
-    pub reference: DVec3,
-}
-
-fn default_reference() -> DVec3 {
-    DEFAULT_REFERENCE
-}
-
-fn is_default_reference(reference: &DVec3) -> bool {
-    *reference == DEFAULT_REFERENCE
-}
-
-impl Root {
-    /// A root with the default reference direction.
-    pub fn new(position_m: DVec3, direction: DVec3) -> Self {
-        Self {
-            position_m,
-            direction,
-            reference: DEFAULT_REFERENCE,
-        }
-    }
-
-    /// The physics root frame; the direction must be non-zero (as
-    /// [`Style::validate`] checks).
-    pub fn pose(&self) -> RootPose {
-        RootPose::from_direction(self.position_m, self.direction, self.reference)
-    }
 }
 
 /// What the version probe reads: only the version, ignoring every other

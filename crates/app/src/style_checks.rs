@@ -4,6 +4,7 @@
 //! raise. Kept apart so that neither checker depends on the other for them.
 
 use glam::DVec3;
+use helixhair_physics::ParamError;
 
 use crate::field_path::FieldPath;
 use crate::style_error::{StyleErrorKind, StyleIssue};
@@ -41,4 +42,16 @@ pub fn issue(field: FieldPath, kind: StyleErrorKind, message: String) -> StyleIs
 /// An [`StyleErrorKind::InvalidValue`] issue at `field`.
 pub fn invalid(field: FieldPath, message: impl Into<String>) -> StyleIssue {
     issue(field, StyleErrorKind::InvalidValue, message.into())
+}
+
+/// Largest distance of a root coordinate from the head's origin, metres:
+/// a head is a tenth of that, so anything beyond is a typo.
+pub const MAX_ROOT_COORDINATE_M: f64 = 10.0;
+
+/// A physics parameter error, its field placed under `prefix`.
+pub fn param_issue(prefix: &FieldPath, error: &ParamError) -> StyleIssue {
+    invalid(
+        prefix.join(&FieldPath::parse(&error.field)),
+        format!("{}; found {}", error.reason, error.value),
+    )
 }

@@ -19,15 +19,10 @@
 //! only guides are drawn.
 
 use glam::DVec3;
-use helixhair_physics::natural_shape::MAX_NATURAL_STRAIN_PER_M;
-use helixhair_physics::params::MAX_ELEMENTS;
 use helixhair_physics::{ElementLayout, NaturalShape, RootPose, StrandParams};
 use serde::{Deserialize, Serialize};
 
-use crate::field_path::FieldPath;
-use crate::style::Root;
-use crate::style_checks::invalid as issue;
-use crate::style_error::StyleIssue;
+use crate::style_root::Root;
 
 /// Most imported strands one group may hold (a dense real groom has about
 /// 100,000 hairs; public grooms ship 10,000 to 50,000 guides).
@@ -99,88 +94,5 @@ impl ImportedStrands {
     /// The strands that are simulated, in order.
     pub fn guides(&self) -> impl Iterator<Item = &ImportedStrand> {
         self.strands.iter().filter(|s| s.guide)
-    }
-
-    /// Checks every strand; issues name `at.strands[i].field`.
-    pub fn validate(&self, material: &StrandParams, at: &FieldPath) -> Result<(), StyleIssue> {
-        let strands = at.field("strands");
-        if self.strands.is_empty() || self.strands.len() > MAX_IMPORTED_STRANDS {
-            return Err(issue(
-                strands,
-                format!(
-                    "must list 1 to {MAX_IMPORTED_STRANDS} strands, not {}",
-                    self.strands.len()
-                ),
-            ));
-        }
-        if self.guides().next().is_none() {
-            return Err(issue(
-                strands,
-                "needs at least one strand with `guide: true`",
-            ));
-        }
-        for (i, strand) in self.strands.iter().enumerate() {
-            let at = strands.index(i);
-            let n = strand.strains.len();
-            if n == 0 || n > MAX_ELEMENTS {
-                return Err(issue(
-                    at.field("strains"),
-                    format!("must list 1 to {MAX_ELEMENTS} elements, not {n}"),
-                ));
-            }
-            if strand.natural.len() != n {
-                return Err(issue(
-                    at.field("natural"),
-                    format!(
-                        "lists {} elements but `strains` lists {n}",
-                        strand.natural.len()
-                    ),
-                ));
-            }
-            let length = strand.element_length_m * n as f64;
-            if !(strand.element_length_m.is_finite() && length > 0.0 && length <= 2.0) {
-                return Err(issue(
-                    at.field("element_length_m"),
-                    format!(
-                        "times the element count must give a length in (0, 2] m; found {}",
-                        strand.element_length_m
-                    ),
-                ));
-            }
-            for (field, list) in [("strains", &strand.strains), ("natural", &strand.natural)] {
-                if let Some(e) = list.iter().position(|k| {
-                    !k.is_finite() || k.abs().max_element() > MAX_NATURAL_STRAIN_PER_M
-                }) {
-                    return Err(issue(
-                        at.field(field).index(e),
-                        format!("must be finite and within ±{MAX_NATURAL_STRAIN_PER_M} m⁻¹"),
-                    ));
-                }
-            }
-            let root = &strand.root;
-            if !(root.position_m.is_finite()
-                && root.position_m.abs().max_element()
-                    <= crate::style_validate::MAX_ROOT_COORDINATE_M)
-            {
-                return Err(issue(
-                    at.field("root").field("position_m"),
-                    "must be finite and within 10 m",
-                ));
-            }
-            if !root.direction.is_finite()
-                || root.direction.length() < 1e-9
-                || !root.reference.is_finite()
-            {
-                return Err(issue(
-                    at.field("root").field("direction"),
-                    "must be finite and non-zero",
-                ));
-            }
-            strand
-                .params(material)
-                .validate()
-                .map_err(|e| crate::style_validate::param_issue(&at, &e))?;
-        }
-        Ok(())
     }
 }

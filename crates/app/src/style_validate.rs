@@ -11,13 +11,11 @@ use helixhair_physics::engine::EngineKind;
 
 use crate::field_path::FieldPath;
 use crate::style::{Root, Style, check_version};
+pub use crate::style_checks::{MAX_ROOT_COORDINATE_M, param_issue};
 use crate::style_checks::{check_finite, invalid};
 use crate::style_error::StyleIssue;
 use crate::style_groom_validate::{validate_render, validate_scalp};
-
-/// Largest distance of a root coordinate from the head's origin, metres:
-/// a head is a tenth of that, so anything beyond is a typo.
-pub const MAX_ROOT_COORDINATE_M: f64 = 10.0;
+use crate::style_imported_validate::validate_imported;
 
 /// Shortest accepted root direction (it is normalised, so any unit works;
 /// only a zero or vanishing vector has no direction).
@@ -61,7 +59,7 @@ impl Style {
                 validate_render(render, &at.field("render"))?;
             }
             if let Some(imported) = &group.imported {
-                imported.validate(&group.params, &at.field("imported"))?;
+                validate_imported(imported, &group.params, &at.field("imported"))?;
             }
             for (j, root) in group.roots.iter().enumerate() {
                 validate_root(root, &roots.index(j))?;
@@ -119,14 +117,6 @@ fn validate_root(root: &Root, at: &FieldPath) -> Result<(), StyleIssue> {
 
 fn format_vec(v: DVec3) -> String {
     format!("({}, {}, {})", v.x, v.y, v.z)
-}
-
-/// A physics parameter error, its field placed under `prefix`.
-pub(crate) fn param_issue(prefix: &FieldPath, error: &ParamError) -> StyleIssue {
-    invalid(
-        prefix.join(&FieldPath::parse(&error.field)),
-        format!("{}; found {}", error.reason, error.value),
-    )
 }
 
 /// Allowed accuracy targets (fraction of strand length): below 1e-4 no
