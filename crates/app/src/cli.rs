@@ -4,7 +4,7 @@
 //! work, writing to the streams it is given so that tests can drive it.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
@@ -12,13 +12,13 @@ use helixhair_physics::engine::EngineKind;
 use helixhair_physics::settings::MAX_ITERATIONS;
 use helixhair_physics::{Method, StepScheme};
 
-use crate::atomic_write::write_atomically;
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
 use crate::export_cmd::{SimExport, SimExportArgs, run_export};
 use crate::head_clip::Clip;
 use crate::head_playback::{Playback, parse_play};
 use crate::headless::{HeadlessSim, SimOverrides};
+use crate::json_report::{summary_stream, write_json_report};
 use crate::sim_report::{SimReport, refuse_lost_strands};
 use crate::style::Style;
 #[cfg(feature = "window")]
@@ -236,40 +236,15 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     };
     let report = SimReport::new(&style_path, &style.name, &sim, per_step_secs);
 
-    let json_to_stdout = args.json.as_deref() == Some(Path::new("-"));
-    let summary_out: &mut dyn Write = if json_to_stdout {
-        &mut *stderr
-    } else {
-        &mut *stdout
-    };
+    let summary_out = summary_stream(args.json.as_deref(), stdout, stderr);
     summary_out.write_all(report.summary().as_bytes())?;
     if let Some(outcome) = &exported {
         writeln!(summary_out, "  {}", outcome.summary())?;
     }
-    let Some(json_path) = &args.json else {
-        return refuse_lost_strands(sim.strands_lost(), args.accept_resets);
-    };
-    let mut json =
-        serde_json::to_string_pretty(&report).context("cannot encode the JSON report")?;
-    json.push('\n');
-    if json_to_stdout {
-        stdout.write_all(json.as_bytes())?;
-    } else {
-        write_json(json_path, &json)
-            .with_context(|| format!("cannot write the JSON report to {}", json_path.display()))?;
-        writeln!(summary_out, "  wrote {}", json_path.display())?;
+    if let Some(json_path) = &args.json {
+        write_json_report(&report, json_path, stdout)?;
     }
     refuse_lost_strands(sim.strands_lost(), args.accept_resets)
-}
-
-/// Writes the report atomically, creating the folder it goes in.
-fn write_json(path: &Path, json: &str) -> std::io::Result<()> {
-    if let Some(dir) = path.parent()
-        && !dir.as_os_str().is_empty()
-    {
-        std::fs::create_dir_all(dir)?;
-    }
-    write_atomically(path, json.as_bytes())
 }
 
 #[cfg(test)]

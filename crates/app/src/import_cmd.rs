@@ -29,6 +29,7 @@ use crate::groom::head_collider;
 use crate::import_fit::{FitJob, FitOutcome, FitSettings, fit_all};
 use crate::import_report::ImportReport;
 use crate::import_roots::{attach, farthest_point_guides};
+use crate::json_report::{summary_stream, write_json_report};
 use crate::style::{DEFAULT_REFERENCE, STYLE_VERSION, StrandGroup, Style};
 use crate::style_imported::ImportedStrands;
 
@@ -220,27 +221,10 @@ pub fn run_import(
     report.timings.total_secs = started.elapsed().as_secs_f64();
     report.style = args.out.display().to_string();
 
-    let json_to_stdout = args.json.as_deref() == Some(Path::new("-"));
-    let summary_out: &mut dyn Write = if json_to_stdout {
-        &mut *stderr
-    } else {
-        &mut *stdout
-    };
+    let summary_out = summary_stream(args.json.as_deref(), stdout, stderr);
     summary_out.write_all(report.summary().as_bytes())?;
     if let Some(path) = &args.json {
-        let mut json =
-            serde_json::to_string_pretty(&report).context("cannot encode the JSON report")?;
-        json.push('\n');
-        if json_to_stdout {
-            stdout.write_all(json.as_bytes())?;
-        } else {
-            if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-                std::fs::create_dir_all(dir)?;
-            }
-            crate::atomic_write::write_atomically(path, json.as_bytes())
-                .with_context(|| format!("cannot write the JSON report to {}", path.display()))?;
-            writeln!(summary_out, "  wrote {}", path.display())?;
-        }
+        write_json_report(&report, path, stdout)?;
     }
     Ok(())
 }

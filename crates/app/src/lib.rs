@@ -63,6 +63,7 @@ pub mod import_cmd;
 pub mod import_fit;
 pub mod import_report;
 pub mod import_roots;
+pub mod json_report;
 pub mod motion_file;
 pub mod render_cmd;
 pub mod sim_report;
