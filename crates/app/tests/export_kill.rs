@@ -1,0 +1,196 @@
+//! Kill tests for exporting: a child process exporting the curly example's
+//! drawn strands (the export path `helixhair export` and `sim --export`
+//! take: `ExportRecorder::write_single`, the format's writer, then
+//! `atomic_write`) is killed (SIGKILL) at random points, 300 times over the
+//! four formats; the file on disk must always be the old export or the new
+//! one, whole, and read back with our reader.
+//!
+//! # How it works
+//!
+//! As `save_kill.rs`: the test re-runs its own executable as the child,
+//! filtered to [`exporter_child_process`], with the target file in an
+//! environment variable. The child grows the curly example on the default
+//! head once, then exports its drawn strands alternately at two point
+//! counts (two different files of a few hundred kilobytes) forever, and
+//! prints a line when it starts. The parent writes both exports itself
+//! first (the exports are deterministic), waits for the child's line,
+//! sleeps a random time of up to three exports, kills the child, and checks
+//! that the file is byte for byte one of the two and that the format's
+//! reader reads it. It counts the kills that left a temporary file (a kill
+//! inside a write) and requires some, so the test shows it interrupted
+//! writes rather than only the gaps between them.
+//!
+//! Reproduce the figures of `docs/reliability.md` with
+//! `cargo test --release -p helixhair-app --test export_kill -- --nocapture`.
+
+use std::io::{BufRead as _, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use helixhair_app::export::{ExportRecorder, ExportSpec, FrameChoice, StrandChoice};
+use helixhair_app::render_cmd::grown_sim;
+use helixhair_app::{Groom, HeadlessSim};
+use helixhair_formats::{Format, ReadOptions, read};
+
+/// The environment variable that makes [`exporter_child_process`] the
+/// exporter; its value is the target file, whose extension picks the format.
+const CHILD_VAR: &str = "HELIXHAIR_EXPORT_KILL_TARGET";
+
+/// What the child prints once it starts exporting.
+const STARTED: &str = "exporting";
+
+/// Kills per format; four formats, 300 kills in all.
+const ROUNDS_PER_FORMAT: usize = 75;
+
+/// The two point counts the child alternates between: two different files
+/// (TressFX needs powers of two).
+const POINTS: [usize; 2] = [16, 32];
+
+/// Fewest kills per format that must land inside a write (leaving its
+/// temporary file): a tenth.
+const MIN_INTERRUPTED_WRITES: usize = ROUNDS_PER_FORMAT / 10;
+
+/// The curly example grown on the default head, at rest.
+fn curly() -> (Groom, HeadlessSim) {
+    let style = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/curly.ron");
+    grown_sim(&style, None).expect("the curly example grows")
+}
+
+/// Exports the drawn strands of `sim` to `path` with `points` per strand.
+fn export(groom: &Groom, sim: &HeadlessSim, path: &Path, points: usize) {
+    let spec = ExportSpec::new(path, StrandChoice::Drawn, points, FrameChoice::Last, false)
+        .expect("a valid spec");
+    ExportRecorder::new(spec, sim.engine().settings().dt_secs)
+        .write_single(sim.engine(), Some(groom), None)
+        .expect("exports");
+}
+
+/// A seeded xorshift generator: the delays are reproducible from the seed
+/// the test prints.
+struct Rng(u64);
+
+impl Rng {
+    fn next_unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The child: with [`CHILD_VAR`] set, exports alternately until killed;
+/// without it (a normal test run), does nothing.
+#[test]
+fn exporter_child_process() {
+    let Ok(target) = std::env::var(CHILD_VAR) else {
+        return;
+    };
+    let (groom, sim) = curly();
+    println!("{STARTED}");
+    for i in 0.. {
+        export(&groom, &sim, Path::new(&target), POINTS[i % 2]);
+    }
+}
+
+fn scratch_dir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("helixhair-export-kill-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a scratch folder");
+    dir
+}
+
+/// Kills the exporting child `ROUNDS_PER_FORMAT` times for `format`;
+/// returns the kills that landed inside a write.
+fn kill_exports(format: Format, rng: &mut Rng, seed: u64) -> usize {
+    let (groom, sim) = curly();
+    let dir = scratch_dir().join(format.to_string());
+    std::fs::create_dir_all(&dir).expect("a folder per format");
+    let target = dir.join(format!("curly.{format}"));
+    // The two files the child writes, made here by the same code.
+    let mut expected = Vec::new();
+    for points in POINTS {
+        export(&groom, &sim, &target, points);
+        expected.push(std::fs::read(&target).expect("the export exists"));
+    }
+    assert_ne!(expected[0], expected[1], "the two exports differ");
+    let start = Instant::now();
+    export(&groom, &sim, &target, POINTS[1]);
+    let export_secs = start.elapsed().as_secs_f64().max(1e-4);
+
+    let mut interrupted = 0;
+    let mut seen = [0usize; 2];
+    for round in 0..ROUNDS_PER_FORMAT {
+        let mut child = Command::new(std::env::current_exe().expect("the test executable"))
+            .args([
+                "exporter_child_process",
+                "--exact",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env(CHILD_VAR, &target)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("the child starts");
+        // The test harness prints its own words first, on the same line.
+        let mut lines = BufReader::new(child.stdout.take().expect("its stdout")).lines();
+        while !lines
+            .next()
+            .expect("the child says it started")
+            .expect("a line")
+            .ends_with(STARTED)
+        {}
+        std::thread::sleep(Duration::from_secs_f64(3.0 * export_secs * rng.next_unit()));
+        child.kill().expect("killed");
+        child.wait().expect("reaped");
+
+        let on_disk = std::fs::read(&target).expect("the target exists");
+        let which = expected
+            .iter()
+            .position(|e| *e == on_disk)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{format} round {round} (seed {seed:#x}): the file is neither export, {} bytes",
+                    on_disk.len()
+                )
+            });
+        seen[which] += 1;
+        let imported =
+            read(&on_disk, format, &ReadOptions::default()).expect("what is on disk reads");
+        assert!(!imported.curves.curves.is_empty(), "strands read back");
+        let mut left = false;
+        for entry in std::fs::read_dir(&dir).expect("the folder lists") {
+            let path = entry.expect("an entry").path();
+            if path != target {
+                left = true;
+                std::fs::remove_file(&path).expect("a temporary file goes");
+            }
+        }
+        interrupted += usize::from(left);
+    }
+    eprintln!(
+        "export_kill {format}: {ROUNDS_PER_FORMAT} kills, one export ≈ {:.1} ms ({} / {} bytes): \
+         the file was whole every time ({}/{} of each); {interrupted} kills landed inside a write",
+        export_secs * 1e3,
+        expected[0].len(),
+        expected[1].len(),
+        seen[0],
+        seen[1]
+    );
+    interrupted
+}
+
+#[test]
+fn an_export_killed_at_any_point_leaves_the_old_or_the_new_file_whole() {
+    let seed = 0xe4b0_f1e5_u64;
+    let mut rng = Rng(seed);
+    for format in Format::ALL {
+        let interrupted = kill_exports(format, &mut rng, seed);
+        assert!(
+            interrupted >= MIN_INTERRUPTED_WRITES,
+            "{format}: only {interrupted} of {ROUNDS_PER_FORMAT} kills landed inside a write"
+        );
+    }
+    let _ = std::fs::remove_dir_all(scratch_dir());
+}
