@@ -22,7 +22,7 @@ use glam::DVec3;
 use helixhair_formats::{Format, ReadOptions};
 use helixhair_physics::collision::ContactSettings;
 use helixhair_physics::engine::EngineKind;
-use helixhair_physics::fit::FitOptions;
+use helixhair_physics::fit::{FitOptions, StiffenOptions};
 use helixhair_physics::{SimSettings, StrandParams};
 
 use crate::groom::head_collider;
@@ -60,6 +60,11 @@ pub struct ImportArgs {
     /// gravity) instead of solving sag-free natural strains.
     #[arg(long)]
     pub no_sag_free: bool,
+    /// Leave strands whose sag-free equilibrium is unstable as they are
+    /// (they fall when simulated) instead of stiffening each by the least
+    /// factor that holds it (up to 100×; docs/import.md).
+    #[arg(long)]
+    pub no_stiffen: bool,
     /// Simulate K guide strands spread over the scalp and draw the others
     /// following them, instead of simulating every strand.
     #[arg(long, value_name = "K")]
@@ -153,6 +158,7 @@ pub fn run_import(
         support: collider
             .as_ref()
             .map(|c| (c, ContactSettings::default().skin_m)),
+        stiffen: (!args.no_stiffen).then(StiffenOptions::default),
     };
     let outcomes = fit_all(&jobs, &settings);
     let fit_secs = fit_start.elapsed().as_secs_f64();

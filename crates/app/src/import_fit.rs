@@ -11,12 +11,17 @@
 use glam::DVec3;
 use helixhair_physics::collision::SignedDistanceField;
 use helixhair_physics::fit::{
-    FitError, FitOptions, SagFreeInputs, SagFreeStatus, StrandFit, Support, fit_polyline, sag_free,
+    FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, StrandFit, Support,
+    fit_polyline, sag_free, sag_free_stiffened,
 };
 use helixhair_physics::{RigidMotion, StrandModel, StrandParams};
 
 use crate::style::Root;
 use crate::style_imported::ImportedStrand;
+
+/// Quadrature samples per element of the models the sag-free solve uses
+/// (the simulation's default).
+const SAMPLES_PER_ELEMENT: usize = 4;
 
 /// One strand to fit: its points (root first, head coordinates) and the
 /// reference direction of its root frame.
@@ -57,6 +62,9 @@ pub struct FitSettings<'a> {
     pub gravity_m_per_s2: Option<DVec3>,
     /// The head as a support for sag-free, with its contact skin (metres).
     pub support: Option<(&'a SignedDistanceField, f64)>,
+    /// How strands whose sag-free equilibrium is unstable are stiffened;
+    /// `None`: they are left as they are (and fall when simulated).
+    pub stiffen: Option<StiffenOptions>,
 }
 
 /// Fits every job on all cores; results in job order.
@@ -95,7 +103,7 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
     }
     let mut strand = record(&fit, job.reference);
     let sag = settings.gravity_m_per_s2.and_then(|gravity| {
-        let model = StrandModel::new(&strand.params(settings.material), 4).ok()?;
+        let params = strand.params(settings.material);
         let root = RigidMotion::at_rest(fit.root_m, fit.chain.root_frame);
         let head = RigidMotion::default();
         let inputs = SagFreeInputs {
@@ -107,8 +115,20 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
                 skin_m,
             }),
         };
-        let rest = sag_free(&model, &fit.chain.strains_per_m, &inputs);
+        let q = &fit.chain.strains_per_m;
+        let (rest, scale) = match &settings.stiffen {
+            Some(options) => {
+                let stiff =
+                    sag_free_stiffened(&params, SAMPLES_PER_ELEMENT, q, &inputs, options).ok()?;
+                (stiff.rest, stiff.stiffness_scale)
+            }
+            None => {
+                let model = StrandModel::new(&params, SAMPLES_PER_ELEMENT).ok()?;
+                (sag_free(&model, q, &inputs), 1.0)
+            }
+        };
         strand.natural = rest.natural_per_m;
+        strand.stiffness_scale = scale;
         Some(rest.status)
     });
     if strand
@@ -139,5 +159,6 @@ fn record(fit: &StrandFit, reference: DVec3) -> ImportedStrand {
         strains: fit.chain.strains_per_m.clone(),
         natural: fit.chain.strains_per_m.clone(),
         guide: true,
+        stiffness_scale: 1.0,
     }
 }

@@ -78,8 +78,8 @@ pub struct ImportReport {
     pub outside_tolerance: usize,
     /// How many strands got each element count N.
     pub elements_histogram: BTreeMap<usize, usize>,
-    /// Sag-free outcomes (`held`, `clamped`, `unstable`); absent with
-    /// `--no-sag-free`.
+    /// Sag-free outcomes (`held`, `stiffened`, `clamped`, `unstable`);
+    /// absent with `--no-sag-free`.
     pub sag_free: Option<BTreeMap<String, usize>>,
     /// Distance from each root to the head's surface, metres (with `--head`).
     pub root_distance_to_head_m: Option<Spread>,
@@ -132,6 +132,7 @@ impl ImportReport {
                     if let Some(status) = sag_free {
                         let name = match status {
                             SagFreeStatus::Held => "held",
+                            SagFreeStatus::Stiffened => "stiffened",
                             SagFreeStatus::Clamped => "clamped",
                             SagFreeStatus::Unstable => "unstable",
                         };

@@ -19,6 +19,7 @@
 //! only guides are drawn.
 
 use glam::DVec3;
+use helixhair_physics::fit::stiffen::stiffened_params;
 use helixhair_physics::{ElementLayout, NaturalShape, RootPose, StrandParams};
 use serde::{Deserialize, Serialize};
 
@@ -59,6 +60,21 @@ pub struct ImportedStrand {
     /// Whether the strand is simulated (a guide). Default true.
     #[serde(default = "yes", skip_serializing_if = "is_true")]
     pub guide: bool,
+    /// Factor on the group's Young's and shear moduli for this strand, ≥ 1.
+    /// Default 1. The import raises it for a strand whose sag-free
+    /// equilibrium is unstable, by the least that holds it
+    /// (`helixhair_physics::fit::stiffen`); at most
+    /// `helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE` (100).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub stiffness_scale: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
 }
 
 fn yes() -> bool {
@@ -71,8 +87,10 @@ fn is_true(b: &bool) -> bool {
 
 impl ImportedStrand {
     /// The strand's physics: `material`'s fields with this strand's length,
-    /// elements and natural strains.
+    /// elements and natural strains, its moduli scaled by its
+    /// `stiffness_scale`.
     pub fn params(&self, material: &StrandParams) -> StrandParams {
+        let material = &stiffened_params(material, self.stiffness_scale);
         StrandParams {
             length_m: self.element_length_m * self.strains.len() as f64,
             elements: self.strains.len(),

@@ -11,6 +11,7 @@ use crate::field_path::FieldPath;
 use crate::style_checks::{MAX_ROOT_COORDINATE_M, invalid as issue, param_issue};
 use crate::style_error::StyleIssue;
 use crate::style_imported::{ImportedStrands, MAX_IMPORTED_STRANDS};
+use helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE;
 
 /// Checks every strand; issues name `at.strands[i].field`.
 pub fn validate_imported(
@@ -89,6 +90,15 @@ pub fn validate_imported(
             return Err(issue(
                 at.field("root").field("direction"),
                 "must be finite and non-zero",
+            ));
+        }
+        if !(1.0..=MAX_STIFFNESS_SCALE).contains(&strand.stiffness_scale) {
+            return Err(issue(
+                at.field("stiffness_scale"),
+                format!(
+                    "must be 1 to {MAX_STIFFNESS_SCALE}; found {}",
+                    strand.stiffness_scale
+                ),
             ));
         }
         strand

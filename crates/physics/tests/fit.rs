@@ -12,8 +12,10 @@ use std::sync::Arc;
 
 use common::*;
 use glam::{DMat3, DVec3};
+use helixhair_physics::fit::stiffen::stiffened_params;
 use helixhair_physics::fit::{
-    FitError, FitOptions, SagFreeInputs, SagFreeStatus, fit_polyline, sag_free,
+    FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, fit_polyline, sag_free,
+    sag_free_stiffened,
 };
 use helixhair_physics::{
     Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
@@ -236,7 +238,9 @@ fn drift_over(
     };
     let mut s = Strand::new(model, pose, Method::Exact);
     s.set_state(start, &vec![DVec3::ZERO; start.len()]);
-    let motion = RigidMotion::at_rest(DVec3::ZERO, DMat3::IDENTITY);
+    // The strand steps with its root where the fit put it (the pose above
+    // is only its record).
+    let motion = *root;
     let before = s.boundary_points_world(&motion);
     let mut worst: f64 = 0.0;
     for _ in 0..600 {
@@ -303,4 +307,85 @@ fn absurd_rest_curvature_is_clamped_and_reported() {
             .iter()
             .all(|k| k.abs().max_element() <= 1000.0)
     );
+}
+
+/// The stiffened column's stability against the margin asked for: the
+/// closed form is exact, and the check's central differences are good to
+/// about 1e-8.
+const STIFFENED_MARGIN_TOL: f64 = 1e-6;
+/// The buckling load ratio 7.8616 (N = 10) is known to five digits, so the
+/// scale it predicts is good to about 1e-5; a tenth of a per mille.
+const STIFFENING_SCALE_TOL: f64 = 1e-4;
+
+#[test]
+fn an_unstable_column_is_stiffened_by_its_load_ratio_and_then_stands() {
+    // Upright at twice Greenhill's load (α_c = 7.8616 at N = 10): the
+    // energy's scaled Hessian is I − A with λ_max(A) = α/α_c = 2, so the
+    // margin m needs the moduli scaled by s = 2/(1 − m).
+    let up = RigidMotion::at_rest(DVec3::ZERO, DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X));
+    let (p, g) = elastica(2.0 * 7.8616, 10);
+    let q = vec![DVec3::ZERO; 10];
+    let inputs = SagFreeInputs {
+        root: &up,
+        gravity_m_per_s2: g,
+        support: None,
+    };
+    let options = StiffenOptions::default();
+    let stiff = sag_free_stiffened(&p, 4, &q, &inputs, &options).expect("valid parameters");
+    assert_eq!(stiff.rest.status, SagFreeStatus::Stiffened);
+    let want = 2.0 / (1.0 - options.margin);
+    assert!(
+        (stiff.stiffness_scale / want - 1.0).abs() < STIFFENING_SCALE_TOL,
+        "scale {} against {want}",
+        stiff.stiffness_scale
+    );
+    assert!(
+        (stiff.rest.stability - options.margin).abs() < STIFFENED_MARGIN_TOL,
+        "stability {} against the margin {}",
+        stiff.rest.stability,
+        options.margin
+    );
+    // A column standing past its load does not need stiffening to be at
+    // rest, only to stay there: nudged by a slight bend (tip off by about
+    // 0.1% of the length), the original falls over, the stiffened one
+    // sways about upright.
+    let length_m = p.length_m;
+    let nudge = vec![DVec3::new(0.0, 2e-3 / length_m, 0.0); 10];
+    let fell = drift_over(&p, &q, &nudge, &up_root(), g);
+    let stood = drift_over(
+        &stiffened_params(&p, stiff.stiffness_scale),
+        &q,
+        &nudge,
+        &up_root(),
+        g,
+    );
+    assert!(
+        fell > 0.3 * length_m,
+        "the original should fall: moved {fell} m"
+    );
+    assert!(
+        stood < 0.01 * length_m,
+        "the stiffened column should stand: moved {stood} m"
+    );
+}
+
+/// The upright root of the column tests.
+fn up_root() -> RigidMotion {
+    RigidMotion::at_rest(DVec3::ZERO, DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X))
+}
+
+#[test]
+fn stable_strands_are_not_stiffened() {
+    let (p, g) = elastica(7.5, 10);
+    let q = vec![DVec3::ZERO; 10];
+    let up = up_root();
+    let inputs = SagFreeInputs {
+        root: &up,
+        gravity_m_per_s2: g,
+        support: None,
+    };
+    let stiff = sag_free_stiffened(&p, 4, &q, &inputs, &StiffenOptions::default())
+        .expect("valid parameters");
+    assert_eq!(stiff.rest.status, SagFreeStatus::Held);
+    assert_eq!(stiff.stiffness_scale, 1.0);
 }

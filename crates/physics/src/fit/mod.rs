@@ -16,8 +16,10 @@
 //!
 //! [`sag_free`] then solves the natural strains q⁰ that make the fitted
 //! shape a static equilibrium under gravity (and the head's support), so
-//! an imported groom keeps its shape instead of sagging. `docs/import.md`
-//! teaches both with the formulas.
+//! an imported groom keeps its shape instead of sagging, and
+//! [`sag_free_stiffened`] stiffens a strand whose equilibrium is unstable
+//! by the least that holds it. `docs/import.md` teaches all three with the
+//! formulas.
 //!
 //! This module knows no file format: callers pass plain point lists.
 
@@ -25,12 +27,14 @@ pub mod curve;
 pub mod initial;
 pub mod refine;
 pub mod sag_free;
+pub mod stiffen;
 
 use glam::DVec3;
 use thiserror::Error;
 
 pub use curve::UniformHelixChain;
 pub use sag_free::{SagFree, SagFreeInputs, SagFreeStatus, Support, sag_free};
+pub use stiffen::{StiffenOptions, StiffenedRest, sag_free_stiffened, stiffness_scale_for_margin};
 
 /// How closely and with how many elements to fit.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -36,7 +36,8 @@
 //!   equilibrium is unstable. ∂Q/∂q is taken by central differences
 //!   (3N evaluations of Q, each O(N)). Unstable strands keep their sag-free
 //!   strains (still the best rest shape the model has for them) and are
-//!   counted, so the caller can report them.
+//!   counted, so the caller can report them, or stiffened just enough to
+//!   hold ([`super::stiffen`]).
 
 use glam::DVec3;
 use nalgebra::{DMatrix, SymmetricEigen};
@@ -81,6 +82,9 @@ pub struct SagFreeInputs<'a> {
 pub enum SagFreeStatus {
     /// Exact equilibrium, stable.
     Held,
+    /// Exact equilibrium, made stable by stiffening the strand
+    /// ([`super::stiffen`]).
+    Stiffened,
     /// Some strains exceeded the natural-strain limit and were clamped.
     Clamped,
     /// The equilibrium is unstable (the Hessian has a negative eigenvalue).
