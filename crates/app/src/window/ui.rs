@@ -195,6 +195,21 @@ const MAX_GUIDES: usize = 5000;
 /// How many strands a group has, in words: listed roots, roots grown on
 /// the scalp, or both.
 pub fn strand_count_words(group: &crate::style::StrandGroup) -> String {
+    if let Some(imported) = &group.imported {
+        let guides = imported.guides().count();
+        let all = imported.strands.len();
+        let roots = group.roots.len();
+        let extra = if roots > 0 {
+            format!(" + {roots} listed")
+        } else {
+            String::new()
+        };
+        return if guides == all {
+            format!("{all} imported strands{extra}")
+        } else {
+            format!("{all} imported strands, {guides} simulated{extra}")
+        };
+    }
     let listed = group.roots.len();
     match &group.scalp {
         None => format!("{listed} strands"),
