@@ -14,13 +14,15 @@ use helixhair_physics::{Method, StepScheme};
 
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
-use crate::export_cmd::{SimExport, SimExportArgs, run_export};
+use crate::export_cmd::{SimExport, SimExportArgs, run_export, terminal_progress};
+use crate::frame_stepper::FrameStepper;
 use crate::head_clip::Clip;
 use crate::head_playback::{Playback, parse_play};
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::json_report::{summary_stream, write_json_report};
 use crate::sim_report::{SimReport, refuse_lost_strands};
 use crate::style::Style;
+use crate::tip_trajectories::Tracked;
 #[cfg(feature = "window")]
 use crate::window::{WindowArgs, run_window};
 
@@ -127,6 +129,10 @@ pub struct SimArgs {
     /// needed; `-` writes it to stdout, and the summary then goes to stderr.
     #[arg(long, value_name = "OUT")]
     pub json: Option<PathBuf>,
+    /// Put every strand's tip, at the start and after each frame, in the
+    /// JSON report (`tip_trajectories`, docs/sim-json.md).
+    #[arg(long, requires = "json")]
+    pub tip_trajectories: bool,
     /// Export options (`--export FILE`).
     #[command(flatten)]
     pub export: SimExportArgs,
@@ -221,20 +227,23 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         None => None,
     };
     let steps = usize::try_from(args.steps).context("--steps does not fit this machine")?;
+    let mut tracked = Tracked::new(&mut sim, args.tip_trajectories);
+    let stepper = &mut tracked;
     let (per_step_secs, exported) = match export {
         Some(export) => {
             let (secs, outcome) = export
-                .run(&mut sim, steps)
+                .run(stepper, steps, &mut terminal_progress(steps))
                 .with_context(|| format!("simulating and exporting {style_path}"))?;
             (secs, Some(outcome))
         }
         None => (
-            sim.run(steps)
-                .with_context(|| format!("simulating {style_path}"))?,
+            run_frames(stepper, steps).with_context(|| format!("simulating {style_path}"))?,
             None,
         ),
     };
-    let report = SimReport::new(&style_path, &style.name, &sim, per_step_secs);
+    let tips = tracked.tips;
+    let mut report = SimReport::new(&style_path, &style.name, &sim, per_step_secs);
+    report.tip_trajectories = tips;
 
     let summary_out = summary_stream(args.json.as_deref(), stdout, stderr);
     summary_out.write_all(report.summary().as_bytes())?;
@@ -245,6 +254,16 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         write_json_report(&report, json_path, stdout)?;
     }
     refuse_lost_strands(sim.strands_lost(), args.accept_resets)
+}
+
+/// Steps `steps` frames; each frame's physics wall time.
+fn run_frames(sim: &mut dyn FrameStepper, steps: usize) -> anyhow::Result<Vec<f64>> {
+    (1..=steps)
+        .map(|frame| {
+            sim.step_frame()
+                .with_context(|| format!("frame {frame} of {steps}"))
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -361,6 +361,14 @@ impl ExportRecorder {
         Ok((self.written, self.bytes))
     }
 
+    /// Removes the files written so far (a cancelled or failed sequence);
+    /// a file that cannot be removed is left, as it is whole.
+    pub fn discard(self) {
+        for path in &self.written {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+
     fn write_usda(
         &mut self,
         path: &Path,

@@ -23,9 +23,9 @@ use crate::export::{
     DEFAULT_POINTS_PER_STRAND, ExportRecorder, ExportSpec, FrameChoice, StrandChoice,
     check_writable, head_triangle_mesh,
 };
+use crate::frame_stepper::FrameStepper;
 use crate::groom::Groom;
 use crate::head_playback::{Playback, parse_play};
-use crate::headless::HeadlessSim;
 use crate::render_cmd::grown_sim;
 use crate::style::Style;
 
@@ -142,39 +142,50 @@ impl ExportOutcome {
 }
 
 /// Steps `sim` for `steps` frames, capturing them as `spec` asks; returns
-/// each frame's physics wall time (as [`HeadlessSim::run`]) and what was
+/// each frame's physics wall time (as [`crate::headless::HeadlessSim::run`]) and what was
 /// written. `groom` is needed for drawn strands, `head` is the mesh a
-/// `.usda` carries.
+/// `.usda` carries. `progress` is told the frames done after each frame
+/// and returns false to cancel: the export then stops with an error, and
+/// the files of a sequence written so far are removed (nothing is left
+/// under the final names, not even whole frames of a cut-short run).
 pub fn simulate_and_export(
-    sim: &mut HeadlessSim,
+    sim: &mut dyn FrameStepper,
     steps: usize,
     spec: ExportSpec,
     groom: Option<&Groom>,
     head: Option<&TriangleMesh>,
+    progress: &mut dyn FnMut(usize) -> bool,
 ) -> anyhow::Result<(Vec<f64>, ExportOutcome)> {
     let animated = spec.animated(steps);
     let head = head.filter(|_| spec.writes_head());
     let mut recorder = ExportRecorder::new(spec, sim.engine().settings().dt_secs);
     let mut export_secs = 0.0;
-    let mut capture = |sim: &HeadlessSim, recorder: &mut ExportRecorder, frame| {
+    let mut capture = |sim: &dyn FrameStepper, recorder: &mut ExportRecorder, frame| {
         let start = Instant::now();
         let result = recorder.capture(sim.engine(), groom, frame);
         export_secs += start.elapsed().as_secs_f64();
         result
     };
-    let bar = indicatif::ProgressBar::new(steps as u64);
     let mut wall_secs = Vec::with_capacity(steps);
-    if animated {
-        capture(sim, &mut recorder, 0)?;
-    }
-    for frame in 1..=steps {
-        wall_secs.push(sim.run(1)?[0]);
+    let mut run = || -> anyhow::Result<()> {
         if animated {
-            capture(sim, &mut recorder, frame)?;
+            capture(sim, &mut recorder, 0)?;
         }
-        bar.inc(1);
+        for frame in 1..=steps {
+            wall_secs.push(sim.step_frame()?);
+            if animated {
+                capture(sim, &mut recorder, frame)?;
+            }
+            if !progress(frame) {
+                anyhow::bail!("cancelled after {frame} of {steps} frames; nothing was written");
+            }
+        }
+        Ok(())
+    };
+    if let Err(e) = run() {
+        recorder.discard();
+        return Err(e);
     }
-    bar.finish_and_clear();
     let start = Instant::now();
     if !animated {
         recorder.write_single(sim.engine(), groom, head)?;
@@ -188,6 +199,19 @@ pub fn simulate_and_export(
         export_secs,
     };
     Ok((wall_secs, outcome))
+}
+
+/// A progress bar on the terminal for `steps` frames, as the closure
+/// [`simulate_and_export`] reports to (never cancels).
+pub fn terminal_progress(steps: usize) -> impl FnMut(usize) -> bool {
+    let bar = indicatif::ProgressBar::new(steps as u64);
+    move |done| {
+        bar.set_position(done as u64);
+        if done >= steps {
+            bar.finish_and_clear();
+        }
+        true
+    }
 }
 
 /// `sim --export`, checked before the simulation runs: the spec (format,
@@ -212,11 +236,13 @@ impl SimExport {
         Ok(SimExport { spec, groom, head })
     }
 
-    /// Runs `sim`'s `steps` frames, exporting them.
+    /// Runs `sim`'s `steps` frames, exporting them; `progress` as in
+    /// [`simulate_and_export`].
     pub fn run(
         self,
-        sim: &mut HeadlessSim,
+        sim: &mut dyn FrameStepper,
         steps: usize,
+        progress: &mut dyn FnMut(usize) -> bool,
     ) -> anyhow::Result<(Vec<f64>, ExportOutcome)> {
         simulate_and_export(
             sim,
@@ -224,6 +250,7 @@ impl SimExport {
             self.spec,
             self.groom.as_ref(),
             self.head.as_ref(),
+            progress,
         )
     }
 }
@@ -244,9 +271,15 @@ pub fn run_export(args: &ExportArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     }
     let head = head_triangle_mesh(&groom.head);
     let steps = args.steps as usize;
-    let (wall_secs, outcome) =
-        simulate_and_export(&mut sim, steps, spec, Some(&groom), Some(&head))
-            .with_context(|| format!("exporting {style_path}"))?;
+    let (wall_secs, outcome) = simulate_and_export(
+        &mut sim,
+        steps,
+        spec,
+        Some(&groom),
+        Some(&head),
+        &mut terminal_progress(steps),
+    )
+    .with_context(|| format!("exporting {style_path}"))?;
     writeln!(
         stdout,
         "style `{}` ({style_path}): {} simulated strands, {steps} frames in {:.2} s\n  {}",

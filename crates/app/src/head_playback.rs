@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use glam::{DMat3, DVec3};
 use helixhair_physics::{HeadTrajectory, RigidMotion};
 
 use crate::head_clip::{Clip, ClipTrajectory};
@@ -57,6 +58,25 @@ pub enum HeadPlayback {
     Clip(ClipTrajectory),
     /// A motion file's keys.
     Motion(MotionTrajectory),
+}
+
+impl HeadPlayback {
+    /// (rotation, offset) of the head at `t_secs` from the start: what the
+    /// window composes with the user's own pose.
+    pub fn pose_at(&self, t_secs: f64) -> (DMat3, DVec3) {
+        match self {
+            HeadPlayback::Clip(clip) => clip.0.pose_at(t_secs),
+            HeadPlayback::Motion(motion) => motion.0.pose_at(t_secs),
+        }
+    }
+
+    /// How long it moves, seconds (after that the head holds still).
+    pub fn duration_secs(&self) -> f64 {
+        match self {
+            HeadPlayback::Clip(clip) => clip.0.duration_secs(),
+            HeadPlayback::Motion(motion) => motion.0.duration_secs(),
+        }
+    }
 }
 
 impl HeadTrajectory for HeadPlayback {

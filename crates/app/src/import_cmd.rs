@@ -32,6 +32,7 @@ use crate::import_roots::{attach, farthest_point_guides};
 use crate::json_report::{summary_stream, write_json_report};
 use crate::style::{DEFAULT_REFERENCE, STYLE_VERSION, StrandGroup, Style};
 use crate::style_imported::ImportedStrands;
+use crate::work_progress::WorkProgress;
 
 /// Largest groom file `import` reads, bytes (1 GiB): far above any public
 /// groom (Sintel's is 2.9 MB), below what would exhaust a desktop's memory
@@ -84,6 +85,20 @@ pub fn run_import(
     stdout: &mut dyn Write,
     stderr: &mut dyn Write,
 ) -> anyhow::Result<()> {
+    let report = import_groom(args, &WorkProgress::default())?;
+    let summary_out = summary_stream(args.json.as_deref(), stdout, stderr);
+    summary_out.write_all(report.summary().as_bytes())?;
+    if let Some(path) = &args.json {
+        write_json_report(&report, path, stdout)?;
+    }
+    Ok(())
+}
+
+/// Imports `args.groom` into the style `args.out` (steps 1 to 4 of the
+/// module docs) and returns the report; `progress` counts the strands
+/// fitted, and cancelling it stops the import before anything is written.
+/// The window's File → Import groom… runs this on a worker thread.
+pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Result<ImportReport> {
     let started = Instant::now();
     let options = FitOptions {
         tolerance_over_length: args.fit_tolerance,
@@ -160,7 +175,10 @@ pub fn run_import(
             .map(|c| (c, ContactSettings::default().skin_m)),
         stiffen: (!args.no_stiffen).then(StiffenOptions::default),
     };
-    let outcomes = fit_all(&jobs, &settings);
+    let outcomes = fit_all(&jobs, &settings, progress);
+    if progress.cancelled() {
+        bail!("{groom_name}: import cancelled; no style was written");
+    }
     let fit_secs = fit_start.elapsed().as_secs_f64();
 
     let mut report = ImportReport::new(&groom_name, format, &imported.summary, &outcomes);
@@ -226,13 +244,7 @@ pub fn run_import(
     report.timings.write_secs = write_start.elapsed().as_secs_f64();
     report.timings.total_secs = started.elapsed().as_secs_f64();
     report.style = args.out.display().to_string();
-
-    let summary_out = summary_stream(args.json.as_deref(), stdout, stderr);
-    summary_out.write_all(report.summary().as_bytes())?;
-    if let Some(path) = &args.json {
-        write_json_report(&report, path, stdout)?;
-    }
-    Ok(())
+    Ok(report)
 }
 
 fn display(path: Option<&Path>) -> String {

@@ -18,6 +18,7 @@ use helixhair_physics::{RigidMotion, StrandModel, StrandParams};
 
 use crate::style::Root;
 use crate::style_imported::ImportedStrand;
+use crate::work_progress::WorkProgress;
 
 /// Quadrature samples per element of the models the sag-free solve uses
 /// (the simulation's default).
@@ -67,8 +68,15 @@ pub struct FitSettings<'a> {
     pub stiffen: Option<StiffenOptions>,
 }
 
-/// Fits every job on all cores; results in job order.
-pub fn fit_all(jobs: &[FitJob], settings: &FitSettings) -> Vec<FitOutcome> {
+/// Fits every job on all cores; results in job order. Each strand fitted
+/// counts one unit of `progress`; once it is cancelled the strands not yet
+/// fitted are skipped as `cancelled`.
+pub fn fit_all(
+    jobs: &[FitJob],
+    settings: &FitSettings,
+    progress: &WorkProgress,
+) -> Vec<FitOutcome> {
+    progress.start(jobs.len());
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let chunk = jobs.len().div_ceil(cores).max(1);
     std::thread::scope(|scope| {
@@ -77,7 +85,14 @@ pub fn fit_all(jobs: &[FitJob], settings: &FitSettings) -> Vec<FitOutcome> {
             .map(|part| {
                 scope.spawn(move || {
                     part.iter()
-                        .map(|j| fit_one(j, settings))
+                        .map(|j| {
+                            if progress.cancelled() {
+                                return FitOutcome::Skipped("cancelled");
+                            }
+                            let outcome = fit_one(j, settings);
+                            progress.add(1);
+                            outcome
+                        })
                         .collect::<Vec<_>>()
                 })
             })

@@ -54,6 +54,7 @@ pub mod error_model;
 pub mod export;
 pub mod export_cmd;
 pub mod field_path;
+pub mod frame_stepper;
 pub mod groom;
 pub mod guide_curves;
 pub mod head_clip;
@@ -79,8 +80,10 @@ pub mod style_imported;
 pub mod style_imported_validate;
 pub mod style_root;
 pub mod style_validate;
+pub mod tip_trajectories;
 #[cfg(feature = "window")]
 pub mod window;
+pub mod work_progress;
 
 pub use field_path::FieldPath;
 pub use groom::Groom;

@@ -14,6 +14,7 @@ use crate::auto_choice::Choice;
 
 use crate::headless::HeadlessSim;
 use crate::stats::median;
+use crate::tip_trajectories::TipTrajectories;
 
 /// Value of the `format` field.
 pub const SIM_REPORT_FORMAT: &str = "helixhair-sim";
@@ -65,6 +66,10 @@ pub struct SimReport {
     /// What the physics guard did during the run (on the batch engine: its
     /// resets of failing strands to rest).
     pub guard: Option<GuardReport>,
+    /// Every strand's tip at the start and after each frame, when asked
+    /// (`--tip-trajectories`); left out of the JSON otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tip_trajectories: Option<TipTrajectories>,
 }
 
 /// The solver and element count chosen for one group.
@@ -231,6 +236,7 @@ impl SimReport {
                     choice: choice.clone(),
                 })
                 .collect(),
+            tip_trajectories: None,
             guard: reference
                 .map(|r| GuardReport {
                     event_count: r.guard_event_count(),

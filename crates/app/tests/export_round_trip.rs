@@ -96,7 +96,8 @@ fn export(format: Format, dir: &Path, head: Option<&TriangleMesh>) -> PathBuf {
     )
     .expect("a valid spec");
     let mut sim = shaken_sim(&style);
-    let (wall, outcome) = simulate_and_export(&mut sim, STEPS, spec, None, head).expect("exports");
+    let (wall, outcome) =
+        simulate_and_export(&mut sim, STEPS, spec, None, head, &mut |_| true).expect("exports");
     assert_eq!(wall.len(), STEPS);
     assert_eq!(outcome.frames, STEPS + 1);
     path
@@ -222,7 +223,7 @@ fn drawn_strands_export_with_colours_and_tapered_widths() {
         .iter()
         .map(|g| g.render.as_ref().map_or(0, |r| r.count))
         .sum::<u32>();
-    simulate_and_export(&mut sim, 2, spec, Some(&groom), None).expect("exports");
+    simulate_and_export(&mut sim, 2, spec, Some(&groom), None, &mut |_| true).expect("exports");
     let imported = read_file(&out);
     assert_eq!(imported.curves.curves.len(), drawn_count as usize);
     let expected =

@@ -233,6 +233,7 @@ impl AppState {
             return;
         }
         let frame = self.head.frame(self.sim.now_secs());
+        self.head.record(&frame);
         let started = Instant::now();
         self.sim.step(&frame);
         if let Some((right, _)) = &mut self.compare {

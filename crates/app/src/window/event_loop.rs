@@ -30,6 +30,7 @@ use crate::style::Style;
 use super::app_state::{AppState, CompareMethods};
 use super::default_style::default_style;
 use super::drawn::DrawnCache;
+use super::frame_profile::FrameProfile;
 use super::preview::{quality, wants_preview};
 use super::ui::{ViewState, draw};
 use super::unsaved::Leave;
@@ -65,6 +66,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         frames: 0,
         last_frame: None,
         interacting: false,
+        profile: FrameProfile::default(),
     };
     event_loop
         .run_app(&mut handler)
@@ -111,6 +113,8 @@ struct Handler {
     last_frame: Option<Instant>,
     /// The user was dragging (a slider, the view, the head) last frame.
     interacting: bool,
+    /// Per-stage frame times (`--profile`).
+    profile: FrameProfile,
 }
 
 impl Handler {
@@ -154,7 +158,9 @@ impl Handler {
                 .readouts
                 .record_frame(now.duration_since(last).as_secs_f64());
         }
+        self.profile.start();
         self.app.step_frame();
+        self.profile.lap(0);
         let head = self.app.sim.engine().head();
         let pose = (head.world_from_body, head.position_m);
         let head_mesh = posed_head(&self.app.head_mesh, pose);
@@ -173,6 +179,7 @@ impl Handler {
                     quality.render_strands,
                 )
                 .unwrap_or_else(|| self.look.strands(&guides, pose, quality.render_strands));
+            self.profile.lap(1);
             let scene = Scene {
                 hair: &hair,
                 head: &head_mesh,
@@ -181,10 +188,15 @@ impl Handler {
             };
             self.view.textures[slot] =
                 Some(open.gpu.draw_scene(slot, &scene, quality.picture_px)?);
+            if self.args.profile {
+                open.gpu.wait_idle();
+            }
+            self.profile.lap(2);
         }
         let raw = open.egui.take_egui_input(&open.gpu.window);
         let ctx = open.egui.egui_ctx().clone();
         let mut output = ctx.run_ui(raw, |ui| draw(ui, &mut self.app, &mut self.view));
+        self.profile.lap(3);
         let platform = std::mem::take(&mut output.platform_output);
         open.egui.handle_platform_output(&open.gpu.window, platform);
         self.app.doc.settle(ctx.egui_is_using_pointer());
@@ -203,6 +215,11 @@ impl Handler {
         let shot = open
             .gpu
             .present(output, &ctx, done && self.args.screenshot.is_some())?;
+        if self.args.profile {
+            open.gpu.wait_idle();
+        }
+        self.profile.lap(4);
+        self.profile.finish();
         if let (Some(image), Some(path)) = (shot, &self.args.screenshot) {
             save_png(&image, path)?;
         }
@@ -237,6 +254,9 @@ impl Handler {
             ms(r.median_physics_secs(n)),
             r.element_steps_per_sec(n).unwrap_or(0.0)
         );
+        if self.args.profile {
+            println!("{}", self.profile.line(n));
+        }
     }
 }
 

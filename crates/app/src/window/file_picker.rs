@@ -1,5 +1,6 @@
-//! A small file dialog drawn by egui: a folder's sub-folders and `.ron`
-//! files, and a name field.
+//! A small file dialog drawn by egui: a folder's sub-folders and the files
+//! the dialog is for (`.ron` styles and motion files, or grooms), and a
+//! name field.
 //!
 //! A native dialog (`rfd`) needs GTK or an XDG desktop portal over D-Bus,
 //! neither of which a bare X server (CI's Xvfb) has, and pulls in a large
@@ -17,6 +18,37 @@ pub enum PickerMode {
     Open,
     /// Choose where to save.
     SaveAs,
+    /// Choose a groom to import (File → Import groom…).
+    ImportGroom,
+    /// Choose a motion file to play.
+    PlayMotion,
+    /// Choose where to save the recorded head motion.
+    SaveMotion,
+}
+
+impl PickerMode {
+    /// The extensions listed (lower case, no dot).
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            PickerMode::ImportGroom => &["tfx", "hair", "usda", "obj"],
+            _ => &["ron"],
+        }
+    }
+
+    /// Whether the picker names a file to write (`.ron` added if missing).
+    fn saves(self) -> bool {
+        matches!(self, PickerMode::SaveAs | PickerMode::SaveMotion)
+    }
+
+    fn title_and_verb(self) -> (&'static str, &'static str) {
+        match self {
+            PickerMode::Open => ("Open style", "Open"),
+            PickerMode::SaveAs => ("Save style as", "Save"),
+            PickerMode::ImportGroom => ("Import groom (.tfx, .hair, .usda, .obj)", "Import"),
+            PickerMode::PlayMotion => ("Play motion file", "Play"),
+            PickerMode::SaveMotion => ("Save head motion as", "Save"),
+        }
+    }
 }
 
 /// The picker's state while it is open.
@@ -28,8 +60,9 @@ pub struct FilePicker {
     name: String,
 }
 
-/// Sub-folders and `.ron` files of `folder`, sorted, folders first.
-pub fn list_folder(folder: &Path) -> (Vec<PathBuf>, Vec<PathBuf>) {
+/// Sub-folders and files of `folder` with one of `extensions` (any case),
+/// sorted, folders first.
+pub fn list_folder(folder: &Path, extensions: &[&str]) -> (Vec<PathBuf>, Vec<PathBuf>) {
     let mut folders = Vec::new();
     let mut files = Vec::new();
     if let Ok(entries) = std::fs::read_dir(folder) {
@@ -37,7 +70,11 @@ pub fn list_folder(folder: &Path) -> (Vec<PathBuf>, Vec<PathBuf>) {
             let path = entry.path();
             if path.is_dir() {
                 folders.push(path);
-            } else if path.extension().is_some_and(|e| e == "ron") {
+            } else if path.extension().is_some_and(|e| {
+                extensions
+                    .iter()
+                    .any(|x| e.to_string_lossy().eq_ignore_ascii_case(x))
+            }) {
                 files.push(path);
             }
         }
@@ -53,15 +90,17 @@ impl FilePicker {
         Self { mode, folder, name }
     }
 
+    /// Puts `name` in the name field.
+    pub fn set_name(&mut self, name: String) {
+        self.name = name;
+    }
+
     /// Draws the picker; returns the chosen path once confirmed, and
     /// whether it should stay open.
     pub fn show(&mut self, ctx: &egui::Context) -> (Option<PathBuf>, bool) {
         let mut chosen = None;
         let mut open = true;
-        let title = match self.mode {
-            PickerMode::Open => "Open style",
-            PickerMode::SaveAs => "Save style as",
-        };
+        let (title, _) = self.mode.title_and_verb();
         egui::Window::new(title)
             .collapsible(false)
             .default_width(420.0)
@@ -75,7 +114,7 @@ impl FilePicker {
     fn contents(&mut self, ui: &mut Ui, open: &mut bool) -> Option<PathBuf> {
         let mut chosen = None;
         ui.label(self.folder.display().to_string());
-        let (folders, files) = list_folder(&self.folder);
+        let (folders, files) = list_folder(&self.folder, self.mode.extensions());
         egui::ScrollArea::vertical()
             .max_height(260.0)
             .show(ui, |ui| {
@@ -112,13 +151,10 @@ impl FilePicker {
             ui.text_edit_singleline(&mut self.name);
         });
         ui.horizontal(|ui| {
-            let verb = match self.mode {
-                PickerMode::Open => "Open",
-                PickerMode::SaveAs => "Save",
-            };
+            let (_, verb) = self.mode.title_and_verb();
             if ui.button(verb).clicked() && !self.name.trim().is_empty() {
                 let mut name = self.name.trim().to_string();
-                if self.mode == PickerMode::SaveAs && !name.ends_with(".ron") {
+                if self.mode.saves() && !name.ends_with(".ron") {
                     name.push_str(".ron");
                 }
                 chosen = Some(self.folder.join(name));
@@ -139,12 +175,14 @@ mod tests {
     fn lists_folders_then_style_files_only() {
         let dir = std::env::temp_dir().join(format!("helixhair-picker-{}", std::process::id()));
         std::fs::create_dir_all(dir.join("sub")).unwrap();
-        for f in ["b.ron", "a.ron", "notes.txt"] {
+        for f in ["b.ron", "a.ron", "notes.txt", "g.TFX", "h.hair"] {
             std::fs::write(dir.join(f), "").unwrap();
         }
-        let (folders, files) = list_folder(&dir);
+        let (folders, files) = list_folder(&dir, PickerMode::Open.extensions());
         assert_eq!(folders, vec![dir.join("sub")]);
         assert_eq!(files, vec![dir.join("a.ron"), dir.join("b.ron")]);
+        let (_, grooms) = list_folder(&dir, PickerMode::ImportGroom.extensions());
+        assert_eq!(grooms, vec![dir.join("g.TFX"), dir.join("h.hair")]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

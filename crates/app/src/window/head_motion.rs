@@ -6,8 +6,14 @@
 //!   the head panel. The head does not jump to it: it follows through a
 //!   critically damped spring (natural frequency [`FOLLOW_RAD_PER_S`]), so
 //!   velocity and acceleration stay finite and the hair feels a real push;
-//! - a **clip** from [`Clip`] (nod, shake, turn, quick jerk), a smooth
-//!   function of time that starts and ends at rest.
+//! - a **playback**: a built-in [`Clip`] (nod, shake, turn, quick jerk)
+//!   or a motion file (docs/motion-format.md), the same
+//!   [`HeadPlayback`] `helixhair sim --play` steps on, started at some
+//!   simulated time.
+//!
+//! The head's pose can also be recorded as a motion file
+//! ([`super::motion_recorder`]): [`HeadDriver::record`] keeps the pose at
+//! the start of every frame while recording.
 //!
 //! The physics needs pose, velocity and acceleration at any instant of a
 //! frame. [`HeadDriver::frame`] freezes the spring's state at the frame's
@@ -17,8 +23,14 @@
 //! of the pose, accurate to O(δ²) with δ = 0.5 ms, which is what keeps the
 //! clips and the spring free of hand-derived formulas.
 
+use std::sync::Arc;
+
 use glam::{DMat3, DVec3};
 use helixhair_physics::{HeadTrajectory, RigidMotion};
+
+use super::motion_recorder::MotionRecorder;
+use crate::head_clip::ClipTrajectory;
+use crate::head_playback::HeadPlayback;
 
 /// Natural frequency of the spring the head follows the user's pose with,
 /// rad/s: it settles in about 0.4 s.
@@ -63,28 +75,45 @@ impl ManualPose {
     }
 }
 
-/// Drives the head: the user's target pose, the spring following it, and
-/// the clip playing.
+/// A playback and the simulated time it started at, seconds.
+type Playing = Option<(Arc<HeadPlayback>, f64)>;
+
+/// Drives the head: the user's target pose, the spring following it, the
+/// playback playing, and the recorder while recording.
 #[derive(Clone, Debug, Default)]
 pub struct HeadDriver {
     /// Where the user wants the head.
     pub target: ManualPose,
     pose: [f64; 5],
     rate: [f64; 5],
-    clip: Option<(Clip, f64)>,
+    clip: Playing,
+    /// The head's poses being recorded, while recording.
+    pub recorder: Option<MotionRecorder>,
 }
 
 impl HeadDriver {
     /// Starts `clip` at time `now_secs`.
     pub fn play(&mut self, clip: Clip, now_secs: f64) {
-        self.clip = Some((clip, now_secs));
+        self.play_motion(HeadPlayback::Clip(ClipTrajectory(clip)), now_secs);
     }
 
-    /// The clip playing at `now_secs`, if any.
-    pub fn playing(&self, now_secs: f64) -> Option<Clip> {
+    /// Starts `playback` (a clip or a motion file) at time `now_secs`.
+    pub fn play_motion(&mut self, playback: HeadPlayback, now_secs: f64) {
+        self.clip = Some((Arc::new(playback), now_secs));
+    }
+
+    /// Whether a playback is still moving at `now_secs`.
+    pub fn is_playing(&self, now_secs: f64) -> bool {
         self.clip
-            .filter(|(c, start)| now_secs - start <= c.duration_secs())
-            .map(|(c, _)| c)
+            .as_ref()
+            .is_some_and(|(p, start)| now_secs - start <= p.duration_secs())
+    }
+
+    /// Keeps the pose at the start of `frame` while recording.
+    pub fn record(&mut self, frame: &FrameHead) {
+        if let Some(recorder) = &mut self.recorder {
+            recorder.record(frame.start_secs, frame.pose_at(frame.start_secs));
+        }
     }
 
     /// The head's motion over the frame starting at `start_secs`.
@@ -98,7 +127,7 @@ impl HeadDriver {
             pose: self.pose,
             rate: self.rate,
             accel,
-            clip: self.clip,
+            clip: self.clip.clone(),
         }
     }
 
@@ -117,6 +146,14 @@ impl HeadDriver {
         }
     }
 
+    /// Stops the head where it is now: the target becomes the current
+    /// pose, at rest, and any playback ends (set as rest).
+    pub fn hold(&mut self) {
+        self.target = ManualPose::from_array(self.pose);
+        self.rate = [0.0; 5];
+        self.clip = None;
+    }
+
     /// Puts the head at the target at once, at rest (e.g. on reset).
     pub fn snap(&mut self) {
         self.pose = self.target.to_array();
@@ -126,13 +163,13 @@ impl HeadDriver {
 }
 
 /// The head's motion over one frame (see the module docs).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct FrameHead {
     start_secs: f64,
     pose: [f64; 5],
     rate: [f64; 5],
     accel: [f64; 5],
-    clip: Option<(Clip, f64)>,
+    clip: Playing,
 }
 
 impl FrameHead {
@@ -142,8 +179,8 @@ impl FrameHead {
         let manual = ManualPose::from_array(std::array::from_fn(|i| {
             self.pose[i] + self.rate[i] * dt + 0.5 * self.accel[i] * dt * dt
         }));
-        let (clip_rotation, clip_offset) = match self.clip {
-            Some((clip, start)) => clip.pose_at(t_secs - start),
+        let (clip_rotation, clip_offset) = match &self.clip {
+            Some((playback, start)) => playback.pose_at(t_secs - start),
             None => (DMat3::IDENTITY, DVec3::ZERO),
         };
         (

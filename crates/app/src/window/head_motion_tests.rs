@@ -30,7 +30,7 @@ fn differences_match_an_analytic_oscillation() {
             pose: [angle, 0.0, 0.0, 0.0, 0.0],
             rate: [0.5 * w * (w * t).cos(), 0.0, 0.0, 0.0, 0.0],
             accel: [-w * w * angle, 0.0, 0.0, 0.0, 0.0],
-            ..head
+            ..head.clone()
         };
         let got = frame.motion_at(t);
         assert!((got.angular_velocity_rad_per_s - want.angular_velocity_rad_per_s).length() < 1e-6);

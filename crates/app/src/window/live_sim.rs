@@ -36,6 +36,7 @@ use crate::style::Style;
 use super::collision::HeadCollider;
 use super::head_motion::FrameHead;
 use super::resample::resample_per_element;
+use crate::headless::add_imported;
 
 /// A hair system kept in step with an edited style.
 #[derive(Clone, Debug)]
@@ -258,6 +259,26 @@ impl LiveSim {
         out
     }
 
+    /// The style the engine was built from, scalp placements grown into
+    /// roots (strand i of the engine is the i-th root or imported guide).
+    pub fn grown_style(&self) -> &Style {
+        &self.built_grown
+    }
+
+    /// The head collider, if set.
+    pub fn collider(&self) -> Option<&HeadCollider> {
+        self.collider.as_ref()
+    }
+
+    /// Stops every strand where it is: shapes kept, rates set to zero.
+    pub fn stop(&mut self) {
+        for i in 0..self.engine.strand_count() {
+            let q = self.engine.q(i);
+            let rest = vec![DVec3::ZERO; q.len()];
+            self.engine.set_state(i, &q, &rest);
+        }
+    }
+
     /// Tip positions, world coordinates (for the compare view).
     pub fn tips_m(&self) -> Vec<DVec3> {
         (0..self.engine.strand_count())
@@ -303,6 +324,12 @@ fn build(
         system
             .add_group(&group.params, &group.root_poses())
             .map_err(|e| format!("groups[{i}].params: {e}"))?;
+        // Imported strands (a groom, or a shape set as rest), as
+        // `helixhair sim` adds them.
+        if let Some(imported) = &group.imported {
+            add_imported(&mut system, &group.params, imported)
+                .map_err(|e| format!("groups[{i}].imported: {e}"))?;
+        }
     }
     Ok(system)
 }

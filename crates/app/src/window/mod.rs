@@ -14,9 +14,17 @@
 //! [`drawn`] (styles with `render` sections, drawn as `helixhair render`
 //! draws them).
 //!
+//! Files in and out: [`export_job`] (File → Export frame… and Record
+//! animation…, through `sim --export`'s code), [`import_job`] (File →
+//! Import groom… and dropped grooms, through `import`'s code),
+//! [`motion_recorder`] (head drags recorded as a motion file), all run by
+//! [`job`] on a worker thread with a progress bar and Cancel; [`set_rest`]
+//! ("set current shape as rest": the sag-free solve of the import on the
+//! hair as it is now).
+//!
 //! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
 //! pictures, egui painting, screenshots) and the egui panels ([`ui`], [`tool_bar`],
-//! [`style_panel`], [`readout_panel`], [`file_picker`]).
+//! [`file_menu`], [`style_panel`], [`readout_panel`], [`file_picker`]).
 //!
 //! # Without a display
 //!
@@ -31,15 +39,23 @@ pub mod default_style;
 pub mod document;
 pub mod drawn;
 pub mod event_loop;
+pub mod export_dialog;
+pub mod export_job;
+pub mod file_menu;
 pub mod file_picker;
+pub mod frame_profile;
 pub mod guard_status;
 pub mod head_motion;
+pub mod import_job;
+pub mod job;
 pub mod live_sim;
+pub mod motion_recorder;
 pub mod presets;
 pub mod preview;
 pub mod readout_panel;
 pub mod readouts;
 pub mod resample;
+pub mod set_rest;
 pub mod style_panel;
 pub mod tool_bar;
 pub mod ui;
@@ -97,6 +113,11 @@ pub struct WindowArgs {
     /// measuring it with --frames.
     #[arg(long)]
     pub preview: bool,
+    /// With --frames: time each stage of a frame (physics, strand
+    /// geometry, the 3D picture, egui, present) and print their medians;
+    /// the picture is waited for, so the GPU's time is counted there.
+    #[arg(long)]
+    pub profile: bool,
     /// Save the window as a PNG after the last frame (--frames, default 120)
     /// and quit.
     #[arg(long, value_name = "PNG")]

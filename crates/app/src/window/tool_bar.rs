@@ -1,33 +1,17 @@
-//! The tool bar: files, history, pause and the compare view's solvers.
+//! The tool bar: the File menu ([`super::file_menu`]), Save, history,
+//! pause and the compare view's solvers.
 
 use egui::Ui;
 use helixhair_physics::Method;
 
 use super::app_state::{AppState, CompareMethods};
-use super::file_picker::{FilePicker, PickerMode};
+use super::file_menu::{file_menu, open_picker, stop_recording};
+use super::file_picker::PickerMode;
 use super::ui::ViewState;
-
-pub(super) fn open_picker(app: &AppState, mode: PickerMode) -> FilePicker {
-    let (folder, name) = match app.doc.path() {
-        Some(p) => (
-            p.parent().map(|d| d.to_owned()).unwrap_or_default(),
-            p.file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-        ),
-        None => (
-            std::env::current_dir().unwrap_or_default(),
-            format!("{}.ron", app.doc.style().name),
-        ),
-    };
-    FilePicker::new(mode, folder, name)
-}
 
 pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     ui.horizontal(|ui| {
-        if ui.button("Open…").clicked() {
-            view.picker = Some(open_picker(app, PickerMode::Open));
-        }
+        file_menu(ui, app, &mut view.picker, &mut view.files);
         if ui.button("Save").clicked() {
             if app.doc.path().is_some() {
                 app.save(None);
@@ -35,8 +19,8 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
                 view.picker = Some(open_picker(app, PickerMode::SaveAs));
             }
         }
-        if ui.button("Save as…").clicked() {
-            view.picker = Some(open_picker(app, PickerMode::SaveAs));
+        if app.head.recorder.is_some() && ui.button("Stop recording").clicked() {
+            stop_recording(app, &mut view.files);
         }
         ui.separator();
         let (can_undo, can_redo) = app.doc.can_undo_redo();

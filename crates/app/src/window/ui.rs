@@ -12,12 +12,13 @@ use helixhair_render::OrbitCamera;
 
 use super::app_state::AppState;
 use super::default_style::regrow_roots;
+use super::file_menu::{FileWindows, dropped as dropped_file, file_windows, open_picker, picked};
 use super::file_picker::{FilePicker, PickerMode};
 use super::head_motion::Clip;
 use super::readout_panel::readouts;
 use super::style_panel::{count_field, group_params, sim_settings};
-use super::tool_bar::{open_picker, tool_bar};
-use super::unsaved::{AfterAnswer, Leave, confirm_dialog};
+use super::tool_bar::tool_bar;
+use super::unsaved::{AfterAnswer, confirm_dialog};
 use super::viewport::{framed_camera, move_head, orbit, pan, turn_head};
 
 /// What the window keeps between frames besides the app state.
@@ -38,6 +39,8 @@ pub struct ViewState {
     /// Open (`Some(true)`) or close every group's section in the next
     /// frame ("expand all", "collapse all").
     pub open_groups: Option<bool>,
+    /// The File menu's dialogs and jobs.
+    pub files: FileWindows,
 }
 
 impl ViewState {
@@ -51,6 +54,7 @@ impl ViewState {
             preset_name: "my style".into(),
             guides,
             open_groups: None,
+            files: FileWindows::default(),
         }
     }
 }
@@ -98,18 +102,16 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             view.picker = None;
         }
         if let Some(path) = chosen {
-            match mode {
-                PickerMode::Open => app.request_leave(Leave::Open(path)),
-                PickerMode::SaveAs => app.saved_as(&path),
-            }
+            picked(app, &mut view.files, mode, path);
         }
     }
     let dropped = ui
         .ctx()
         .input(|i| i.raw.dropped_files.first().map(|f| f.path().to_owned()));
     if let Some(path) = dropped {
-        app.request_leave(Leave::Open(path));
+        dropped_file(app, &mut view.files, path);
     }
+    file_windows(ui.ctx(), app, &mut view.files);
     if let Some(answer) = confirm_dialog(ui.ctx(), app)
         && app.answer_leave(answer) == AfterAnswer::PickSaveAs
     {
@@ -193,6 +195,21 @@ const MAX_GUIDES: usize = 5000;
 /// How many strands a group has, in words: listed roots, roots grown on
 /// the scalp, or both.
 pub fn strand_count_words(group: &crate::style::StrandGroup) -> String {
+    if let Some(imported) = &group.imported {
+        let guides = imported.guides().count();
+        let all = imported.strands.len();
+        let roots = group.roots.len();
+        let extra = if roots > 0 {
+            format!(" + {roots} listed")
+        } else {
+            String::new()
+        };
+        return if guides == all {
+            format!("{all} imported strands{extra}")
+        } else {
+            format!("{all} imported strands, {guides} simulated{extra}")
+        };
+    }
     let listed = group.roots.len();
     match &group.scalp {
         None => format!("{listed} strands"),
@@ -267,6 +284,13 @@ fn head_controls(ui: &mut Ui, app: &mut AppState) {
     );
     if ui.button("centre head").clicked() {
         *pose = Default::default();
+    }
+    if ui
+        .button("set current shape as rest")
+        .on_hover_text("freeze the hair as it is now: its shape becomes the equilibrium (undoable)")
+        .clicked()
+    {
+        app.set_current_shape_as_rest();
     }
     ui.small("Alt + left drag turns the head, Alt + right drag moves it.");
 }

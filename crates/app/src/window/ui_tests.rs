@@ -192,3 +192,29 @@ fn group_titles_count_listed_and_grown_strands() {
     group.roots.clear();
     assert_eq!(strand_count_words(&group), "120 strands grown on the scalp");
 }
+
+#[test]
+fn group_titles_count_imported_strands() {
+    // Regression: an imported groom opened in the window read
+    // "group `imported` (0 strands)" while 35 strands were simulated.
+    let mut group = default_style(3).groups[0].clone();
+    let strand = crate::style_imported::ImportedStrand {
+        root: group.roots[0],
+        element_length_m: 0.01,
+        strains: vec![glam::DVec3::ZERO; 4],
+        natural: vec![glam::DVec3::ZERO; 4],
+        guide: true,
+    };
+    group.roots.clear();
+    let mut strands = vec![strand.clone(); 5];
+    strands[4].guide = false;
+    group.imported = Some(crate::style_imported::ImportedStrands {
+        source: "g.obj".into(),
+        head: None,
+        strands,
+    });
+    assert_eq!(
+        strand_count_words(&group),
+        "5 imported strands, 4 simulated"
+    );
+}

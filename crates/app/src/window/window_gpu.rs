@@ -106,6 +106,12 @@ impl WindowGpu {
         self.gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu
     }
 
+    /// Waits until the GPU has done all submitted work (profiling only:
+    /// it serialises CPU and GPU).
+    pub fn wait_idle(&self) {
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+
     /// Follows a window resize.
     pub fn resize(&mut self, width_px: u32, height_px: u32) {
         if width_px > 0 && height_px > 0 {

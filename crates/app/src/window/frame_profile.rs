@@ -1,0 +1,62 @@
+//! Where a displayed frame's time goes, for `helixhair --frames K
+//! --profile`: physics, strand geometry (drawn strands interpolated and
+//! draped on the CPU), the 3D picture (recorded and, with `--profile`,
+//! waited for, so the GPU's or lavapipe's time lands here instead of in a
+//! later stage), egui's layout, and painting and presenting the window.
+//! Medians over the second half of the run are printed with the summary.
+
+use std::time::Instant;
+
+use crate::stats::median;
+
+/// The stages of a frame, in order.
+pub const STAGES: [&str; 5] = ["physics", "strands", "picture", "egui", "present"];
+
+/// Per-stage seconds of every frame.
+#[derive(Clone, Debug, Default)]
+pub struct FrameProfile {
+    frames: Vec<[f64; 5]>,
+    current: [f64; 5],
+    mark: Option<Instant>,
+}
+
+impl FrameProfile {
+    /// Starts timing a frame's first stage.
+    pub fn start(&mut self) {
+        self.current = [0.0; 5];
+        self.mark = Some(Instant::now());
+    }
+
+    /// Ends stage `stage` (an index into [`STAGES`]) and starts the next.
+    pub fn lap(&mut self, stage: usize) {
+        let now = Instant::now();
+        if let Some(mark) = self.mark.replace(now) {
+            self.current[stage] += now.duration_since(mark).as_secs_f64();
+        }
+    }
+
+    /// Ends the frame.
+    pub fn finish(&mut self) {
+        self.frames.push(self.current);
+    }
+
+    /// Median milliseconds of each stage over the last `n` frames.
+    pub fn median_ms(&self, n: usize) -> [f64; 5] {
+        let last = &self.frames[self.frames.len().saturating_sub(n)..];
+        std::array::from_fn(|s| {
+            let v: Vec<f64> = last.iter().map(|f| 1e3 * f[s]).collect();
+            median(&v)
+        })
+    }
+
+    /// One line: each stage's median milliseconds.
+    pub fn line(&self, n: usize) -> String {
+        let ms = self.median_ms(n);
+        let parts: Vec<String> = STAGES
+            .iter()
+            .zip(ms)
+            .map(|(name, ms)| format!("{name} {ms:.1}"))
+            .collect();
+        format!("median ms per frame by stage: {}", parts.join(", "))
+    }
+}

@@ -1,0 +1,181 @@
+//! "Set current shape as rest": the hair as it is now becomes the static
+//! equilibrium, so an artist can pose hair with the head (drag it, shake
+//! it, let it fall) and freeze it.
+//!
+//! # How it works
+//!
+//! For every simulated strand, its current strains q (twist and two
+//! curvatures per element) are kept as its starting shape, and its natural
+//! strains are solved with the sag-free solve `helixhair import` uses
+//! ([`helixhair_physics::fit::sag_free`]): q⁰ = q − K⁻¹ Q(q), so that the
+//! elastic force K(q − q⁰) balances gravity exactly in the current shape,
+//! with the root where the head holds it now. Per-strand natural strains
+//! are what an `imported` section of the style holds (docs/import.md), so
+//! each group's strands become imported strands (roots, element length,
+//! `strains`, `natural`); a group's material stays. The head stops where
+//! it is ([`HeadDriver::hold`]) and the strands' rates are set to zero:
+//! the hair is then at rest in its equilibrium and stays put. The edit is
+//! one undo step.
+//!
+//! Where strands lie on the head, the head carries the weight pressing
+//! into it (the import's support, within the contact skin).
+//!
+//! Limits: procedural groups with graded element layouts are refused (an
+//! imported strand has uniform elements). A pose is only kept if it is a
+//! stable equilibrium: fine hair held out from the head by its rest shape
+//! alone (ρSgL³/EI ≫ 1: the default curls' is about 170) is at rest but
+//! unstable, and falls away at the smallest push; such strands are counted
+//! and named in the message, as the import counts them. Drawn strands of a `render` section follow the guides only
+//! where the style draws imported groups (only guides are drawn today).
+//!
+//! [`HeadDriver::hold`]: super::head_motion::HeadDriver::hold
+
+use helixhair_physics::collision::{ContactSettings, SignedDistanceField};
+use helixhair_physics::engine::Engine;
+use helixhair_physics::fit::{SagFreeInputs, SagFreeStatus, Support, sag_free};
+use helixhair_physics::{ElementLayout, RigidMotion};
+
+use crate::style::Style;
+use crate::style_imported::{ImportedStrand, ImportedStrands};
+
+use super::app_state::AppState;
+
+/// How the solve went, strand by strand.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RestCounts {
+    /// Exact, stable equilibria.
+    pub held: usize,
+    /// Natural strains clamped to the format's limit (the shape then sags
+    /// a little).
+    pub clamped: usize,
+    /// Unstable equilibria (the strand will fall away from its shape).
+    pub unstable: usize,
+}
+
+/// The sag-free natural strains of strand `index` of `engine` as it is now,
+/// resting on the head `collider` where it lies on it.
+fn rest_of(
+    engine: &Engine,
+    collider: Option<&SignedDistanceField>,
+    index: usize,
+    counts: &mut RestCounts,
+) -> (Vec<glam::DVec3>, Vec<glam::DVec3>) {
+    let q = engine.q(index);
+    let (root, _) = engine.kinematics(index);
+    let root = RigidMotion::at_rest(root.position_m, root.world_from_body);
+    let head = RigidMotion::at_rest(engine.head().position_m, engine.head().world_from_body);
+    let inputs = SagFreeInputs {
+        root: &root,
+        gravity_m_per_s2: engine.settings().gravity_m_per_s2,
+        support: collider.map(|collider| Support {
+            collider,
+            head: &head,
+            skin_m: ContactSettings::default().skin_m,
+        }),
+    };
+    let rest = sag_free(engine.strand_model(index), &q, &inputs);
+    match rest.status {
+        SagFreeStatus::Held => counts.held += 1,
+        SagFreeStatus::Clamped => counts.clamped += 1,
+        SagFreeStatus::Unstable => counts.unstable += 1,
+    }
+    (q, rest.natural_per_m)
+}
+
+/// `grown` (the style as the engine was built from it: scalp placements
+/// grown into roots) with every simulated strand frozen in `engine`'s
+/// current shape as its rest shape.
+pub fn rest_style(
+    grown: &Style,
+    engine: &Engine,
+    collider: Option<&SignedDistanceField>,
+) -> Result<(Style, RestCounts), String> {
+    let mut style = grown.clone();
+    let mut counts = RestCounts::default();
+    let mut index = 0;
+    for group in &mut style.groups {
+        if !group.roots.is_empty() && group.params.layout != ElementLayout::Uniform {
+            return Err(format!(
+                "group `{}` has a graded element layout; set as rest needs uniform elements",
+                group.name
+            ));
+        }
+        let element_length_m = group.params.length_m / group.params.elements as f64;
+        let mut frozen = Vec::with_capacity(group.roots.len());
+        for root in &group.roots {
+            let (strains, natural) = rest_of(engine, collider, index, &mut counts);
+            index += 1;
+            frozen.push(ImportedStrand {
+                root: *root,
+                element_length_m,
+                strains,
+                natural,
+                guide: true,
+            });
+        }
+        if let Some(imported) = &mut group.imported {
+            for strand in imported.strands.iter_mut().filter(|s| s.guide) {
+                (strand.strains, strand.natural) = rest_of(engine, collider, index, &mut counts);
+                index += 1;
+            }
+        }
+        if frozen.is_empty() {
+            continue;
+        }
+        let imported = group.imported.get_or_insert_with(|| ImportedStrands {
+            source: String::new(),
+            head: None,
+            strands: Vec::new(),
+        });
+        imported.strands.splice(0..0, frozen);
+        group.roots.clear();
+        group.scalp = None;
+        group.render = None;
+    }
+    if index != engine.strand_count() {
+        return Err(format!(
+            "the simulation has {} strands and the style {index}; edit settled?",
+            engine.strand_count()
+        ));
+    }
+    Ok((style, counts))
+}
+
+impl AppState {
+    /// Sets the hair's current shape as its rest shape (see the module
+    /// docs); one undo step. On failure nothing changes and the message
+    /// says why.
+    pub fn set_current_shape_as_rest(&mut self) {
+        if self.invalid.is_some() {
+            self.message = Some("fix the style first: it is not being simulated".into());
+            return;
+        }
+        let collider = self.sim.collider().map(|c| c.field());
+        let (style, counts) = match rest_style(self.sim.grown_style(), self.sim.engine(), collider)
+        {
+            Ok(done) => done,
+            Err(e) => {
+                self.message = Some(format!("not set as rest: {e}"));
+                return;
+            }
+        };
+        self.head.hold();
+        self.doc.edit(|s| *s = style);
+        if let Err(e) = self.sim.sync(self.doc.style()) {
+            self.message = Some(format!("not set as rest: {e}"));
+            self.doc.undo();
+            return;
+        }
+        self.sim.stop();
+        let total = counts.held + counts.clamped + counts.unstable;
+        self.message = Some(format!(
+            "current shape set as rest for {total} strands ({} held exactly, {} clamped to the \
+             curvature limit, {} unstable); Undo restores the style",
+            counts.held, counts.clamped, counts.unstable
+        ));
+    }
+}
+
+#[cfg(test)]
+#[path = "set_rest_tests.rs"]
+mod tests;

@@ -1,0 +1,82 @@
+//! Tests of [`super::set_rest`] (kept apart to keep the module short).
+
+use glam::DVec3;
+
+use super::super::default_style::default_style;
+use super::*;
+
+/// Stiff short hair (radius 0.1 mm, 10 cm: ρSgL³/EI ≈ 1.3, so poses
+/// off the hanging one are stable equilibria once set as rest), its head
+/// turned and the hair still swinging after it.
+fn posed_app() -> AppState {
+    let mut style = default_style(6);
+    for g in &mut style.groups {
+        g.params.radius_m = 1e-4;
+        g.params.length_m = 0.1;
+        g.params.elements = 8;
+    }
+    let mut app = AppState::new(style, None).unwrap();
+    app.head.target.turn_rad = 0.6;
+    app.head.target.offset_m = DVec3::new(0.0, 0.01, 0.0);
+    for _ in 0..40 {
+        app.step_frame();
+    }
+    app
+}
+
+/// Largest tip distance from `start` over `frames` frames, metres.
+fn drift_from(app: &mut AppState, start: &[DVec3], frames: usize) -> f64 {
+    let mut worst: f64 = 0.0;
+    for _ in 0..frames {
+        app.step_frame();
+        for (a, b) in start.iter().zip(app.sim.tips_m()) {
+            worst = worst.max((b - *a).length());
+        }
+    }
+    worst
+}
+
+/// Frames the hair is watched for after freezing: two seconds at 60 Hz.
+const WATCH_FRAMES: usize = 120;
+
+/// How far a frozen tip may move in those frames: 1 mm, the import's own
+/// criterion for a groom holding its shape (issue 11).
+const HELD_M: f64 = 1e-3;
+
+// Known failure, not fixed (2026-11-24): of these 6 strands the 4 that
+// hang free stay within 1 µm, but the 2 lying on the head move 5.9 and
+// 6.1 mm in the first 20 frames and then stay; and the control below
+// moves only 0.01 mm (this stiff hair was already at rest after 40
+// frames), so the test does not yet pose hair that would move without
+// the button. Cause not found: it is not the sag-free solve's head
+// support (solved without it, the two drift 6.8 mm the same way).
+#[test]
+#[ignore = "known failure: strands resting on the head drift 6 mm after set as rest"]
+fn after_set_as_rest_the_hair_stays_put_on_a_still_head() {
+    let mut app = posed_app();
+    let before = app.doc.style().clone();
+    // The tips as the user sees them when pressing the button.
+    let shown = app.sim.tips_m();
+    app.set_current_shape_as_rest();
+    let message = app.message.clone().unwrap();
+    assert!(
+        message.starts_with("current shape set as rest for 6 strands (6 held exactly"),
+        "{message}"
+    );
+    let drift = drift_from(&mut app, &shown, WATCH_FRAMES);
+    assert!(drift < HELD_M, "frozen tips moved {drift} m");
+
+    // Without it (the head stopped and the strands stopped the same way,
+    // the old rest shape kept) the same hair moves far more: the check
+    // above is not of hair that would have stayed anyway.
+    let mut control = posed_app();
+    let shown = control.sim.tips_m();
+    control.head.hold();
+    control.sim.stop();
+    let sag = drift_from(&mut control, &shown, WATCH_FRAMES);
+    assert!(sag > 5.0 * HELD_M, "unfrozen tips moved only {sag} m");
+
+    // One undo step restores the style.
+    assert!(app.doc.undo());
+    assert_eq!(app.doc.style(), &before);
+}
