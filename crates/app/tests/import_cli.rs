@@ -261,7 +261,10 @@ fn strands_standing_past_their_buckling_length_are_stiffened_and_stand() {
     let (report, moved) = run(&[], "stiffened");
     assert_eq!(report["sag_free"]["stiffened"], 2, "{report}");
     assert_eq!(report["sag_free"]["held"], 1, "{report}");
-    assert!(moved < 1e-3, "the stiffened strands moved {moved} m in 10 s");
+    assert!(
+        moved < 1e-3,
+        "the stiffened strands moved {moved} m in 10 s"
+    );
     let style = Style::load(&dir.join("stiffened.ron")).expect("loads");
     let strands = &style.groups[0].imported.as_ref().expect("imported").strands;
     assert!(strands[0].stiffness_scale > 1.0 && strands[2].stiffness_scale == 1.0);
