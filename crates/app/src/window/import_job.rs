@@ -61,6 +61,7 @@ pub fn start_import(groom: &Path) -> anyhow::Result<Job<JobDone>> {
         fit_tolerance: defaults.tolerance_over_length,
         max_elements: defaults.max_elements,
         no_sag_free: false,
+        no_stiffen: false,
         guides: None,
         out: out.clone(),
         json: None,

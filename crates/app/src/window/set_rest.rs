@@ -24,15 +24,21 @@
 //! imported strand has uniform elements). A pose is only kept if it is a
 //! stable equilibrium: fine hair held out from the head by its rest shape
 //! alone (ρSgL³/EI ≫ 1: the default curls' is about 170) is at rest but
-//! unstable, and falls away at the smallest push; such strands are counted
-//! and named in the message, as the import counts them. Drawn strands of a `render` section follow the guides only
+//! unstable, and would fall away at the smallest push. As the import does,
+//! such a strand is stiffened by the least factor that holds it
+//! ([`helixhair_physics::fit::stiffen`], kept as the strand's
+//! `stiffness_scale`, at most 100 in all); one that would need more stays
+//! unstable. The message counts each kind. Drawn strands of a `render` section follow the guides only
 //! where the style draws imported groups (only guides are drawn today).
 //!
 //! [`HeadDriver::hold`]: super::head_motion::HeadDriver::hold
 
 use helixhair_physics::collision::{ContactSettings, SignedDistanceField};
 use helixhair_physics::engine::Engine;
-use helixhair_physics::fit::{SagFreeInputs, SagFreeStatus, Support, sag_free};
+use helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE;
+use helixhair_physics::fit::{
+    SagFreeInputs, SagFreeStatus, StiffenOptions, Support, sag_free_stiffened,
+};
 use helixhair_physics::{ElementLayout, RigidMotion};
 
 use crate::style::Style;
@@ -45,6 +51,9 @@ use super::app_state::AppState;
 pub struct RestCounts {
     /// Exact, stable equilibria.
     pub held: usize,
+    /// Exact equilibria made stable by stiffening the strand by the least
+    /// factor that holds it (as the import does).
+    pub stiffened: usize,
     /// Natural strains clamped to the format's limit (the shape then sags
     /// a little).
     pub clamped: usize,
@@ -52,14 +61,25 @@ pub struct RestCounts {
     pub unstable: usize,
 }
 
-/// The sag-free natural strains of strand `index` of `engine` as it is now,
-/// resting on the head `collider` where it lies on it.
+/// A strand frozen in its current shape: its strains, its sag-free
+/// natural strains, and the factor its moduli were stiffened by (1: not).
+struct Frozen {
+    strains: Vec<glam::DVec3>,
+    natural: Vec<glam::DVec3>,
+    stiffened_by: f64,
+}
+
+/// Strand `index` of `engine` frozen as it is now, resting on the head
+/// `collider` where it lies on it; stiffened if its equilibrium is
+/// unstable, so that its whole scale (`scale_now` times the new factor)
+/// stays within the style's limit.
 fn rest_of(
     engine: &Engine,
     collider: Option<&SignedDistanceField>,
     index: usize,
+    scale_now: f64,
     counts: &mut RestCounts,
-) -> (Vec<glam::DVec3>, Vec<glam::DVec3>) {
+) -> Result<Frozen, String> {
     let q = engine.q(index);
     let (root, _) = engine.kinematics(index);
     let root = RigidMotion::at_rest(root.position_m, root.world_from_body);
@@ -73,13 +93,25 @@ fn rest_of(
             skin_m: ContactSettings::default().skin_m,
         }),
     };
-    let rest = sag_free(engine.strand_model(index), &q, &inputs);
-    match rest.status {
+    let model = engine.strand_model(index);
+    let options = StiffenOptions {
+        max_scale: MAX_STIFFNESS_SCALE / scale_now,
+        ..StiffenOptions::default()
+    };
+    let samples = model.quadrature.nodes.len();
+    let stiff = sag_free_stiffened(&model.params, samples, &q, &inputs, &options)
+        .map_err(|e| format!("strand {index}: {e}"))?;
+    match stiff.rest.status {
         SagFreeStatus::Held => counts.held += 1,
+        SagFreeStatus::Stiffened => counts.stiffened += 1,
         SagFreeStatus::Clamped => counts.clamped += 1,
         SagFreeStatus::Unstable => counts.unstable += 1,
     }
-    (q, rest.natural_per_m)
+    Ok(Frozen {
+        strains: q,
+        natural: stiff.rest.natural_per_m,
+        stiffened_by: stiff.stiffness_scale,
+    })
 }
 
 /// `grown` (the style as the engine was built from it: scalp placements
@@ -103,19 +135,22 @@ pub fn rest_style(
         let element_length_m = group.params.length_m / group.params.elements as f64;
         let mut frozen = Vec::with_capacity(group.roots.len());
         for root in &group.roots {
-            let (strains, natural) = rest_of(engine, collider, index, &mut counts);
+            let rest = rest_of(engine, collider, index, 1.0, &mut counts)?;
             index += 1;
             frozen.push(ImportedStrand {
                 root: *root,
                 element_length_m,
-                strains,
-                natural,
+                strains: rest.strains,
+                natural: rest.natural,
                 guide: true,
+                stiffness_scale: rest.stiffened_by,
             });
         }
         if let Some(imported) = &mut group.imported {
             for strand in imported.strands.iter_mut().filter(|s| s.guide) {
-                (strand.strains, strand.natural) = rest_of(engine, collider, index, &mut counts);
+                let rest = rest_of(engine, collider, index, strand.stiffness_scale, &mut counts)?;
+                (strand.strains, strand.natural) = (rest.strains, rest.natural);
+                strand.stiffness_scale *= rest.stiffened_by;
                 index += 1;
             }
         }
@@ -167,11 +202,11 @@ impl AppState {
             return;
         }
         self.sim.stop();
-        let total = counts.held + counts.clamped + counts.unstable;
+        let total = counts.held + counts.stiffened + counts.clamped + counts.unstable;
         self.message = Some(format!(
-            "current shape set as rest for {total} strands ({} held exactly, {} clamped to the \
-             curvature limit, {} unstable); Undo restores the style",
-            counts.held, counts.clamped, counts.unstable
+            "current shape set as rest for {total} strands ({} held exactly, {} stiffened to \
+             hold, {} clamped to the curvature limit, {} unstable); Undo restores the style",
+            counts.held, counts.stiffened, counts.clamped, counts.unstable
         ));
     }
 }

@@ -204,6 +204,7 @@ fn group_titles_count_imported_strands() {
         strains: vec![glam::DVec3::ZERO; 4],
         natural: vec![glam::DVec3::ZERO; 4],
         guide: true,
+        stiffness_scale: 1.0,
     };
     group.roots.clear();
     let mut strands = vec![strand.clone(); 5];
