@@ -44,6 +44,7 @@ pub mod gpu;
 pub mod guard;
 pub mod hair_system;
 pub mod helix;
+pub mod helix_rates;
 pub mod jet;
 pub mod mass;
 pub mod model;

@@ -17,7 +17,9 @@
 //! respect to q̇ (centrifugal, Coriolis and root-rotation terms,
 //! [`crate::velocity_terms`]) joins the step matrix too: Dense factors the
 //! whole non-symmetric matrix, the O(N) solvers correct their answer by a
-//! few Richardson iterations inside stage "solve".
+//! few GMRES iterations inside stage "solve". Stage "reconstruct" then
+//! also gives the Jacobians' time derivatives, which make each product
+//! G x three prefix sums and a projection.
 
 use std::time::Instant;
 
@@ -27,10 +29,10 @@ use crate::forces::{ForceInputs, generalized_forces};
 use crate::helix::outer;
 use crate::mass::{MassData, add_sample_weights, mass_blocks, mass_times, scaled};
 use crate::model::StrandModel;
-use crate::reconstruct::{Kinematics, reconstruct};
+use crate::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
 use crate::settings::{Method, StepScheme};
 use crate::solve::{Solver, StepSolver};
-use crate::velocity_terms::{Difference, VelocityTerms};
+use crate::velocity_terms::{Derivative, VelocityTerms};
 
 /// Wall time spent in each stage, seconds (summed over strands and steps).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -134,8 +136,19 @@ pub fn step_strand(
     let h = inputs.h_secs;
     let mut times = StageTimes::default();
 
+    let corrections = match ws.scheme {
+        StepScheme::VelocityExplicit => 0,
+        StepScheme::VelocityImplicit { corrections } => corrections,
+    };
+    // The velocity terms' products need the Jacobians' rates (Block-diagonal
+    // keeps its velocity terms explicit and does without).
+    let implicit_velocity = corrections > 0 && !matches!(ws.solver, Solver::BlockDiagonal(_));
     let t = Instant::now();
-    reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    if implicit_velocity {
+        reconstruct_with_rates(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    } else {
+        reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    }
     times.reconstruct_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -152,10 +165,6 @@ pub fn step_strand(
     ws.diagonal.clear();
     ws.diagonal
         .extend((0..n).map(|e| DVec3::splat(h * model.friction[e]) + h * h * model.stiffness[e]));
-    let corrections = match ws.scheme {
-        StepScheme::VelocityExplicit => 0,
-        StepScheme::VelocityImplicit { corrections } => corrections,
-    };
     let root = inputs.forces.root;
     let mass_scale = 1.0 + h * drag_rate;
     // Implicit contact: h (h k + c) Jᵀ n nᵀ J joins s M in the step matrix.
@@ -176,7 +185,7 @@ pub fn step_strand(
         (&ws.mass, mass_scale)
     };
     match &mut ws.solver {
-        Solver::Dense(dense) if corrections > 0 => {
+        Solver::Dense(dense) if implicit_velocity => {
             // The reference: h G assembled column by column (3N products,
             // O(N²)) and the whole non-symmetric matrix LU-factored.
             let velocity =
@@ -233,7 +242,7 @@ fn dense_velocity_matrix(
     for j in 0..3 * n {
         unit[j / 3][j % 3] = 1.0;
         terms.apply(
-            Difference::Central,
+            Derivative::JacobianRates,
             model,
             kin,
             q,
@@ -289,7 +298,7 @@ fn velocity_corrections(
     let tol = GMRES_TOLERANCE;
     ws.velocity_product.resize(n, DVec3::ZERO);
     ws.velocity_terms.apply(
-        Difference::Forward,
+        Derivative::JacobianRates,
         model,
         &ws.kinematics,
         q,
@@ -324,7 +333,7 @@ fn velocity_corrections(
         let z = &mut krylov.directions[j];
         ws.solver.solve(&ws.kinematics, matrix, &krylov.basis[j], z);
         ws.velocity_terms.apply(
-            Difference::Forward,
+            Derivative::JacobianRates,
             model,
             &ws.kinematics,
             q,
