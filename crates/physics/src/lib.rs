@@ -32,6 +32,7 @@
 #![warn(missing_docs)]
 
 pub mod batch;
+pub mod block_velocity_terms;
 pub mod collision;
 pub mod energy;
 pub mod engine;

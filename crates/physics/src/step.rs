@@ -25,6 +25,7 @@ use std::time::Instant;
 
 use glam::{DMat3, DVec3};
 
+use crate::block_velocity_terms::BlockVelocityTerms;
 use crate::forces::{ForceInputs, generalized_forces};
 use crate::helix::outer;
 use crate::mass::{MassData, add_sample_weights, mass_blocks, mass_times, scaled};
@@ -83,6 +84,7 @@ pub struct StepWorkspace {
     /// How the step treats the velocity-dependent forces.
     pub scheme: StepScheme,
     velocity_terms: VelocityTerms,
+    block_terms: BlockVelocityTerms,
     krylov: Krylov,
     contact_weights: Vec<(usize, DMat3)>,
     step_mass: MassData,
@@ -103,6 +105,7 @@ impl StepWorkspace {
             solver: Solver::new(method),
             scheme: StepScheme::default(),
             velocity_terms: VelocityTerms::default(),
+            block_terms: BlockVelocityTerms::default(),
             krylov: Krylov::default(),
             contact_weights: Vec::new(),
             step_mass: MassData::default(),
@@ -143,8 +146,11 @@ pub fn step_strand(
     // The velocity terms' products need the Jacobians' rates (Block-diagonal
     // keeps its velocity terms explicit and does without).
     let implicit_velocity = corrections > 0 && !matches!(ws.solver, Solver::BlockDiagonal(_));
+    // Block-diagonal (subtree blocks) takes the velocity terms of its own
+    // Lagrangian instead ([`crate::block_velocity_terms`]).
+    let block_lagrangian = corrections > 0 && ws.solver.method() == Method::BlockDiagonal;
     let t = Instant::now();
-    if implicit_velocity {
+    if implicit_velocity || block_lagrangian {
         reconstruct_with_rates(model, q, v, inputs.forces.root, &mut ws.kinematics);
     } else {
         reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
@@ -154,6 +160,19 @@ pub fn step_strand(
     let t = Instant::now();
     ws.forces.resize(n, DVec3::ZERO);
     generalized_forces(model, &ws.kinematics, &inputs.forces, &mut ws.forces);
+    if block_lagrangian {
+        ws.velocity_product.resize(n, DVec3::ZERO);
+        ws.block_terms.correction(
+            model,
+            &ws.kinematics,
+            v,
+            inputs.forces.root,
+            &mut ws.velocity_product,
+        );
+        for (f, c) in ws.forces.iter_mut().zip(&ws.velocity_product) {
+            *f += *c;
+        }
+    }
     times.forces_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -209,7 +228,8 @@ pub fn step_strand(
         .solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
     // Block-diagonal's own P is too far from P + hG on a whipping strand
     // (measured: Richardson's residual grew from the first correction), so
-    // it keeps its explicit velocity terms.
+    // its velocity terms stay explicit: its own Lagrangian's, added to the
+    // forces above.
     if matches!(ws.solver, Solver::Exact(_) | Solver::Iterative(_)) {
         velocity_corrections(model, q, v, root, h, corrections, in_contact, ws);
     }

@@ -76,7 +76,12 @@ pub struct VelocityTerms {
 
 /// 2 J̇ x at every sample (m/s² per unit of x), root to tip: see the module
 /// doc's prefix sums.
-fn jacobian_rate_times(model: &StrandModel, kin: &Kinematics, x: &[DVec3], out: &mut Vec<DVec3>) {
+pub(crate) fn jacobian_rate_times(
+    model: &StrandModel,
+    kin: &Kinematics,
+    x: &[DVec3],
+    out: &mut Vec<DVec3>,
+) {
     assert!(
         kin.element_rates.len() == x.len() && kin.jacobian_rates.len() == kin.samples.len(),
         "the product needs reconstruct_with_rates"
