@@ -51,14 +51,14 @@
 //! Block-diagonal's matrix (docs/solvers.md), and with a still head none
 //! was needed (measured: tests/block_velocity_terms.rs).
 //!
-//! Cost: the sums over Ω_Q are taken directly, O(N²) (per element, every
-//! sample beyond it, a few cross products each); suffix moments to second
-//! order would make it O(N).
+//! Cost: O(N). The sums over Ω_Q beyond element Q are polynomials of
+//! degree two in r and ṙ, so five suffix moments of the samples, taken tip
+//! to root, give them ([`BlockVelocityTerms::forces`]).
 
 use glam::{DMat3, DVec3};
 
 use crate::forces::project_sample_forces;
-use crate::helix::outer;
+use crate::helix::{outer, skew};
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::reconstruct::Kinematics;
@@ -69,9 +69,99 @@ use crate::velocity_terms::jacobian_rate_times;
 pub struct BlockVelocityTerms {
     accelerations: Vec<DVec3>,
     forces: Vec<DVec3>,
+    /// Per element: Ω_Q, c_Q, S_Q, t_Q (see [`BlockVelocityTerms::forces`]).
+    prefix: Vec<(DVec3, DVec3, DMat3, f64)>,
 }
 
 impl BlockVelocityTerms {
+    /// out = F_bd = Ṁ_bd q̇ − ∂T_bd/∂q per element (N·m²), strain rates only,
+    /// in O(N); `kin` from [`crate::reconstruct::reconstruct_with_rates`]: the sums over the samples beyond element Q
+    /// are polynomials of degree two in r and ṙ, so five suffix moments of
+    /// the samples (Σ ρSw, Σ ρSw r, Σ ρSw ṙ, Σ ρSw r rᵀ, Σ ρSw ṙ rᵀ), taken tip
+    /// to root, give them. With u = k₀ + L r + [β]× ṙ the sample's term
+    /// J̇ˢq̇_Q − f_Q − Ω_Q × w_Q and v_{>Q} = ṙ + d₀ + N r:
+    /// Σu = m k₀ + L R + [β]× V, and Σ r × u + v_{>Q} × w_Q by [`cross_sum`].
+    pub fn forces(
+        &mut self,
+        model: &StrandModel,
+        kin: &Kinematics,
+        v: &[DVec3],
+        root: &RigidMotion,
+        out: &mut [DVec3],
+    ) {
+        let n = v.len();
+        let points = model.quadrature.len();
+        let rho_s = model.mass_per_length;
+        let omega = root.angular_velocity_rad_per_s;
+        // Root to tip: the prefix data of each element (Ω_Q, c_Q, S_Q, t_Q).
+        let prefix = &mut self.prefix;
+        prefix.clear();
+        let (mut frame_turn, mut c, mut s_sum, mut t) =
+            (DVec3::ZERO, DVec3::ZERO, DMat3::ZERO, 0.0);
+        for (jac, v_q) in kin.elements.iter().zip(v) {
+            prefix.push((frame_turn, c, s_sum, t));
+            let beta = jac.b * *v_q;
+            c += (jac.a * *v_q).cross(beta);
+            s_sum += outer(beta, beta);
+            t += beta.length_squared();
+            frame_turn += beta;
+        }
+        // Tip to root: suffix moments of the samples beyond element Q.
+        let (mut m, mut r_sum, mut v_sum) = (0.0, DVec3::ZERO, DVec3::ZERO);
+        let (mut rr, mut vr) = (DMat3::ZERO, DMat3::ZERO);
+        for q in (0..n).rev() {
+            let (frame_turn, c, s_sum, t) = prefix[q];
+            let jac = &kin.elements[q];
+            let rates = &kin.element_rates[q];
+            let v_q = v[q];
+            let (alpha, beta) = (jac.a * v_q, jac.b * v_q);
+            let (alpha_rate, beta_rate) = (rates.a * v_q, rates.b * v_q);
+            let end = kin.points_m[q + 1];
+            let end_velocity = strain_velocity(end, kin.point_velocities_m_per_s[q + 1], root);
+            let end_turn = frame_turn + beta;
+            let mut force = DVec3::ZERO;
+            // Element Q's own samples, directly.
+            for i in q * points..(q + 1) * points {
+                let s = &kin.samples[i];
+                let r = s.position_m;
+                let f = c - s_sum * r + r * t;
+                let j = s.jacobian;
+                let w = j * v_q;
+                let w_rate = kin.jacobian_rates[i] * v_q - omega.cross(w);
+                force += j.transpose() * (w_rate - f - frame_turn.cross(w)) * (rho_s * s.weight_m);
+            }
+            // Beyond it, from the moments.
+            let bx = skew(beta);
+            let k0 = alpha_rate - omega.cross(alpha) - c - frame_turn.cross(alpha);
+            let l = skew(beta_rate) - skew(omega + frame_turn) * bx + s_sum
+                - DMat3::from_diagonal(DVec3::splat(t));
+            let pulled = k0 * m + l * r_sum + bx * v_sum;
+            let d0 = -root.velocity_m_per_s - end_velocity + end_turn.cross(end);
+            let nn = -skew(omega + end_turn);
+            let id = DMat3::IDENTITY;
+            let turned = r_sum.cross(k0)
+                + cross_sum(id, l, rr)
+                + cross_sum(id, bx, vr)
+                + v_sum.cross(alpha)
+                + cross_sum(id, bx, vr.transpose())
+                + d0.cross(alpha) * m
+                + d0.cross(bx * r_sum)
+                + (nn * r_sum).cross(alpha)
+                + cross_sum(nn, bx, rr);
+            force += jac.a.transpose() * pulled + jac.b.transpose() * turned;
+            out[q] = force;
+            for s in &kin.samples[q * points..(q + 1) * points] {
+                let w = rho_s * s.weight_m;
+                let (r, rd) = (s.position_m, s.velocity_m_per_s);
+                m += w;
+                r_sum += r * w;
+                v_sum += rd * w;
+                rr += outer(r, r) * w;
+                vr += outer(rd, r) * w;
+            }
+        }
+    }
+
     /// out = F_true − F_bd (N·m² per element): what turns the step's forces
     /// into Block-diagonal's Lagrangian ones. `kin` must come from
     /// [`crate::reconstruct::reconstruct_with_rates`] for rates `v`.
@@ -92,11 +182,13 @@ impl BlockVelocityTerms {
             |i| self.accelerations[i] * (rho_s * kin.samples[i].weight_m),
             out,
         );
-        self.forces.resize(v.len(), DVec3::ZERO);
-        block_forces(model, kin, v, root, &mut self.forces);
-        for (o, f) in out.iter_mut().zip(&self.forces) {
+        let mut forces = std::mem::take(&mut self.forces);
+        forces.resize(v.len(), DVec3::ZERO);
+        self.forces(model, kin, v, root, &mut forces);
+        for (o, f) in out.iter_mut().zip(&forces) {
             *o -= *f;
         }
+        self.forces = forces;
     }
 }
 
@@ -121,66 +213,13 @@ fn strain_velocity(r: DVec3, r_dot: DVec3, root: &RigidMotion) -> DVec3 {
     r_dot - root.velocity_m_per_s - root.angular_velocity_rad_per_s.cross(r)
 }
 
-/// out = F_bd = Ṁ_bd q̇ − ∂T_bd/∂q per element (N·m²), strain rates
-/// only; `kin` from [`crate::reconstruct::reconstruct_with_rates`].
-pub fn block_forces(
-    model: &StrandModel,
-    kin: &Kinematics,
-    v: &[DVec3],
-    root: &RigidMotion,
-    out: &mut [DVec3],
-) {
-    let n = v.len();
-    let points = model.quadrature.len();
-    let rho_s = model.mass_per_length;
-    let omega = root.angular_velocity_rad_per_s;
-    // Prefix sums over P < Q: the start frame's strain angular velocity
-    // Ω_Q = Σ β_P, and c_Q, S_Q, t_Q of f_Q.
-    let (mut frame_turn, mut c, mut s_sum, mut t) = (DVec3::ZERO, DVec3::ZERO, DMat3::ZERO, 0.0);
-    for q in 0..n {
-        let jac = &kin.elements[q];
-        let rates = &kin.element_rates[q];
-        let v_q = v[q];
-        let beta = jac.b * v_q;
-        let end = kin.points_m[q + 1];
-        let end_velocity = strain_velocity(end, kin.point_velocities_m_per_s[q + 1], root);
-        let end_turn = frame_turn + beta;
-        // Σ ρS w Jᵀ(J̇ˢq̇_Q − f − Ω_Q × w_Q) + Bᵀ(v_{>Q} × w_Q): the terms
-        // J̇ˢᵀw − (J̇^own)ᵀw reduce to −Jᵀ(Ω_Q × w) + Bᵀ(v_{>Q} × w), and
-        // beyond element Q, Jᵀu = Aᵀu + Bᵀ(r × u): two sums of vectors.
-        let alpha = jac.a * v_q;
-        let (alpha_rate, beta_rate) = (rates.a * v_q, rates.b * v_q);
-        let mut force = DVec3::ZERO;
-        let (mut pulled, mut turned) = (DVec3::ZERO, DVec3::ZERO);
-        for i in q * points..kin.samples.len() {
-            let s = &kin.samples[i];
-            let r = s.position_m;
-            let weight = rho_s * s.weight_m;
-            let f = c - s_sum * r + r * t;
-            if i < (q + 1) * points {
-                let j = s.jacobian;
-                let w = j * v_q;
-                let w_rate = kin.jacobian_rates[i] * v_q - omega.cross(w);
-                force += j.transpose() * (w_rate - f - frame_turn.cross(w)) * weight;
-            } else {
-                let w = alpha - r.cross(beta);
-                let w_rate = alpha_rate
-                    - s.velocity_m_per_s.cross(beta)
-                    - r.cross(beta_rate)
-                    - omega.cross(w);
-                let beyond = strain_velocity(r, s.velocity_m_per_s, root)
-                    - end_velocity
-                    - end_turn.cross(r - end);
-                let u = (w_rate - f - frame_turn.cross(w)) * weight;
-                pulled += u;
-                turned += r.cross(u) + beyond.cross(w) * weight;
-            }
-        }
-        force += jac.a.transpose() * pulled + jac.b.transpose() * turned;
-        out[q] = force;
-        c += (jac.a * v_q).cross(beta);
-        s_sum += outer(beta, beta);
-        t += beta.length_squared();
-        frame_turn = end_turn;
-    }
+/// Σ (P x) × (M y) over samples, from the moment YX = Σ y xᵀ:
+/// the axial vector of M · YX · Pᵀ.
+fn cross_sum(p: DMat3, m: DMat3, yx: DMat3) -> DVec3 {
+    let c = m * yx * p.transpose();
+    DVec3::new(
+        c.y_axis.z - c.z_axis.y,
+        c.z_axis.x - c.x_axis.z,
+        c.x_axis.y - c.y_axis.x,
+    )
 }

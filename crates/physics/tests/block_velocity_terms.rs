@@ -8,7 +8,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use helixhair_physics::RigidMotion;
-use helixhair_physics::block_velocity_terms::{BlockVelocityTerms, block_forces};
+use helixhair_physics::block_velocity_terms::BlockVelocityTerms;
 use helixhair_physics::mass::{MassData, mass_blocks};
 use helixhair_physics::reconstruct::{Kinematics, reconstruct_with_rates};
 use helixhair_physics::velocity_terms::{Derivative, VelocityTerms};
@@ -92,7 +92,7 @@ fn block_forces_match_the_lagrangian_of_the_truncated_energy() {
             let mut kin = Kinematics::default();
             reconstruct_with_rates(&m, &q, &v, &root, &mut kin);
             let mut got = vec![DVec3::ZERO; elements];
-            block_forces(&m, &kin, &v, &root, &mut got);
+            BlockVelocityTerms::default().forces(&m, &kin, &v, &root, &mut got);
             let err = max_diff(&got, &expected);
             println!("seed {seed}: |F_bd − FD| = {err:.2e} of {scale:.2e}");
             assert!(
@@ -118,7 +118,7 @@ fn the_correction_takes_off_the_true_terms() {
     let mut correction = vec![DVec3::ZERO; 6];
     BlockVelocityTerms::default().correction(&m, &kin, &v, &root, &mut correction);
     let mut f_bd = vec![DVec3::ZERO; 6];
-    block_forces(&m, &kin, &v, &root, &mut f_bd);
+    BlockVelocityTerms::default().forces(&m, &kin, &v, &root, &mut f_bd);
     let mut g_v = vec![DVec3::ZERO; 6];
     VelocityTerms::default().apply(
         Derivative::JacobianRates,
