@@ -177,7 +177,7 @@ pub struct EndGeometry {
 
 /// The shared part of [`point_geometry`] and [`end_geometry`]: φ = σk as a
 /// jet, the coefficients at its value, their jets, and h's jet.
-fn geometry_parts(
+pub(crate) fn geometry_parts(
     sigma: f64,
     k: Jet<DVec3>,
 ) -> (Jet<DVec3>, HelixCoefficients, [Jet<f64>; 3], PointGeometry) {
@@ -224,14 +224,24 @@ pub fn point_geometry(sigma: f64, k: Jet<DVec3>) -> PointGeometry {
 /// Centreline, rotation and left Jacobian at the end of an element of
 /// length `length`, for a strain jet k = (q, q̇, q̈).
 pub fn end_geometry(length: f64, k: Jet<DVec3>) -> EndGeometry {
+    end_geometry_and_parts(length, k).0
+}
+
+/// [`end_geometry`] with the jet of φ = ℓk and the coefficients it used
+/// (what the Jacobians' time derivatives need, [`crate::helix_rates`]).
+pub(crate) fn end_geometry_and_parts(
+    length: f64,
+    k: Jet<DVec3>,
+) -> (EndGeometry, Jet<DVec3>, HelixCoefficients) {
     let (phi, co, [a, b, _], point) = geometry_parts(length, k);
     let s = phi.map_linear(skew);
     let rotation = Jet::constant(DMat3::IDENTITY) + a * s + b * (s * s);
-    EndGeometry {
+    let end = EndGeometry {
         point,
         rotation,
         left_jacobian: left_jacobian_with(phi.v, &co),
-    }
+    };
+    (end, phi, co)
 }
 
 #[cfg(test)]

@@ -32,6 +32,7 @@
 #![warn(missing_docs)]
 
 pub mod batch;
+pub mod block_velocity_terms;
 pub mod collision;
 pub mod energy;
 pub mod engine;
@@ -44,6 +45,7 @@ pub mod gpu;
 pub mod guard;
 pub mod hair_system;
 pub mod helix;
+pub mod helix_rates;
 pub mod jet;
 pub mod mass;
 pub mod model;

@@ -21,7 +21,8 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::helix::{centreline_jets, end_geometry, point_geometry, skew};
+use crate::helix::{centreline_jets, end_geometry_and_parts, geometry_parts, skew};
+use crate::helix_rates::{centreline_jacobian_rate, left_jacobian_rate};
 use crate::jet::Jet;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
@@ -64,6 +65,12 @@ pub struct Kinematics {
     pub samples: Vec<Sample>,
     /// Beyond-Jacobians per element (N).
     pub elements: Vec<ElementJacobian>,
+    /// Time derivative of each sample's own Jacobian, d/dt(R_Q ∂h(σ)/∂k),
+    /// metres²/s (N × points); only [`reconstruct_with_rates`] fills it.
+    pub jacobian_rates: Vec<DMat3>,
+    /// Time derivatives Ȧ_Q, Ḃ_Q of the beyond-Jacobians (N); only
+    /// [`reconstruct_with_rates`] fills them.
+    pub element_rates: Vec<ElementJacobian>,
 }
 
 /// Rebuilds `out` from the strains `q`, their rates `v` and the root motion.
@@ -74,12 +81,41 @@ pub fn reconstruct(
     root: &RigidMotion,
     out: &mut Kinematics,
 ) {
+    sweep(model, q, v, root, false, out);
+}
+
+/// [`reconstruct`], plus the Jacobians' time derivatives J̇ (the
+/// [`Kinematics::jacobian_rates`] and [`Kinematics::element_rates`]) that
+/// the velocity terms' product G x = 2 ∫ ρS Jᵀ J̇ x ds needs
+/// ([`crate::velocity_terms`]). Ṙ_Q and ṗ come from the sweep's jets, the
+/// closed forms' own rates from [`crate::helix_rates`]:
+/// Ȧ_Q = ȧ_Q + [ṗ_{Q+1}]× b_Q + [p_{Q+1}]× ḃ_Q.
+pub fn reconstruct_with_rates(
+    model: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &RigidMotion,
+    out: &mut Kinematics,
+) {
+    sweep(model, q, v, root, true, out);
+}
+
+fn sweep(
+    model: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &RigidMotion,
+    rates: bool,
+    out: &mut Kinematics,
+) {
     let n = model.elements();
     out.frames.clear();
     out.points_m.clear();
     out.point_velocities_m_per_s.clear();
     out.samples.clear();
     out.elements.clear();
+    out.jacobian_rates.clear();
+    out.element_rates.clear();
 
     let (mut frame, mut point) = root_jets(root);
     out.frames.push(frame.v);
@@ -91,8 +127,14 @@ pub fn reconstruct(
         let k = Jet::new(q[e], v[e], DVec3::ZERO);
         for (node, weight) in model.quadrature.nodes.iter().zip(&model.quadrature.weights) {
             let sigma = node * length;
-            let geometry = point_geometry(sigma, k);
+            let (phi, co, _, geometry) = geometry_parts(sigma, k);
             let r = point + frame * geometry.centreline;
+            if rates {
+                out.jacobian_rates.push(
+                    frame.d * geometry.centreline_jacobian
+                        + frame.v * centreline_jacobian_rate(sigma, phi.v, phi.d, &co),
+                );
+            }
             out.samples.push(Sample {
                 position_m: r.v,
                 velocity_m_per_s: r.d,
@@ -101,7 +143,7 @@ pub fn reconstruct(
                 weight_m: weight * length,
             });
         }
-        let end = end_geometry(length, k);
+        let (end, phi, co) = end_geometry_and_parts(length, k);
         let next_point = point + frame * end.point.centreline;
         let a = frame.v * end.point.centreline_jacobian;
         let b = frame.v * end.left_jacobian * length;
@@ -109,6 +151,17 @@ pub fn reconstruct(
             a: a + skew(next_point.v) * b,
             b,
         });
+        if rates {
+            let a_rate = frame.d * end.point.centreline_jacobian
+                + frame.v * centreline_jacobian_rate(length, phi.v, phi.d, &co);
+            let b_rate = (frame.d * end.left_jacobian
+                + frame.v * left_jacobian_rate(phi.v, phi.d, &co))
+                * length;
+            out.element_rates.push(ElementJacobian {
+                a: a_rate + skew(next_point.d) * b + skew(next_point.v) * b_rate,
+                b: b_rate,
+            });
+        }
         frame = frame * end.rotation;
         point = next_point;
         out.frames.push(frame.v);

@@ -17,20 +17,23 @@
 //! respect to q̇ (centrifugal, Coriolis and root-rotation terms,
 //! [`crate::velocity_terms`]) joins the step matrix too: Dense factors the
 //! whole non-symmetric matrix, the O(N) solvers correct their answer by a
-//! few Richardson iterations inside stage "solve".
+//! few GMRES iterations inside stage "solve". Stage "reconstruct" then
+//! also gives the Jacobians' time derivatives, which make each product
+//! G x three prefix sums and a projection.
 
 use std::time::Instant;
 
 use glam::{DMat3, DVec3};
 
+use crate::block_velocity_terms::BlockVelocityTerms;
 use crate::forces::{ForceInputs, generalized_forces};
 use crate::helix::outer;
 use crate::mass::{MassData, add_sample_weights, mass_blocks, mass_times, scaled};
 use crate::model::StrandModel;
-use crate::reconstruct::{Kinematics, reconstruct};
+use crate::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
 use crate::settings::{Method, StepScheme};
 use crate::solve::{Solver, StepSolver};
-use crate::velocity_terms::{Difference, VelocityTerms};
+use crate::velocity_terms::{Derivative, VelocityTerms};
 
 /// Wall time spent in each stage, seconds (summed over strands and steps).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -81,6 +84,7 @@ pub struct StepWorkspace {
     /// How the step treats the velocity-dependent forces.
     pub scheme: StepScheme,
     velocity_terms: VelocityTerms,
+    block_terms: BlockVelocityTerms,
     krylov: Krylov,
     contact_weights: Vec<(usize, DMat3)>,
     step_mass: MassData,
@@ -101,6 +105,7 @@ impl StepWorkspace {
             solver: Solver::new(method),
             scheme: StepScheme::default(),
             velocity_terms: VelocityTerms::default(),
+            block_terms: BlockVelocityTerms::default(),
             krylov: Krylov::default(),
             contact_weights: Vec::new(),
             step_mass: MassData::default(),
@@ -134,13 +139,40 @@ pub fn step_strand(
     let h = inputs.h_secs;
     let mut times = StageTimes::default();
 
+    let corrections = match ws.scheme {
+        StepScheme::VelocityExplicit => 0,
+        StepScheme::VelocityImplicit { corrections } => corrections,
+    };
+    // The velocity terms' products need the Jacobians' rates (Block-diagonal
+    // keeps its velocity terms explicit and does without).
+    let implicit_velocity = corrections > 0 && !matches!(ws.solver, Solver::BlockDiagonal(_));
+    // Block-diagonal (subtree blocks) takes the velocity terms of its own
+    // Lagrangian instead ([`crate::block_velocity_terms`]).
+    let block_lagrangian = corrections > 0 && ws.solver.method() == Method::BlockDiagonal;
     let t = Instant::now();
-    reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    if implicit_velocity || block_lagrangian {
+        reconstruct_with_rates(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    } else {
+        reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    }
     times.reconstruct_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
     ws.forces.resize(n, DVec3::ZERO);
     generalized_forces(model, &ws.kinematics, &inputs.forces, &mut ws.forces);
+    if block_lagrangian {
+        ws.velocity_product.resize(n, DVec3::ZERO);
+        ws.block_terms.correction(
+            model,
+            &ws.kinematics,
+            v,
+            inputs.forces.root,
+            &mut ws.velocity_product,
+        );
+        for (f, c) in ws.forces.iter_mut().zip(&ws.velocity_product) {
+            *f += *c;
+        }
+    }
     times.forces_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -152,10 +184,6 @@ pub fn step_strand(
     ws.diagonal.clear();
     ws.diagonal
         .extend((0..n).map(|e| DVec3::splat(h * model.friction[e]) + h * h * model.stiffness[e]));
-    let corrections = match ws.scheme {
-        StepScheme::VelocityExplicit => 0,
-        StepScheme::VelocityImplicit { corrections } => corrections,
-    };
     let root = inputs.forces.root;
     let mass_scale = 1.0 + h * drag_rate;
     // Implicit contact: h (h k + c) Jᵀ n nᵀ J joins s M in the step matrix.
@@ -176,7 +204,7 @@ pub fn step_strand(
         (&ws.mass, mass_scale)
     };
     match &mut ws.solver {
-        Solver::Dense(dense) if corrections > 0 => {
+        Solver::Dense(dense) if implicit_velocity => {
             // The reference: h G assembled column by column (3N products,
             // O(N²)) and the whole non-symmetric matrix LU-factored.
             let velocity =
@@ -200,7 +228,8 @@ pub fn step_strand(
         .solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
     // Block-diagonal's own P is too far from P + hG on a whipping strand
     // (measured: Richardson's residual grew from the first correction), so
-    // it keeps its explicit velocity terms.
+    // its velocity terms stay explicit: its own Lagrangian's, added to the
+    // forces above.
     if matches!(ws.solver, Solver::Exact(_) | Solver::Iterative(_)) {
         velocity_corrections(model, q, v, root, h, corrections, in_contact, ws);
     }
@@ -233,7 +262,7 @@ fn dense_velocity_matrix(
     for j in 0..3 * n {
         unit[j / 3][j % 3] = 1.0;
         terms.apply(
-            Difference::Central,
+            Derivative::JacobianRates,
             model,
             kin,
             q,
@@ -289,7 +318,7 @@ fn velocity_corrections(
     let tol = GMRES_TOLERANCE;
     ws.velocity_product.resize(n, DVec3::ZERO);
     ws.velocity_terms.apply(
-        Difference::Forward,
+        Derivative::JacobianRates,
         model,
         &ws.kinematics,
         q,
@@ -324,7 +353,7 @@ fn velocity_corrections(
         let z = &mut krylov.directions[j];
         ws.solver.solve(&ws.kinematics, matrix, &krylov.basis[j], z);
         ws.velocity_terms.apply(
-            Difference::Forward,
+            Derivative::JacobianRates,
             model,
             &ws.kinematics,
             q,

@@ -20,21 +20,33 @@
 //!
 //! # How
 //!
-//! The step needs G only as a product G x, never as a matrix. r̈_free is a
-//! quadratic polynomial in q̇, r̈_free(q̇) = B(q̇, q̇) + L q̇ + c, so
-//! polarisation gives its derivative along x exactly, not as a finite
-//! difference:
+//! The step needs G only as a product G x, never as a matrix. Since
+//! r̈_free = J̇ q̇ + (root terms), with J̇ the whole time derivative of J
+//! (strains and the root's turn), its derivative along x is exactly
 //!
-//! (∂r̈_free/∂q̇) x = [r̈_free(q̇ + x) − r̈_free(q̇ − x)] / 2.
+//! (∂r̈_free/∂q̇) x = 2 J̇ x
 //!
-//! Two jet sweeps of the reconstruction ([`free_accelerations`]) give it at
-//! every sample, and the projection of the forces stage
-//! ([`project_sample_forces`]) turns ρS w δr̈ into G x: O(N) in all. x is
-//! scaled to the size of q̇ first (G is linear, so the result is scaled
-//! back), which keeps the cancellation in the difference at round-off.
-//! Dense, the reference, uses this exact form ([`Difference::Central`]);
-//! the O(N) solvers' corrections use a forward difference from the step's
-//! own r̈_free, one sweep instead of two ([`Difference::Forward`]).
+//! (J = ∂r/∂q, so ∂J_j/∂q_k = ∂J_k/∂q_j: the two ways q̇ enters J̇ q̇
+//! count equally; the root's turn enters as ω × J x twice, once through J̇
+//! and once through the Coriolis term ω × ṙ). Writing J as the
+//! reconstruction does, J_Q(s) = A_Q − [r]× B_Q beyond element Q and the
+//! sample's own R_Q ∂h(σ)/∂k inside it, gives for a sample of element e
+//!
+//! J̇ x = Σ_{Q<e} Ȧ_Q x_Q − ṙ × Σ_{Q<e} B_Q x_Q − r × Σ_{Q<e} Ḃ_Q x_Q + j̇ x_e,
+//!
+//! three prefix sums root to tip, then the forces stage's projection
+//! ([`project_sample_forces`]) of 2ρS w J̇ x tip to root: O(N) with no
+//! helix function evaluated ([`Derivative::JacobianRates`]). The rates Ȧ,
+//! Ḃ, j̇ come from [`crate::reconstruct::reconstruct_with_rates`], once per
+//! step, however many products the solve asks for.
+//!
+//! The first form, kept as the check ([`Derivative::Polarisation`]):
+//! r̈_free is quadratic in q̇, so [r̈_free(q̇ + x) − r̈_free(q̇ − x)] / 2 is
+//! its derivative along x exactly, from two jet sweeps of the
+//! reconstruction ([`free_accelerations`]), each re-evaluating the helix
+//! functions: about 0.7 of a whole explicit step per product (measured,
+//! docs/RESULTS.md section 9), which is what made the velocity-implicit
+//! step cost 2.9 times the explicit one.
 
 use glam::DVec3;
 
@@ -43,19 +55,16 @@ use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::reconstruct::{Kinematics, free_accelerations};
 
-/// How [`VelocityTerms::apply`] differentiates r̈_free along x.
+/// How [`VelocityTerms::apply`] forms (∂r̈_free/∂q̇) x.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Difference {
-    /// Polarisation, exact to round-off: two jet sweeps.
-    Central,
-    /// [r̈_free(q̇ + εx) − r̈_free(q̇)] / ε with |εx| = 1e-6 |q̇|, reusing the
-    /// step's own r̈_free(q̇): one sweep, relative error about 1e-6 (the
-    /// quadratic term ε B(x, x)), far below what a first-order step makes.
-    Forward,
+pub enum Derivative {
+    /// 2 J̇ x from the Jacobians' rates: three prefix sums, no helix
+    /// function evaluated. Needs `kin` from
+    /// [`crate::reconstruct::reconstruct_with_rates`].
+    JacobianRates,
+    /// Polarisation of two jet sweeps, exact to round-off (the check).
+    Polarisation,
 }
-
-/// Relative size of the forward difference's shift, |εx| / max(|q̇|, 1).
-pub const FORWARD_SHIFT: f64 = 1e-6;
 
 /// Buffers of [`VelocityTerms::apply`], reused from step to step.
 #[derive(Clone, Debug, Default)]
@@ -65,6 +74,34 @@ pub struct VelocityTerms {
     minus: Vec<DVec3>,
 }
 
+/// 2 J̇ x at every sample (m/s² per unit of x), root to tip: see the module
+/// doc's prefix sums.
+pub(crate) fn jacobian_rate_times(
+    model: &StrandModel,
+    kin: &Kinematics,
+    x: &[DVec3],
+    out: &mut Vec<DVec3>,
+) {
+    assert!(
+        kin.element_rates.len() == x.len() && kin.jacobian_rates.len() == kin.samples.len(),
+        "the product needs reconstruct_with_rates"
+    );
+    let points = model.quadrature.len();
+    let (mut carried, mut turned, mut turn_rate) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    out.clear();
+    for (e, x_e) in x.iter().enumerate() {
+        for i in e * points..(e + 1) * points {
+            let s = &kin.samples[i];
+            let u = carried - s.velocity_m_per_s.cross(turned) - s.position_m.cross(turn_rate)
+                + kin.jacobian_rates[i] * *x_e;
+            out.push(2.0 * u);
+        }
+        carried += kin.element_rates[e].a * *x_e;
+        turned += kin.elements[e].b * *x_e;
+        turn_rate += kin.element_rates[e].b * *x_e;
+    }
+}
+
 impl VelocityTerms {
     /// out = G x = −(∂Q/∂q̇) x (N·m²·s per element and unit of x) for the
     /// strand in state (`q`, `v`) with its root moving as `root`; `kin` is
@@ -72,7 +109,7 @@ impl VelocityTerms {
     #[allow(clippy::too_many_arguments)] // the step's state, named as the step names it
     pub fn apply(
         &mut self,
-        difference: Difference,
+        derivative: Derivative,
         model: &StrandModel,
         kin: &Kinematics,
         q: &[DVec3],
@@ -81,46 +118,46 @@ impl VelocityTerms {
         x: &[DVec3],
         out: &mut [DVec3],
     ) {
-        let largest = |y: &[DVec3]| y.iter().map(|e| e.abs().max_element()).fold(0.0, f64::max);
-        let x_size = largest(x);
-        if x_size == 0.0 || !x_size.is_finite() {
-            out.fill(if x_size == 0.0 {
-                DVec3::ZERO
-            } else {
-                DVec3::NAN
-            });
-            return;
-        }
-        let reach = largest(v).max(1.0) / x_size;
-        let (scale, factor) = match difference {
-            Difference::Central => {
+        let factor = match derivative {
+            Derivative::JacobianRates => {
+                jacobian_rate_times(model, kin, x, &mut self.plus);
+                1.0
+            }
+            Derivative::Polarisation => {
+                let largest =
+                    |y: &[DVec3]| y.iter().map(|e| e.abs().max_element()).fold(0.0, f64::max);
+                let x_size = largest(x);
+                if x_size == 0.0 || !x_size.is_finite() {
+                    let fill = if x_size == 0.0 {
+                        DVec3::ZERO
+                    } else {
+                        DVec3::NAN
+                    };
+                    out.fill(fill);
+                    return;
+                }
+                // x scaled to the size of q̇ (G is linear, the result is
+                // scaled back): the difference's cancellation stays at
+                // round-off.
+                let reach = largest(v).max(1.0) / x_size;
                 for (sign, buffer) in [(1.0, &mut self.plus), (-1.0, &mut self.minus)] {
                     self.shifted.clear();
                     self.shifted
                         .extend(v.iter().zip(x).map(|(v, x)| *v + *x * (sign * reach)));
                     free_accelerations(model, q, &self.shifted, root, buffer);
                 }
-                (reach, 0.5 / reach)
-            }
-            Difference::Forward => {
-                let scale = FORWARD_SHIFT * reach;
-                self.shifted.clear();
-                self.shifted
-                    .extend(v.iter().zip(x).map(|(v, x)| *v + *x * scale));
-                free_accelerations(model, q, &self.shifted, root, &mut self.plus);
-                self.minus.clear();
-                self.minus
-                    .extend(kin.samples.iter().map(|s| s.free_acceleration_m_per_s2));
-                (scale, 1.0 / scale)
+                for (p, m) in self.plus.iter_mut().zip(&self.minus) {
+                    *p -= *m;
+                }
+                0.5 / reach
             }
         };
-        debug_assert!(scale > 0.0);
-        // δr̈ = (plus − minus) · factor; G x = ∫ ρS Jᵀ (∂r̈/∂q̇) x ds.
+        // G x = ∫ ρS Jᵀ (∂r̈/∂q̇) x ds, with (∂r̈/∂q̇) x = plus · factor.
         let factor = model.mass_per_length * factor;
         project_sample_forces(
             model,
             kin,
-            |i| (self.plus[i] - self.minus[i]) * (factor * kin.samples[i].weight_m),
+            |i| self.plus[i] * (factor * kin.samples[i].weight_m),
             out,
         );
     }

@@ -7,7 +7,7 @@ mod common;
 
 use common::*;
 use glam::{DMat3, DVec3};
-use helixhair_physics::{HairSystem, Method, Oscillation, RootPose, SimSettings};
+use helixhair_physics::{HairSystem, Method, Oscillation, RootPose, SimSettings, StepScheme};
 
 #[test]
 fn own_element_blocks_blow_up_on_a_curly_strand_at_any_usable_step() {
@@ -31,12 +31,14 @@ fn own_element_blocks_blow_up_on_a_curly_strand_at_any_usable_step() {
 
 #[test]
 fn block_diagonal_without_friction_blows_up_under_a_head_shake() {
-    // What goes wrong: Block-diagonal keeps the exact velocity terms
-    // (Coriolis, centrifugal) but drops the off-diagonal inertia, so its
-    // step no longer conserves energy and can pump it in. With zero internal
-    // friction and a head shaking 0.5 rad at 1.5 Hz, a curly 20 cm strand
-    // at 60 Hz goes non-finite within half a second; with the default
-    // friction it stays bounded, and Dense stays bounded either way.
+    // What goes wrong: with zero internal friction and a head shaking
+    // 0.5 rad at 1.5 Hz, a curly 20 cm strand at 60 Hz goes non-finite
+    // within a second under Block-diagonal; with the default friction it
+    // stays bounded, and Dense stays bounded either way. Block-diagonal's
+    // own Lagrangian velocity terms (the default scheme) do not save it:
+    // with the head moving they are a driven system's, and they stay
+    // explicit in the step, which is what made every solver blow up under
+    // a shake before the velocity-implicit step (docs/solvers.md).
     let head = Oscillation {
         axis: DVec3::Y,
         amplitude_rad: 0.5,
@@ -73,17 +75,21 @@ fn block_diagonal_without_friction_blows_up_under_a_head_shake() {
 }
 
 #[test]
-fn block_diagonal_blows_up_on_a_hanging_curl_at_sixty_hertz_unless_substepped() {
-    // What goes wrong: a 20 cm curl (radius 2 cm, step 5 cm) hanging from a
-    // still head, default friction and drag, goes non-finite within two
+fn block_diagonal_blows_up_on_a_hanging_curl_at_sixty_hertz_with_the_whole_systems_velocity_terms()
+{
+    // What went wrong: a 20 cm curl (radius 2 cm, step 5 cm) hanging from
+    // a still head, default friction and drag, went non-finite within two
     // seconds at h = 1/60 s under Block-diagonal from N = 8 (step 37), and
-    // sooner as N grows (N = 10: step 19; N = 20: step 13); N = 5 stays
-    // finite. The truncated mass is
-    // inconsistent with the exact velocity terms and the explicit gravity
-    // stiffness, and the step pumps energy in. Ten substeps (h = 1/600 s)
-    // keep it finite at N = 10 and 20 over the 2 s run; Dense and Exact are
-    // finite at 60 Hz for N = 10 and 30.
-    let run = |method: Method, n: usize, h: f64| -> bool {
+    // sooner as N grew (N = 10: step 19; N = 20: step 13); N = 5 stayed
+    // finite. The truncated mass met the whole system's velocity terms,
+    // which belong with the whole M, and the step pumped energy in; ten
+    // substeps (h = 1/600 s) kept it finite. That old step is still the
+    // velocity-explicit scheme, pinned here. With the velocity terms of
+    // Block-diagonal's own Lagrangian (the default scheme,
+    // `block_velocity_terms.rs`) the same curl stays finite at every N:
+    // its energy T_bd + V can no longer grow (tests/block_velocity_terms.rs).
+    // Dense and Exact are finite at 60 Hz for N = 10 and 30.
+    let run_with = |method: Method, n: usize, h: f64, scheme: StepScheme| -> bool {
         let mut p = params(0.2, n);
         p.natural_shape = helixhair_physics::NaturalShape::Helix {
             radius_m: 0.02,
@@ -92,12 +98,14 @@ fn block_diagonal_blows_up_on_a_hanging_curl_at_sixty_hertz_unless_substepped() 
         p.internal_friction = 2e-10;
         p.air_drag = 1e-5;
         let mut s = strand(&p, method);
+        s.set_scheme(scheme);
         let root = at_rest(DMat3::IDENTITY);
         (0..(2.0 / h).round() as usize).all(|_| {
             s.step(&root, DVec3::new(0.0, -9.81, 0.0), DVec3::ZERO, h);
             s.is_finite()
         })
     };
+    let run = |method, n, h| run_with(method, n, h, StepScheme::VelocityExplicit);
     assert!(
         run(Method::BlockDiagonal, 5, 1.0 / 60.0),
         "block-diagonal failed at N = 5"
@@ -113,6 +121,12 @@ fn block_diagonal_blows_up_on_a_hanging_curl_at_sixty_hertz_unless_substepped() 
                 "block-diagonal failed at N = {n}, h = 1/600 s"
             );
         }
+    }
+    for n in [5, 8, 10, 20] {
+        assert!(
+            run_with(Method::BlockDiagonal, n, 1.0 / 60.0, StepScheme::default()),
+            "block-diagonal with its own velocity terms failed at N = {n}"
+        );
     }
     for n in [10, 30] {
         assert!(run(Method::Dense, n, 1.0 / 60.0), "dense failed at N = {n}");

@@ -4,7 +4,9 @@
 
 use glam::DVec3;
 use helixhair_physics::motion::HeadTrajectory;
-use helixhair_physics::{ElementLayout, Oscillation, RigidMotion, RootPose, StrandParams};
+use helixhair_physics::{
+    ElementLayout, NaturalShape, Oscillation, RigidMotion, RootPose, StrandParams,
+};
 
 /// The straight example's long strands (`assets/styles/straight.ron`).
 pub fn straight_30_cm() -> StrandParams {
@@ -15,6 +17,20 @@ pub fn straight_30_cm() -> StrandParams {
             tip_to_root_ratio: 3.0,
         },
         radius_m: 40e-6,
+        ..StrandParams::default()
+    }
+}
+
+/// `assets/styles/curly.ron`'s crown: 25 cm curls of 15 elements.
+pub fn curly_25_cm() -> StrandParams {
+    StrandParams {
+        length_m: 0.25,
+        elements: 15,
+        ellipticity: 1.35,
+        natural_shape: NaturalShape::Helix {
+            radius_m: 0.012,
+            step_m: 0.03,
+        },
         ..StrandParams::default()
     }
 }
