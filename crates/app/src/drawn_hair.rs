@@ -1,120 +1,53 @@
-//! The drawn hair: the simulated guides' curves become the strands that
-//! are drawn, group by group.
+//! The drawn hair: the simulated guides become the strands that are
+//! drawn, the same way in the window, in `render` pictures and in exports
+//! (one path, so they agree).
 //!
-//! A group without a `render` section draws its guides. Otherwise it draws
-//! `render.count` strands interpolated from the guides
-//! ([`helixhair_render::interpolate`]), with roots spread on its part of
-//! the scalp (scalp groups) or scattered around the guides' roots (listed
-//! roots). Each strand gets its own shade of the group's colour, and every
-//! strand is draped over the head ([`drape_over`]): a drawn strand is its
-//! guides' shapes moved to its own root, which can cut into the head
-//! between guides even when the guides themselves rest on it (and the
-//! `sim` command's guides do not collide at all).
+//! [`DrawnLayout`] says which strands are drawn and which guides each
+//! follows (made once per style); every frame [`drawn_hair`] rebuilds each
+//! from its guides' strains ([`crate::strain_blend`]: curls keep their
+//! radius, pitch and handedness instead of averaging out), gives it its
+//! shade of the group's colour, and drapes it over the head
+//! ([`drape_over`]): a drawn strand grows from its own root with its
+//! guides' bending, which can cut into the head between guides even when
+//! the guides themselves rest on it.
 
 use glam::Vec3;
+use helixhair_physics::engine::Engine;
 use helixhair_render::head_shell::HeadShell;
-use helixhair_render::interpolate::{Interpolation, InterpolationSpec, interpolate_strands};
-use helixhair_render::rng::SplitMix64;
-use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
-use helixhair_render::{HairStrands, HeadMesh, StrandBuffers};
+use helixhair_render::{HairStrands, StrandBuffers};
 
-use crate::groom::{Groom, placement_scalp};
-use crate::style::StrandGroup;
-use crate::style_groom::{RenderStrands, StrandInterpolation};
-
-/// Seed offset of the drawn strands' roots, so they do not coincide with
-/// the guides' (which use the placement's own seed).
-const RENDER_SEED: u64 = 0x5EED_F00D_DA7A;
-
-/// An sRGB component in [0, 1] as linear light.
-fn srgb_to_linear(c: f64) -> f32 {
-    let c = c.clamp(0.0, 1.0) as f32;
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
+use crate::drawn_layout::DrawnLayout;
+use crate::groom::Groom;
+use crate::strain_blend::{strand_curve, to_f32};
+/// Gathers `strand` (root first) onto `guide` (root first, same
+/// coordinates) towards its tip: the point at arc length s moves the
+/// fraction `amount` · s/L of the way to the guide's point at the same arc
+/// length, so strands leave the scalp where they grow and meet their
+/// guide's curl near the tip, in phase.
+pub fn clump_onto(strand: &mut [Vec3], guide: &[Vec3], amount: f32) {
+    let total_m: f32 = strand.windows(2).map(|w| w[0].distance(w[1])).sum();
+    if total_m <= 0.0 || guide.len() < 2 {
+        return;
     }
-}
-
-/// `count` shades of `render`'s colour: brightness varies by up to
-/// ±`colour_variation`, darker strands a little redder (more pheomelanin
-/// shows), as in real hair.
-fn strand_colours(render: &RenderStrands, count: usize, seed: u64) -> Vec<Vec3> {
-    let base = Vec3::from_array(render.colour_srgb.to_array().map(srgb_to_linear));
-    let amount = render.colour_variation as f32;
-    let mut rng = SplitMix64::new(seed);
-    (0..count)
-        .map(|_| {
-            let v = amount * (2.0 * rng.next_f32() - 1.0);
-            let tint = Vec3::new(1.0 - 0.3 * v, 1.0, 1.0 + 0.3 * v);
-            (base * (1.0 + v) * tint).clamp(Vec3::ZERO, Vec3::ONE)
-        })
-        .collect()
-}
-
-/// Roots scattered around the guides' roots (for groups that list roots):
-/// each near a random guide, within half the distance to that guide's
-/// nearest neighbour.
-fn scattered_roots(guide_roots: &[Vec3], count: usize, seed: u64) -> Vec<Vec3> {
-    let mut rng = SplitMix64::new(seed);
-    let spacing = |i: usize| {
-        guide_roots
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| j != i)
-            .map(|(_, q)| q.distance(guide_roots[i]))
-            .fold(0.02f32, f32::min)
-    };
-    (0..count)
-        .map(|_| {
-            let i = rng.below(guide_roots.len());
-            let offset = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - 0.5;
-            guide_roots[i] + offset * spacing(i)
-        })
-        .collect()
-}
-
-/// The strands drawn for one group, whose guides' curves are `guides`.
-fn group_strands(
-    group: &StrandGroup,
-    head: &HeadMesh,
-    guides: &StrandBuffers,
-    seed: u64,
-) -> (StrandBuffers, Vec<Vec3>) {
-    let render = group.render.clone().unwrap_or_default();
-    if render.count == 0 || guides.strand_count() == 0 {
-        return (
-            guides.clone(),
-            strand_colours(&render, guides.strand_count(), seed),
-        );
-    }
-    let count = render.count as usize;
-    let roots: Vec<Vec3> = match &group.scalp {
-        Some(placement) => poisson_disk_on_scalp(
-            &placement_scalp(placement, head),
-            count,
-            placement.seed ^ RENDER_SEED,
-        )
-        .into_iter()
-        .map(|s| s.position_m)
-        .collect(),
-        None => {
-            let guide_roots: Vec<Vec3> = guides.iter().map(|g| g[0]).collect();
-            scattered_roots(&guide_roots, count, seed)
+    let (mut s_m, mut before) = (0.0f32, strand[0]);
+    let (mut segment, mut segment_start_m) = (0usize, 0.0f32);
+    for p in strand.iter_mut() {
+        s_m += p.distance(before);
+        before = *p;
+        // The guide's point at arc length s (its tip beyond its length).
+        while segment + 2 < guide.len()
+            && segment_start_m + guide[segment].distance(guide[segment + 1]) < s_m
+        {
+            segment_start_m += guide[segment].distance(guide[segment + 1]);
+            segment += 1;
         }
-    };
-    let spec = InterpolationSpec {
-        method: match render.method {
-            StrandInterpolation::Nearest => Interpolation::Nearest,
-            StrandInterpolation::Blend3 => Interpolation::Blend3,
-        },
-        points_per_strand: guides.iter().map(<[Vec3]>::len).max().unwrap_or(2),
-        length_variation: render.length_variation as f32,
-        seed,
-    };
-    let strands = interpolate_strands(guides, &roots, &spec);
-    let colours = strand_colours(&render, strands.strand_count(), seed);
-    (strands, colours)
+        let span_m = guide[segment]
+            .distance(guide[segment + 1])
+            .max(f32::MIN_POSITIVE);
+        let t = ((s_m - segment_start_m) / span_m).clamp(0.0, 1.0);
+        let target = guide[segment].lerp(guide[segment + 1], t);
+        *p = p.lerp(target, amount * s_m / total_m);
+    }
 }
 
 /// Keeps a strand (root first) out of the head, root to tip: each point
@@ -147,34 +80,45 @@ pub fn root_width_m(drawn: usize) -> f32 {
 /// Gap kept between drawn hair and the head, metres.
 pub const HEAD_GAP_M: f32 = 0.0015;
 
-/// The drawn hair of `groom`, from `guides`: the curves of the strands
-/// simulated for `groom.grown`, in group order.
-pub fn drawn_hair(groom: &Groom, guides: &StrandBuffers) -> HairStrands {
+/// The drawn hair of `groom`, whose grown style `engine` simulates: every
+/// strand of `layout` rebuilt from the guides' strains now, draped over
+/// the head, in world coordinates (carried by the head's pose).
+pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairStrands {
+    let q: Vec<_> = (0..engine.strand_count()).map(|g| engine.q(g)).collect();
+    let head = engine.head();
+    let (rotation, position) = (head.world_from_body.as_mat3(), head.position_m.as_vec3());
+    // The guides' own curves in head coordinates, for clumping.
+    let mut guides: Vec<Option<Vec<Vec3>>> = vec![None; q.len()];
     let mut strands = StrandBuffers::default();
-    let mut colours = Vec::new();
-    let mut first = 0;
-    for (i, (group, grown)) in groom.groups().enumerate() {
-        let end = (first + grown.simulated_count()).min(guides.strand_count());
-        let mut own = StrandBuffers::default();
-        for g in first..end {
-            own.push_strand(guides.strand(g).iter().copied());
+    let mut curve: Vec<Vec3> = Vec::new();
+    for strand in &layout.strands {
+        curve.clear();
+        curve.extend(to_f32(&strand_curve(
+            &strand.root,
+            &strand.lengths_m,
+            &strand.strains(&q),
+        )));
+        if let Some((g, amount)) = strand.clump {
+            let guide = guides[g].get_or_insert_with(|| {
+                let model = engine.strand_model(g);
+                to_f32(&strand_curve(engine.root(g), &model.lengths_m, &q[g])).collect()
+            });
+            clump_onto(&mut curve, guide, amount as f32);
         }
-        first = end;
-        let (group_strands, group_colours) = group_strands(group, &groom.head, &own, i as u64 + 1);
-        for s in group_strands.iter() {
-            strands.push_strand(s.iter().copied());
-        }
-        colours.extend(group_colours);
-    }
-    for k in 0..strands.strand_count() {
-        let range = strands.offsets[k] as usize..strands.offsets[k + 1] as usize;
-        drape_over(&mut strands.points[range], &groom.shell);
+        drape_over(&mut curve, &groom.shell);
+        strands.push_strand(curve.iter().map(|&p| rotation * p + position));
     }
     let width = root_width_m(strands.strand_count());
     HairStrands {
         strands,
-        colours,
+        colours: layout.colours.clone(),
         root_width_m: width,
         tip_width_m: 0.35 * width,
     }
+}
+
+/// [`drawn_hair`] with every strand the style asks for: what `render` and
+/// `export` draw.
+pub fn drawn_hair_full(groom: &Groom, engine: &Engine) -> HairStrands {
+    drawn_hair(groom, &DrawnLayout::new(groom, engine, usize::MAX), engine)
 }

@@ -37,9 +37,8 @@ use helixhair_render::HeadMesh;
 use helixhair_render::interpolate::resampled_shape;
 
 use crate::atomic_write::write_atomically;
-use crate::drawn_hair::drawn_hair;
+use crate::drawn_hair::drawn_hair_full;
 use crate::groom::Groom;
-use crate::guide_curves::guide_curves;
 use crate::strand_sampling::{MIN_POINTS_PER_STRAND, sample_strand};
 
 /// Points per exported strand unless told otherwise: a power of two that
@@ -213,7 +212,7 @@ pub fn capture_curves(
             .collect(),
         StrandChoice::Drawn => {
             let groom = groom.context("drawn strands need the style grown on a head")?;
-            let hair = drawn_hair(groom, &guide_curves(engine));
+            let hair = drawn_hair_full(groom, engine);
             let taper = |k: usize| {
                 let t = k as f32 / (n - 1) as f32;
                 hair.root_width_m + (hair.tip_width_m - hair.root_width_m) * t

@@ -15,7 +15,7 @@ use glam::{DVec3, Vec3};
 use helixhair_physics::collision::{CollisionError, SignedDistanceField};
 use helixhair_render::HeadMesh;
 use helixhair_render::head_shell::HeadShell;
-use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
+use helixhair_render::scalp_sampling::{SurfaceSample, poisson_disk_on_scalp};
 
 use crate::style::{Root, StrandGroup, Style};
 use crate::style_groom::ScalpPlacement;
@@ -63,13 +63,14 @@ impl Groom {
 }
 
 /// `head` as a collider for the physics (the groomed render and the
-/// window share it): a signed distance field of
-/// the parts of its mesh that carry the scalp, with [`COLLIDER_CELL_M`]
-/// spacing, so simulated hair rests on the head instead of falling
-/// through it. Other parts (the default head's neck, a separate body)
-/// are left out: the field finds its inside by flooding the outside,
-/// and where two closed surfaces meet, the band around one leaks that
-/// flood into the other. A head with no scalp faces collides as a whole.
+/// window share it): a signed distance field of the connected part of its
+/// mesh that carries the scalp, with [`COLLIDER_CELL_M`] spacing, so
+/// simulated hair rests on the head instead of falling through it. The
+/// default head is one closed surface with its neck and shoulders, so all
+/// of it collides. Other parts of an OBJ (a separate body) are left out:
+/// the field finds its inside by flooding the outside, and where two
+/// closed surfaces meet, the band around one leaks that flood into the
+/// other. A head with no scalp faces collides as a whole.
 pub fn head_collider(head: &HeadMesh) -> Result<SignedDistanceField, CollisionError> {
     let mesh = &head.mesh;
     let positions: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
@@ -157,6 +158,17 @@ pub fn placement_scalp(placement: &ScalpPlacement, head: &HeadMesh) -> HeadMesh 
     cut
 }
 
+/// The root `placement` grows at `sample` of the scalp: combed at its
+/// lift, the inward normal as frame reference.
+pub fn scalp_root(sample: &SurfaceSample, placement: &ScalpPlacement) -> Root {
+    let normal = sample.normal.as_dvec3();
+    Root {
+        position_m: sample.position_m.as_dvec3(),
+        direction: combed_direction(normal, placement.comb, placement.lift_deg),
+        reference: -normal,
+    }
+}
+
 /// The roots `placement` puts on `head`'s scalp.
 pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh) -> Vec<Root> {
     poisson_disk_on_scalp(
@@ -164,15 +176,8 @@ pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh) -> Vec<Root> {
         placement.count as usize,
         placement.seed,
     )
-    .into_iter()
-    .map(|s| {
-        let normal = s.normal.as_dvec3();
-        Root {
-            position_m: s.position_m.as_dvec3(),
-            direction: combed_direction(normal, placement.comb, placement.lift_deg),
-            reference: -normal,
-        }
-    })
+    .iter()
+    .map(|s| scalp_root(s, placement))
     .collect()
 }
 

@@ -3,11 +3,11 @@
 use std::path::Path;
 
 use glam::{DVec3, Vec3};
-use helixhair_render::StrandBuffers;
 use helixhair_render::head_generate::default_head;
 use helixhair_render::head_shell::HeadShell;
 
-use crate::drawn_hair::{drape_over, drawn_hair, root_width_m};
+use crate::drawn_hair::{clump_onto, drape_over, drawn_hair_full, root_width_m};
+use crate::drawn_layout::DEFAULT_DRAWN_STRANDS;
 use crate::groom::{Groom, combed_direction, grow_scalp_roots, scalp_roots};
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::style::Style;
@@ -71,15 +71,15 @@ fn scalp_roots_lie_in_their_region_and_grow_outwards() {
 fn drawn_hair_has_the_styled_counts_and_stays_outside_the_head() {
     let groom = Groom::new(style(), default_head());
     let shell = &groom.shell;
-    // Guides: straight down from every root, through the head.
-    let mut guides = StrandBuffers::default();
-    for root in groom.grown.groups.iter().flat_map(|g| &g.roots) {
-        let p = root.position_m.as_vec3();
-        guides.push_strand((0..10).map(|k| p - Vec3::Y * 0.03 * k as f32));
-    }
-    let hair = drawn_hair(&groom, &guides);
-    assert_eq!(hair.strands.strand_count(), 200 + 10 + 1);
-    assert_eq!(hair.colours.len(), 211);
+    // Without a collider the guides fall through the head; the drawn
+    // strands still drape over it.
+    let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default()).expect("builds");
+    sim.run(30).expect("finite");
+    let hair = drawn_hair_full(&groom, sim.engine());
+    // 200 and 10 as styled; the group without `render` gets the default.
+    let want = 200 + 10 + DEFAULT_DRAWN_STRANDS;
+    assert_eq!(hair.strands.strand_count(), want);
+    assert_eq!(hair.colours.len(), want);
     assert!(hair.root_width_m >= root_width_m(100_000));
     for strand in hair.strands.iter() {
         for &p in &strand[1..] {
@@ -127,4 +127,21 @@ fn simulated_guides_rest_on_the_head_through_its_collider() {
         deepest > -0.03,
         "a guide point is {deepest} m inside the head"
     );
+}
+
+#[test]
+fn clumping_gathers_a_strand_onto_its_guide_towards_the_tip() {
+    let guide: Vec<Vec3> = (0..11)
+        .map(|k| Vec3::new(0.0, -0.01 * k as f32, 0.0))
+        .collect();
+    let mut strand: Vec<Vec3> = guide.iter().map(|p| *p + Vec3::X * 0.02).collect();
+    clump_onto(&mut strand, &guide, 0.8);
+    // The root stays; the offset shrinks linearly along the length to
+    // 1 − 0.8 of itself at the tip.
+    assert_eq!(strand[0], Vec3::new(0.02, 0.0, 0.0));
+    for (k, p) in strand.iter().enumerate() {
+        let want = 0.02 * (1.0 - 0.8 * k as f32 / 10.0);
+        assert!((p.x - want).abs() < 1e-6, "point {k}: {p}");
+        assert!((p.y + 0.01 * k as f32).abs() < 1e-6, "point {k}: {p}");
+    }
 }

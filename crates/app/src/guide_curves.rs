@@ -9,35 +9,17 @@
 
 use glam::{DVec3, Vec3};
 use helixhair_physics::engine::Engine;
-use helixhair_physics::helix::centreline_and_jacobian;
 use helixhair_render::StrandBuffers;
 
-/// Largest angle the tangent turns between two drawn points, radians.
-pub const MAX_TURN_RAD: f64 = 0.45;
-
-/// Most points drawn per element.
-pub const MAX_POINTS_PER_ELEMENT: usize = 16;
+use crate::strain_blend::helix_polyline;
+pub use crate::strain_blend::{MAX_POINTS_PER_ELEMENT, MAX_TURN_RAD};
 
 /// The centreline of strand `index`, root first, metres, world
 /// coordinates (reconstructed in f64 on either engine).
 pub fn guide_curve(engine: &Engine, index: usize) -> Vec<DVec3> {
-    let (motion, kin) = engine.kinematics(index);
+    let motion = engine.head().carry(engine.root(index));
     let lengths_m = &engine.strand_model(index).lengths_m;
-    let q_all = engine.q(index);
-    let mut points = Vec::new();
-    for (element, &q) in q_all.iter().enumerate() {
-        let length_m = lengths_m[element];
-        let start = motion.position_m + kin.points_m[element];
-        let frame = kin.frames[element];
-        let turns = (length_m * q.length() / MAX_TURN_RAD).ceil() as usize;
-        let samples = turns.clamp(1, MAX_POINTS_PER_ELEMENT);
-        points.extend((0..samples).map(|j| {
-            let sigma = length_m * j as f64 / samples as f64;
-            start + frame * centreline_and_jacobian(sigma, q).0
-        }));
-    }
-    points.push(motion.position_m + kin.points_m[q_all.len()]);
-    points
+    helix_polyline(&motion, lengths_m, &engine.q(index))
 }
 
 /// The centrelines of every strand of `engine`, in `f32` for drawing.

@@ -35,9 +35,10 @@
 //! 1. [`groom::Groom`] grows the style's scalp placements ([`style_groom`])
 //!    into roots on the head (the default head or an OBJ).
 //! 2. [`HeadlessSim`] simulates the grown style for the asked frames.
-//! 3. [`guide_curves`] samples every simulated strand along its helical
-//!    elements; [`drawn_hair`] interpolates the drawn strands from them,
-//!    colours them and drapes them over the head.
+//! 3. [`drawn_layout`] places the drawn strands and picks the guides each
+//!    follows; [`drawn_hair`] rebuilds them every frame from the guides'
+//!    strains ([`strain_blend`]), colours them and drapes them over the
+//!    head. The window draws through the same two functions.
 //! 4. [`helixhair_render::OffscreenRenderer`] draws the picture, and
 //!    [`render_cmd`] writes it as PNG ([`render_cmd::run_render`]).
 
@@ -50,6 +51,7 @@ pub mod bench;
 pub mod camera_arg;
 pub mod cli;
 pub mod drawn_hair;
+pub mod drawn_layout;
 pub mod error_model;
 pub mod export;
 pub mod export_cmd;
@@ -70,6 +72,8 @@ pub mod render_cmd;
 pub mod sim_report;
 pub mod source_map;
 pub mod stats;
+pub mod strain_blend;
+pub mod strand_colours;
 pub mod strand_sampling;
 pub mod style;
 pub mod style_checks;
@@ -92,6 +96,8 @@ pub use sim_report::SimReport;
 pub use style::{Root, STYLE_VERSION, StrandGroup, Style};
 pub use style_error::{StyleError, StyleErrorKind, StyleIssue};
 
+#[cfg(test)]
+mod drawn_layout_tests;
 #[cfg(test)]
 mod groom_tests;
 #[cfg(test)]

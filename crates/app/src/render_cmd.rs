@@ -27,6 +27,7 @@ use helixhair_render::{
 use crate::atomic_write::write_atomically;
 use crate::camera_arg::CameraArg;
 use crate::drawn_hair::drawn_hair;
+use crate::drawn_layout::DrawnLayout;
 use crate::field_path::FieldPath;
 use crate::groom::Groom;
 use crate::guide_curves::guide_curves;
@@ -251,8 +252,9 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             camera.target_m = 0.5 * (lo + hi);
         }
     }
+    let layout = DrawnLayout::new(&groom, sim.engine(), usize::MAX);
     let mut frame = |sim: &HeadlessSim| -> anyhow::Result<(RgbaImage, FrameCounts, f64)> {
-        let hair = drawn_hair(&groom, &guide_curves(sim.engine()));
+        let hair = drawn_hair(&groom, &layout, sim.engine());
         let scene = Scene {
             hair: &hair,
             head: &groom.head,

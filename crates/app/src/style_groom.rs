@@ -102,6 +102,12 @@ pub struct RenderStrands {
     /// Per-strand brightness variation, 0 to 1; default 0.15.
     #[serde(default = "default_colour_variation")]
     pub colour_variation: f64,
+    /// How far drawn strands gather onto their nearest guide at the tip,
+    /// 0 (not at all) to 1 (onto it), rising from nothing at the root:
+    /// curly hair forms ringlets around its guides instead of a frizz of
+    /// curls out of phase. Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub clump: f64,
 }
 
 impl Default for RenderStrands {
@@ -115,8 +121,13 @@ impl Default for RenderStrands {
             length_variation: 0.0,
             colour_srgb: DEFAULT_COLOUR_SRGB,
             colour_variation: default_colour_variation(),
+            clump: 0.0,
         }
     }
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 fn default_comb() -> DVec3 {

@@ -61,7 +61,8 @@ pub fn validate_render(render: &RenderStrands, at: &FieldPath) -> Result<(), Sty
         0.0,
         1.0,
         &at.field("colour_variation"),
-    )
+    )?;
+    check_range(render.clump, 0.0, 1.0, &at.field("clump"))
 }
 
 fn check_count(count: u32, max: u32, at: &FieldPath) -> Result<(), StyleIssue> {

@@ -14,9 +14,9 @@
 //! `natural_shape` are replaced per strand ([`ImportedStrand::params`]).
 //!
 //! `guide: false` marks a strand that is not simulated (`--guides K`); a
-//! group whose strands are all guides simulates every one. Drawing the
-//! other strands following their nearest guides is not implemented yet:
-//! only guides are drawn.
+//! group whose strands are all guides simulates every one. Every strand is
+//! drawn: the others as their own imported shape bent by the strain change
+//! of their three nearest guides ([`crate::drawn_layout`]).
 
 use glam::DVec3;
 use helixhair_physics::fit::stiffen::stiffened_params;

@@ -77,8 +77,10 @@ pub fn resampled_shape(points: &[Vec3], n: usize) -> Vec<Vec3> {
         .collect()
 }
 
-/// The guides nearest to `root` with their weights (summing to 1).
-fn guide_weights(guide_roots: &[Vec3], root: Vec3, method: Interpolation) -> Vec<(usize, f32)> {
+/// The guides nearest to `root` with their weights (summing to 1): one
+/// for [`Interpolation::Nearest`], three weighted by inverse squared
+/// distance for [`Interpolation::Blend3`] (all to a guide at `root`).
+pub fn guide_weights(guide_roots: &[Vec3], root: Vec3, method: Interpolation) -> Vec<(usize, f32)> {
     let mut nearest: Vec<(usize, f32)> = guide_roots
         .iter()
         .map(|g| g.distance_squared(root))

@@ -63,4 +63,26 @@ mod tests {
         assert!(above > 0.0 && above < 0.01, "{above}");
         assert!(gradient.y > 0.9, "{gradient}");
     }
+
+    /// Only the skull collided: the default neck was a separate tube, left
+    /// out of the field, and hair fell through neck and shoulders. The
+    /// head is now one closed surface, and both are inside the field.
+    #[test]
+    fn the_neck_and_shoulders_collide_too() {
+        let collider = HeadCollider::from_head(&default_head()).unwrap();
+        let field = collider.field();
+        for (inside, what) in [
+            (DVec3::new(0.0, -0.16, -0.005), "neck"),
+            (DVec3::new(0.11, -0.245, -0.005), "shoulder"),
+        ] {
+            let (d, _) = field.sample(inside).expect("in the grid");
+            assert!(d < -0.005, "{what} at {inside}: {d} m");
+        }
+        // Beside the neck is outside.
+        let (d, gradient) = field
+            .sample(DVec3::new(0.06, -0.16, -0.005))
+            .expect("in the grid");
+        assert!(d > 0.005 && d < 0.03, "{d} m");
+        assert!(gradient.x > 0.8, "{gradient}");
+    }
 }

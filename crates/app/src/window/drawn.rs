@@ -1,116 +1,101 @@
-//! Styles that say how they are drawn: groups with a `render` section
-//! (drawn strand count, interpolation, colour; see the style format) are
-//! drawn as `helixhair render` draws them ([`drawn_hair`]), so the window
-//! and the offline pictures agree. Other styles use the window's own look
-//! ([`super::viewport::HairLook`]).
+//! The window's drawn hair: the same strands `helixhair render` draws
+//! ([`DrawnLayout`] and [`drawn_hair`]), so the window and the offline
+//! pictures agree, for every style (a group without a `render` section
+//! gets the default drawn strands in both).
 //!
-//! Two things differ from the offline path. The head moves, so guides are
-//! taken into head coordinates, drawn there (where the groom's scalp and
-//! shell are) and moved back. And drawing every strand a groom asks for
-//! (thousands) is too slow for a software rasteriser, so the counts are
-//! scaled down together to at most the window's `--render-strands`.
+//! Drawing every strand a groom asks for (thousands) is too slow for a
+//! software rasteriser, so the layout scales the counts down together to
+//! at most the window's `--render-strands` (or the interactive preview's
+//! count). The layout is made once per style, count and simulated guides,
+//! and the strands are rebuilt from the guides' strains every frame.
 
-use glam::{DMat3, DVec3, Mat3, Vec3};
-use helixhair_render::{HairStrands, HeadMesh, StrandBuffers};
+use helixhair_physics::engine::Engine;
+use helixhair_render::{HairStrands, HeadMesh};
 
 use crate::drawn_hair::drawn_hair;
+use crate::drawn_layout::DrawnLayout;
 use crate::groom::Groom;
 use crate::style::Style;
 
-/// The groom of the style last drawn, rebuilt when the style changes.
+/// The groom and layout of the style last drawn, rebuilt when the style,
+/// the strand count or the simulated guides change.
 #[derive(Debug, Default)]
 pub struct DrawnCache {
-    source: Option<Style>,
+    source: Option<(Style, usize)>,
     groom: Option<Groom>,
-}
-
-/// Whether `style` says how it is drawn.
-pub fn has_render_sections(style: &Style) -> bool {
-    style.groups.iter().any(|g| g.render.is_some())
-}
-
-/// `style` with its groups' drawn counts scaled so they add up to at most
-/// `max_strands` (each group keeps at least one).
-pub fn capped(style: &Style, max_strands: usize) -> Style {
-    let total: u64 = style
-        .groups
-        .iter()
-        .filter_map(|g| g.render.as_ref().map(|r| u64::from(r.count)))
-        .sum();
-    let mut out = style.clone();
-    if total > max_strands as u64 {
-        let scale = max_strands as f64 / total as f64;
-        for r in out.groups.iter_mut().filter_map(|g| g.render.as_mut()) {
-            r.count = ((f64::from(r.count) * scale) as u32).max(1);
-        }
-    }
-    out
+    layout: Option<DrawnLayout>,
 }
 
 impl DrawnCache {
-    /// The drawn hair of `style` on `head` at `pose` (rotation, position)
-    /// from `guides` (world coordinates), or `None` when the style has no
-    /// `render` section or its guides do not match it (an edit not yet
-    /// simulated).
+    /// The drawn hair of `style` on `head` (head coordinates) from
+    /// `engine`'s guides, in world coordinates, at most about
+    /// `max_strands` strands; `None` when `engine` does not simulate the
+    /// style's guides (an edit not yet simulated).
     pub fn strands(
         &mut self,
         style: &Style,
         head: &HeadMesh,
-        guides: &StrandBuffers,
-        pose: (DMat3, DVec3),
+        engine: &Engine,
         max_strands: usize,
     ) -> Option<HairStrands> {
-        if !has_render_sections(style) {
-            return None;
-        }
-        if self.source.as_ref() != Some(style) {
-            self.groom = Some(Groom::new(capped(style, max_strands), head.clone()));
-            self.source = Some(style.clone());
+        let key = (style.clone(), max_strands);
+        if self.source.as_ref() != Some(&key) {
+            self.groom = Some(Groom::new(style.clone(), head.clone()));
+            self.layout = None;
+            self.source = Some(key);
         }
         let groom = self.groom.as_ref()?;
-        if groom.grown.strand_count() != guides.strand_count() {
+        if groom.grown.strand_count() != engine.strand_count() {
             return None;
         }
-        let rotation: Mat3 = pose.0.as_mat3();
-        let position: Vec3 = pose.1.as_vec3();
-        let inverse = rotation.transpose();
-        let mut local = guides.clone();
-        for p in &mut local.points {
-            *p = inverse * (*p - position);
+        if !self.layout.as_ref().is_some_and(|l| l.matches(engine)) {
+            self.layout = Some(DrawnLayout::new(groom, engine, max_strands));
         }
-        let mut hair = drawn_hair(groom, &local);
-        for p in &mut hair.strands.points {
-            *p = rotation * *p + position;
-        }
-        Some(hair)
+        Some(drawn_hair(groom, self.layout.as_ref()?, engine))
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use std::path::Path;
 
+    use helixhair_render::head_generate::default_head;
+
+    use super::*;
+    use crate::drawn_hair::drawn_hair_full;
+    use crate::drawn_layout::DEFAULT_DRAWN_STRANDS;
+    use crate::render_cmd::grown_sim;
+
+    /// The window drew a fringe over the face for styles without `render`
+    /// sections while `render` drew their guides only: both now draw the
+    /// same strands, point for point.
     #[test]
-    fn counts_scale_down_together_and_keep_one_each() {
-        let src = include_str!("../../../../assets/styles/groomed/curly.ron");
-        let style = Style::from_ron(src, std::path::Path::new("curly.ron")).unwrap();
-        let counts = |s: &Style| -> Vec<u32> {
-            s.groups
-                .iter()
-                .filter_map(|g| g.render.as_ref().map(|r| r.count))
-                .collect()
-        };
-        let before = counts(&style);
-        let after = counts(&capped(&style, 750));
-        let total: u32 = before.iter().sum();
-        for (b, a) in before.iter().zip(&after) {
-            assert_eq!(
-                *a,
-                ((f64::from(*b) * 750.0 / f64::from(total)) as u32).max(1)
-            );
-        }
-        assert!(after.iter().sum::<u32>() <= 750);
-        assert_eq!(counts(&capped(&style, 1_000_000)), before);
-        assert!(has_render_sections(&style));
+    fn the_window_draws_what_render_draws() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/styles/straight.ron"
+        );
+        let (groom, mut sim) = grown_sim(Path::new(path), None).expect("grows");
+        sim.run(5).expect("finite");
+        let pictured = drawn_hair_full(&groom, sim.engine());
+        let mut cache = DrawnCache::default();
+        let windowed = cache
+            .strands(&groom.style, &default_head(), sim.engine(), usize::MAX)
+            .expect("guides match");
+        assert_eq!(pictured.strands, windowed.strands);
+        assert_eq!(pictured.colours, windowed.colours);
+        // Not only the guides: the default drawn strands.
+        let guides = sim.engine().strand_count();
+        assert!(
+            pictured.strands.strand_count() >= DEFAULT_DRAWN_STRANDS.max(guides),
+            "{} strands for {guides} guides",
+            pictured.strands.strand_count()
+        );
+        // The window's cap scales the counts down.
+        let capped = cache
+            .strands(&groom.style, &default_head(), sim.engine(), 300)
+            .expect("guides match");
+        let n = capped.strands.strand_count();
+        assert!((300 - 5..=300 + 5).contains(&n), "{n}");
     }
 }

@@ -34,7 +34,7 @@ use super::frame_profile::FrameProfile;
 use super::preview::{quality, wants_preview};
 use super::ui::{ViewState, draw};
 use super::unsaved::Leave;
-use super::viewport::{HairLook, posed_head};
+use super::viewport::posed_head;
 use super::window_gpu::{WindowGpu, save_png};
 use super::{HEADLESS_HINT, WindowArgs};
 
@@ -57,7 +57,6 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     })?;
     let mut handler = Handler {
         args: args.clone(),
-        look: HairLook::new(&app.head_mesh, args.render_strands),
         drawn: DrawnCache::default(),
         view: ViewState::new(app.sim.engine().strand_count()),
         app,
@@ -104,7 +103,6 @@ struct Open {
 struct Handler {
     args: WindowArgs,
     app: AppState,
-    look: HairLook,
     drawn: DrawnCache,
     view: ViewState,
     open: Option<Open>,
@@ -168,17 +166,14 @@ impl Handler {
         let preview = wants_preview(self.args.preview, open.gpu.is_software(), self.interacting);
         let quality = quality(self.args.render_strands, self.view.view_px, preview);
         for (slot, run) in runs.enumerate() {
-            let guides = run.strand_buffers();
-            let hair = self
-                .drawn
-                .strands(
-                    self.app.doc.style(),
-                    &self.app.head_mesh,
-                    &guides,
-                    pose,
-                    quality.render_strands,
-                )
-                .unwrap_or_else(|| self.look.strands(&guides, pose, quality.render_strands));
+            let Some(hair) = self.drawn.strands(
+                self.app.doc.style(),
+                &self.app.head_mesh,
+                run.engine(),
+                quality.render_strands,
+            ) else {
+                continue;
+            };
             self.profile.lap(1);
             let scene = Scene {
                 hair: &hair,

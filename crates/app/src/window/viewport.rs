@@ -13,22 +13,17 @@
 //! | Alt + right drag | move the head |
 //!
 //! Drawing: the simulation gives guide strands; the picture shows many
-//! more render strands interpolated from them ([`interpolate_strands`]),
-//! rooted on the scalp and carried with the head, so a few dozen simulated
-//! guides read as a full head of hair.
+//! more drawn strands that follow them ([`super::drawn`], the same strands
+//! `helixhair render` draws), carried with the head, so a few dozen
+//! simulated guides read as a full head of hair.
 
 use glam::{DMat3, DVec3, Vec3};
-use helixhair_render::interpolate::{Interpolation, InterpolationSpec, interpolate_strands};
-use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
-use helixhair_render::{HairStrands, HeadMesh, OrbitCamera, StrandBuffers};
+use helixhair_render::{HeadMesh, OrbitCamera};
 
 use super::head_motion::ManualPose;
 
-/// Render strands drawn by default.
+/// Strands drawn by default (at most; a style may ask for fewer).
 pub const DEFAULT_RENDER_STRANDS: usize = 1000;
-
-/// Points per render strand.
-const RENDER_POINTS: usize = 24;
 
 /// Orbit speed, radians per point dragged.
 const ORBIT_RAD_PER_PT: f32 = 0.008;
@@ -71,67 +66,6 @@ pub fn move_head(pose: &mut ManualPose, camera: &OrbitCamera, dx: f32, dy: f32, 
     pose.offset_m = (pose.offset_m + delta).clamp(DVec3::splat(-0.3), DVec3::splat(0.3));
 }
 
-/// What the view draws besides the simulation: the render strands' roots
-/// and colours, made once.
-#[derive(Clone, Debug)]
-pub struct HairLook {
-    roots_head_m: Vec<Vec3>,
-    colours: Vec<Vec3>,
-}
-
-impl HairLook {
-    /// `count` render strands on `head`'s scalp, dark brown with a little
-    /// variation from strand to strand.
-    pub fn new(head: &HeadMesh, count: usize) -> Self {
-        let roots_head_m: Vec<Vec3> = poisson_disk_on_scalp(head, count, 11)
-            .into_iter()
-            .map(|s| s.position_m)
-            .collect();
-        let colours = (0..roots_head_m.len())
-            .map(|i| {
-                let t = ((i as f32 * 0.618_034).fract() - 0.5) * 0.25;
-                Vec3::new(0.13, 0.07, 0.035) * (1.0 + t)
-            })
-            .collect();
-        Self {
-            roots_head_m,
-            colours,
-        }
-    }
-
-    /// Render strands following `guides` on a head at `pose` (rotation,
-    /// position): the first `max_strands` of them (the interactive preview
-    /// draws fewer; the roots come in dart-throwing order, so any first
-    /// part of them is spread over the whole scalp).
-    pub fn strands(
-        &self,
-        guides: &StrandBuffers,
-        pose: (DMat3, DVec3),
-        max_strands: usize,
-    ) -> HairStrands {
-        let rotation = pose.0.as_mat3();
-        let position = pose.1.as_vec3();
-        let roots: Vec<Vec3> = self
-            .roots_head_m
-            .iter()
-            .take(max_strands)
-            .map(|&r| rotation * r + position)
-            .collect();
-        let spec = InterpolationSpec {
-            method: Interpolation::Nearest,
-            points_per_strand: RENDER_POINTS,
-            length_variation: 0.15,
-            seed: 3,
-        };
-        HairStrands {
-            strands: interpolate_strands(guides, &roots, &spec),
-            colours: self.colours[..roots.len()].to_vec(),
-            root_width_m: 4e-4,
-            tip_width_m: 1e-4,
-        }
-    }
-}
-
 /// `head` moved rigidly to `pose` (rotation, position).
 pub fn posed_head(head: &HeadMesh, pose: (DMat3, DVec3)) -> HeadMesh {
     let rotation = pose.0.as_mat3();
@@ -148,8 +82,6 @@ pub fn posed_head(head: &HeadMesh, pose: (DMat3, DVec3)) -> HeadMesh {
 
 #[cfg(test)]
 mod tests {
-    use helixhair_render::head_generate::default_head;
-
     use super::*;
 
     #[test]
@@ -165,22 +97,5 @@ mod tests {
         let height_m = 2.0 * camera.distance_m * (0.5 * camera.fov_y_rad).tan();
         pan(&mut camera, 500.0, 0.0, 500.0);
         assert!((camera.target_m - Vec3::new(-height_m, 0.0, 0.0)).length() < 1e-5);
-    }
-
-    #[test]
-    fn render_roots_ride_with_the_head() {
-        let head = default_head();
-        let look = HairLook::new(&head, 50);
-        let mut guides = StrandBuffers::default();
-        guides.push_strand([Vec3::new(0.0, 0.1, 0.0), Vec3::new(0.0, 0.0, -0.1)]);
-        let still = look.strands(&guides, (DMat3::IDENTITY, DVec3::ZERO), usize::MAX);
-        let moved = look.strands(
-            &guides,
-            (DMat3::IDENTITY, DVec3::new(0.0, 0.0, 0.5)),
-            usize::MAX,
-        );
-        assert_eq!(still.strands.strand_count(), 50);
-        let (a, b) = (still.strands.strand(7)[0], moved.strands.strand(7)[0]);
-        assert!((b - a - Vec3::new(0.0, 0.0, 0.5)).length() < 1e-5);
     }
 }
