@@ -18,8 +18,9 @@
 //! previous one, so a frame costs one sweep more than its steps.
 //!
 //! **Recovery is a reset**: a failing strand goes back to its natural shape
-//! at rest (q = qⁿ, q̇ = 0), and its index is reported
-//! ([`super::BatchSystem::last_guard_resets`]). This path does not retry the
+//! at rest (q = qⁿ, q̇ = 0), and reported with the check that failed and
+//! by how much ([`super::BatchSystem::last_guard_events`], the f64
+//! guard's [`crate::guard::GuardEvent`]). This path does not retry the
 //! frame with Exact and more substeps as the f64 guard does: it is the
 //! interactive path, where a frame's cost must stay predictable (a retry
 //! of a whole batch at 32 substeps would stall the frame it happens in), and
@@ -134,11 +135,18 @@ pub fn measure_lanes(
                 };
                 let point = pick(s.point_m);
                 let velocity = pick(s.point_velocity);
-                let f = contact.force(
-                    motions[lane].position_m + point,
-                    velocity,
-                    f64::from(model.mass_per_length),
-                ) * f64::from(share);
+                // The implicit push: where it acts is where the Exact
+                // steps' contact acts, and a superset of where the
+                // explicit penalty does (only "is there contact" and the
+                // balance's external terms use it).
+                let f = contact
+                    .implicit_force(
+                        motions[lane].position_m + point,
+                        velocity,
+                        f64::from(model.mass_per_length),
+                    )
+                    .map_or(DVec3::ZERO, |c| c.force_n_per_m)
+                    * f64::from(share);
                 list.push((point, velocity, f));
             }
         }

@@ -636,7 +636,8 @@ impl Group {
             match contact {
                 Some((inputs, near)) => {
                     let positions = std::array::from_fn(|i| motions[i].position_m);
-                    let mut end_force = LaneContact::new(inputs, near, model, positions);
+                    let implicit = step_kind != BatchStep::BlockDiagonal;
+                    let mut end_force = LaneContact::new(inputs, near, model, positions, implicit);
                     step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
                 }
                 None => {
