@@ -350,9 +350,19 @@ impl HeadlessSim {
             let events = batch.last_guard_events();
             self.strands_lost += events.len();
             let sentences = events.iter().take(room).map(|event| {
-                // The event says what failed and by how much, and whether
-                // the strand was reset or pinned.
-                format!("{event} (group {})", self.group_name(event.strand))
+                // What failed and by how much, and what the batch guard
+                // did (it resets to the natural shape, not the last good
+                // one as the reference's events say).
+                let (strand, t, cause) = (event.strand, event.time_secs, event.cause);
+                let group = self.group_name(strand);
+                let action = match event.action {
+                    GuardAction::Pinned => {
+                        "it kept failing, so it was pinned at rest in its natural shape; it is \
+                         no longer simulated (try more substeps or the Exact solver)"
+                    }
+                    _ => "it was reset to its rest shape",
+                };
+                format!("strand {strand} (group {group}) at t = {t:.4} s: {cause}; {action}")
             });
             self.batch_resets.extend(sentences.collect::<Vec<_>>());
         }

@@ -158,20 +158,31 @@ pub struct GuardEvent {
     pub action: GuardAction,
 }
 
-impl std::fmt::Display for GuardEvent {
+impl std::fmt::Display for GuardCause {
+    /// What failed and by how much, as a clause ("a point moved at …").
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let cause = match self.cause {
-            GuardCause::NotFinite => "its state was not finite".to_string(),
+        match *self {
+            GuardCause::NotFinite => write!(f, "its state was not finite"),
             GuardCause::TooFast { speed_m_per_s } => {
-                format!("a point moved at {speed_m_per_s:.3e} m/s relative to its root")
+                write!(
+                    f,
+                    "a point moved at {speed_m_per_s:.3e} m/s relative to its root"
+                )
             }
             GuardCause::EnergyGain {
                 gained_j,
                 allowed_j,
-            } => format!(
+            } => write!(
+                f,
                 "it gained {gained_j:.3e} J that no force put in (allowed {allowed_j:.3e} J)"
             ),
-        };
+        }
+    }
+}
+
+impl std::fmt::Display for GuardEvent {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let cause = self.cause;
         let action = match self.action {
             GuardAction::Retried { method, substeps } => format!(
                 "re-stepped the frame with {} and {substeps} substeps, kept for a while",
