@@ -45,6 +45,10 @@ fn main() -> anyhow::Result<()> {
                     "frame {frame} t {t:.2} s: {} resets (strands {lo:?} to {hi:?}), clip {clip:?}",
                     resets.len()
                 );
+                // What failed, and by how much: the first few events.
+                for event in batch.last_guard_events().iter().take(3) {
+                    println!("  {event}");
+                }
             }
             for &s in resets {
                 per_strand.entry(s).or_default().push(frame);

@@ -17,7 +17,8 @@ pub const DIFF_SECS: f64 = 5e-4;
 /// A built-in head motion.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Clip {
-    /// Two nods: 20° down and back at 1.5 Hz.
+    /// Two nods: 20° down and back at 1.5 Hz, starting and stopping
+    /// without a jump in acceleration.
     Nod,
     /// A shake: 0.5 rad either way at 1.5 Hz for two cycles, eased in and out.
     Shake,
@@ -65,7 +66,11 @@ impl Clip {
         let tau = std::f64::consts::TAU;
         match self {
             Clip::Nod => {
-                let angle = 20f64.to_radians() * 0.5 * (1.0 - (tau * 1.5 * t).cos());
+                // (1 − cos)/2 squared: the same two 20° nods, but its
+                // acceleration is zero at both ends, where the plain raised
+                // cosine stopped from 15.5 rad/s² at once.
+                let raised = 0.5 * (1.0 - (tau * 1.5 * t).cos());
+                let angle = 20f64.to_radians() * raised * raised;
                 (DMat3::from_rotation_x(angle), DVec3::ZERO)
             }
             Clip::Shake => {

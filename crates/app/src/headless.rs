@@ -347,26 +347,24 @@ impl HeadlessSim {
         }
         if let Some(batch) = self.engine.batch() {
             let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
-            let time_secs = batch.time_secs();
-            self.strands_lost += batch.last_guard_resets().len() + batch.last_guard_pins().len();
-            let resets = batch.last_guard_resets().iter().take(room).map(|&strand| {
-                format!(
-                    "strand {strand} (group {}) failed the guard's checks at t = {time_secs:.4} s \
-                     and was reset to its rest shape",
-                    self.group_name(strand)
-                )
+            let events = batch.last_guard_events();
+            self.strands_lost += events.len();
+            let sentences = events.iter().take(room).map(|event| {
+                // What failed and by how much, and what the batch guard
+                // did (it resets to the natural shape, not the last good
+                // one as the reference's events say).
+                let (strand, t, cause) = (event.strand, event.time_secs, event.cause);
+                let group = self.group_name(strand);
+                let action = match event.action {
+                    GuardAction::Pinned => {
+                        "it kept failing, so it was pinned at rest in its natural shape; it is \
+                         no longer simulated (try more substeps or the Exact solver)"
+                    }
+                    _ => "it was reset to its rest shape",
+                };
+                format!("strand {strand} (group {group}) at t = {t:.4} s: {cause}; {action}")
             });
-            self.batch_resets.extend(resets.collect::<Vec<_>>());
-            let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
-            let pins = batch.last_guard_pins().iter().take(room).map(|&strand| {
-                format!(
-                    "strand {strand} (group {}) kept failing the guard's checks and at t = \
-                     {time_secs:.4} s was pinned at rest in its natural shape; it is no longer \
-                     simulated (try more substeps or the Exact solver)",
-                    self.group_name(strand)
-                )
-            });
-            self.batch_resets.extend(pins.collect::<Vec<_>>());
+            self.batch_resets.extend(sentences.collect::<Vec<_>>());
         }
         secs
     }

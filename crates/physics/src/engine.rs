@@ -9,7 +9,7 @@
 //! | --- | --- | --- |
 //! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`crate::batch::LANES`] strands per SIMD batch, rayon over batches |
 //! | solvers | every [`Method`], per strand | Exact and Block-diagonal, one for all strands |
-//! | extras | stability guard with retries, head collider, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points |
+//! | extras | stability guard with retries, head collider, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points (implicit on Exact) |
 //! | speed | the baseline | an order of magnitude more element-steps per second per core (measured in `docs/RESULTS.md`, section 8) |
 //!
 //! The reference is what every solver study and the guard were built on,
@@ -40,7 +40,9 @@
 //! [`Engine::set_collider`] is the one place a collider reaches the
 //! physics. Both engines collide with it: the reference at every
 //! quadrature sample, the batch engine at element end points
-//! ([`crate::batch::contact`]).
+//! ([`crate::batch::contact`]), both with the implicit contact (its
+//! stiffness and damping in the step matrix) except the batch engine's
+//! Block-diagonal, which keeps the explicit penalty.
 
 use std::ops::Range;
 use std::sync::Arc;

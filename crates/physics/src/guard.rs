@@ -17,7 +17,9 @@
 //!   frame, and its work is not known at the frame's resolution. With a
 //!   still head and no wind this is
 //!   "energy must not grow"; with head motion, "not faster than the root's
-//!   work allows". Measured on healthy frames (Exact and Dense, a 30 cm
+//!   work allows", give or take what the step's holding of the root's
+//!   acceleration over a step can add where that acceleration jumps
+//!   ([`crate::frame_balance::root_sampling_uncertainty_j`]). Measured on healthy frames (Exact and Dense, a 30 cm
 //!   strand under a head shake at 1/60 s): at most 2% of the kinetic
 //!   energy, the trapezoid rule's error;
 //! - **speed**: the true speed of every quadrature sample relative to the
@@ -34,7 +36,9 @@
 //! tries its own solver and substeps again. If no retry passes, the strand
 //! is reset to the start-of-frame shape at rest relative to its root; a
 //! strand reset [`Guard::resets_before_pinning`] times within
-//! [`Guard::hold_frames`] frames is **pinned**: held at rest in its
+//! [`Guard::hold_frames`] frames, or [`Guard::long_resets_before_pinning`]
+//! times each within [`Guard::long_window_frames`] of the previous (a
+//! strand failing every time a head motion repeats), is **pinned**: held at rest in its
 //! natural shape, carried by the head, and no longer stepped, with one
 //! event that says so, instead of a reset every frame. Each intervention is
 //! a [`GuardEvent`] that the app shows the user.
@@ -42,7 +46,9 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use crate::frame_balance::{StrandMeasure, unexplained_energy_j, work_uncertainty_j};
+use crate::frame_balance::{
+    StrandMeasure, root_sampling_uncertainty_j, unexplained_energy_j, work_uncertainty_j,
+};
 use crate::model::StrandModel;
 use crate::settings::Method;
 
@@ -70,6 +76,14 @@ pub struct Guard {
     /// at rest. Default 3: a strand that no retry can step three times in a
     /// second will not be stepped in the next one either.
     pub resets_before_pinning: u32,
+    /// The long memory's window, frames: a reset within this many frames
+    /// of the strand's previous one adds to its long count. Default 1800
+    /// (30 s at 60 Hz): a strand that fails once every few seconds, each
+    /// time a head motion repeats, is failing for good.
+    pub long_window_frames: u32,
+    /// Resets in a row, each within [`Guard::long_window_frames`] of the
+    /// previous, after which a strand is pinned. Default 5.
+    pub long_resets_before_pinning: u32,
 }
 
 impl Default for Guard {
@@ -80,6 +94,8 @@ impl Default for Guard {
             max_substeps: 32,
             hold_frames: 60,
             resets_before_pinning: 3,
+            long_window_frames: 1800,
+            long_resets_before_pinning: 5,
         }
     }
 }
@@ -142,20 +158,31 @@ pub struct GuardEvent {
     pub action: GuardAction,
 }
 
-impl std::fmt::Display for GuardEvent {
+impl std::fmt::Display for GuardCause {
+    /// What failed and by how much, as a clause ("a point moved at …").
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let cause = match self.cause {
-            GuardCause::NotFinite => "its state was not finite".to_string(),
+        match *self {
+            GuardCause::NotFinite => write!(f, "its state was not finite"),
             GuardCause::TooFast { speed_m_per_s } => {
-                format!("a point moved at {speed_m_per_s:.3e} m/s relative to its root")
+                write!(
+                    f,
+                    "a point moved at {speed_m_per_s:.3e} m/s relative to its root"
+                )
             }
             GuardCause::EnergyGain {
                 gained_j,
                 allowed_j,
-            } => format!(
+            } => write!(
+                f,
                 "it gained {gained_j:.3e} J that no force put in (allowed {allowed_j:.3e} J)"
             ),
-        };
+        }
+    }
+}
+
+impl std::fmt::Display for GuardEvent {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let cause = self.cause;
         let action = match self.action {
             GuardAction::Retried { method, substeps } => format!(
                 "re-stepped the frame with {} and {substeps} substeps, kept for a while",
@@ -234,11 +261,52 @@ impl Guard {
         let gained_j = unexplained_energy_j(start, end, dt_secs);
         let allowed_j = self.energy_tolerance * (start.kinetic_j + end.kinetic_j)
             + round_off * (start.size_j + end.size_j)
-            + work_uncertainty_j(start, end, dt_secs);
+            + work_uncertainty_j(start, end, dt_secs)
+            + root_sampling_uncertainty_j(start, end, dt_secs);
         (gained_j > allowed_j).then_some(GuardCause::EnergyGain {
             gained_j,
             allowed_j,
         })
+    }
+}
+
+/// A strand's memory of its resets, which decides when it is pinned: a
+/// short window ([`Guard::resets_before_pinning`] resets, each within
+/// [`Guard::hold_frames`] of the previous) and a long one
+/// ([`Guard::long_resets_before_pinning`] within
+/// [`Guard::long_window_frames`]). Shared by both engines' guards.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ResetMemory {
+    short_count: u32,
+    short_frames_left: u32,
+    long_count: u32,
+    long_frames_left: u32,
+}
+
+impl ResetMemory {
+    /// One frame has passed: windows that run out forget their count.
+    pub fn tick(&mut self) {
+        for (count, left) in [
+            (&mut self.short_count, &mut self.short_frames_left),
+            (&mut self.long_count, &mut self.long_frames_left),
+        ] {
+            if *left > 0 {
+                *left -= 1;
+                if *left == 0 {
+                    *count = 0;
+                }
+            }
+        }
+    }
+
+    /// Records a reset; returns whether the strand must now be pinned.
+    pub fn record_reset(&mut self, guard: &Guard) -> bool {
+        self.short_count += 1;
+        self.short_frames_left = guard.hold_frames;
+        self.long_count += 1;
+        self.long_frames_left = guard.long_window_frames;
+        self.short_count >= guard.resets_before_pinning
+            || self.long_count >= guard.long_resets_before_pinning
     }
 }
 
@@ -252,8 +320,8 @@ pub struct GuardState {
     pub hold_frames: u32,
     /// The strand's own solver while the guard has it on Exact.
     pub own_method: Option<Method>,
-    /// Resets in the current window of [`Guard::hold_frames`] frames.
-    pub recent_resets: u32,
+    /// Its recent resets, which decide when it is pinned.
+    pub resets: ResetMemory,
     /// Whether the strand is pinned at rest ([`GuardAction::Pinned`]).
     pub pinned: bool,
 }

@@ -323,11 +323,9 @@ fn guarded_frame(
         // Held at rest in its natural shape, carried by the head.
         return FrameOutcome::default();
     }
+    state.resets.tick();
     if state.hold_frames > 0 {
         state.hold_frames -= 1;
-        if state.hold_frames == 0 {
-            state.recent_resets = 0;
-        }
     } else {
         state.substeps = 0;
         if let Some(own_method) = state.own_method.take() {
@@ -362,8 +360,7 @@ fn guarded_frame(
         if substeps > guard.max_substeps.max(frame.substeps) {
             state.substeps = 0;
             state.hold_frames = guard.hold_frames;
-            state.recent_resets += 1;
-            if state.recent_resets >= guard.resets_before_pinning {
+            if state.resets.record_reset(&guard) {
                 s.set_natural_at_rest();
                 state.pinned = true;
                 break GuardAction::Pinned;

@@ -64,7 +64,7 @@ pub mod velocity_terms;
 pub use energy::Energies;
 pub use engine::{Engine, EngineKind};
 pub use error::ParamError;
-pub use guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState};
+pub use guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState, ResetMemory};
 pub use hair_system::HairSystem;
 pub use model::StrandModel;
 pub use motion::{Bounce, HeadTrajectory, Oscillation, RigidMotion, RootPose};

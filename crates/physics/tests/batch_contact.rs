@@ -165,13 +165,15 @@ fn lowest_above_sphere(points: &[DVec3], centre: DVec3) -> f64 {
 }
 
 /// How far the batch path's resting drape may lie from the f64 path's,
-/// metres. Contact at end points (the batch) and at every quadrature
-/// sample (the reference) carry the same load at different places: the
-/// samples between end points hold the chord up where the end points let
-/// it sag (ℓ²/8R = 0.35 mm for ℓ = 1.5 cm on R = 8 cm), and both sink
-/// g h²/α = 0.7 mm into the skin. 1 mm, half the 2 mm skin, bounds that.
-/// Measured 0.44 mm.
-const DRAPE_SHAPE_TOL_M: f64 = 0.001;
+/// metres: the 2 mm skin, inside which both rest. Both step the same
+/// implicit contact (α = 4), but at end points (the batch) and at every
+/// quadrature sample (the reference): the reference also pushes up the
+/// root-side half of element 0, which the batch leaves out, and so tilts
+/// the strand at its root; the gap grows linearly from root to tip (a
+/// rotation of about 0.01 rad). Measured with both engines at the same α:
+/// 0.44 mm at α = 0.25 (the old explicit penalty's stiffness, where the
+/// bound was 1 mm), 0.87 mm at 1, 1.48 mm at 4 (the default), 1.77 mm at 16.
+const DRAPE_SHAPE_TOL_M: f64 = 0.002;
 
 #[test]
 fn a_strand_draped_over_a_sphere_rests_on_it_near_the_f64_drape() {
@@ -188,13 +190,8 @@ fn a_strand_draped_over_a_sphere_rests_on_it_near_the_f64_drape() {
     reference
         .add_group(&p, &[top_root()])
         .expect("valid params");
+    // Both engines step the same implicit contact (default settings).
     reference.set_collider(Some(field));
-    // The reference steps implicit contact; at the batch path's stiffness
-    // both rest where that spring carries the load.
-    reference.set_contact_settings(ContactSettings {
-        implicit_stiffness_ratio: ContactSettings::default().stiffness_ratio,
-        ..ContactSettings::default()
-    });
     for _ in 0..180 {
         batch.step_frame(&still);
         falls.step_frame(&still);
@@ -216,18 +213,20 @@ fn a_strand_draped_over_a_sphere_rests_on_it_near_the_f64_drape() {
         .iter()
         .map(|x| x.as_dvec3())
         .collect();
-    // Each end point sinks g h² / α = 0.7 mm into the 2 mm skin, and the
+    // Each end point sinks g h² / α = 0.04 mm into the 2 mm skin, and the
     // mesh lies up to 0.3 mm inside the sphere: the points rest above the
-    // true sphere, within the skin.
+    // true sphere, within the skin (measured 1.54 mm above it).
     let resting = lowest_above_sphere(&points, DVec3::ZERO);
     println!("resting {resting:.2e} m above the sphere");
     assert!(resting > 0.0, "rests {resting} m from the sphere");
     assert!(resting < 0.002, "floats {resting} m above the sphere");
-    let shape_gap = points
+    let gaps: Vec<f64> = points
         .iter()
         .zip(reference.boundary_points_world(0))
         .map(|(a, b)| (*a - b).length())
-        .fold(0.0, f64::max);
+        .collect();
+    println!("gaps along the strand, root to tip: {gaps:?} m");
+    let shape_gap = gaps.iter().copied().fold(0.0, f64::max);
     println!("largest gap to the f64 drape: {shape_gap:.2e} m");
     assert!(shape_gap < DRAPE_SHAPE_TOL_M, "{shape_gap} m");
     // At rest: the speed bound of the settled strand is small.

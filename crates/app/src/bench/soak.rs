@@ -19,8 +19,9 @@
 //! soak that finds a NaN must not pass.
 //!
 //! What counts as a loop: the guard pins a strand that fails
-//! `resets_before_pinning` times within its hold window, so resets are
-//! bounded by design; the soak checks it by the resets per sample window
+//! `resets_before_pinning` times within its hold window, or
+//! `long_resets_before_pinning` times each within `long_window_frames` of
+//! the previous (`helixhair_physics::ResetMemory`), so resets are bounded by design; the soak checks it by the resets per sample window
 //! staying flat rather than growing, and reports the most in any window.
 
 use std::time::Instant;

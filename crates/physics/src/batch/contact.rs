@@ -49,9 +49,25 @@
 //! forces for Q < N − 1. `tests/batch_contact.rs` checks the result
 //! against central differences of the f64 reconstruction.
 //!
-//! The force is explicit (its Jacobian is not in the step matrix), as in
-//! the reference: the penalty's stiffness k = α ρS / h² is what keeps it
-//! stable ([`crate::collision::contact`]).
+//! **Implicit on Exact, as in the reference.** On the Exact steps
+//! ([`LaneContact::new`] with `implicit`), the force is the reference's
+//! implicit one ([`ContactInputs::implicit_force`]): the predicted push
+//! k (skin − d − h v_rel·n) − c v_rel·n on the right-hand side, and its
+//! derivative in Δv, h (h k + c) ℓ aᵀ n nᵀ a on the left, with α =
+//! [`ContactSettings::implicit_stiffness_ratio`](crate::collision::ContactSettings)
+//! (4, sixteen times the explicit penalty's). The end point is a point
+//! "beyond" every element up to and including Q, so that term is a point
+//! inertia K = a aᵀ at the end point, a = n √(h (h k + c) ℓ)
+//! ([`ElementData::contact_axis`]): with local moments the tip-to-root
+//! elimination of [`super::exact`] holds its articulated inertia about
+//! that very point when it reaches element Q, and K enters it as H_aa −= K
+//! (H carries the inertia with a minus sign). The elimination is then
+//! still exact, O(N), and the velocity-implicit step's GMRES, whose
+//! preconditioner is that elimination, gets the contact in its operator and
+//! its preconditioner alike (A z = v + h G z holds as before, since P now
+//! includes K). Block-diagonal keeps the explicit penalty k = α ρS / h²
+//! with α = 0.25 ([`crate::collision::contact`]): its truncated inertia
+//! has no articulated sweep to put K in.
 //!
 //! **Cost.** With no collider, [`super::BatchSystem`] branches once per
 //! batch to the sweep without this stage ([`NoContact`], which compiles to
@@ -197,17 +213,22 @@ pub struct LaneContact<'a> {
     mass_per_length: f64,
     /// The head's frame transposed: world offsets to head coordinates.
     body_from_world: DMat3,
+    /// Whether the contact is implicit (Exact) or the explicit penalty.
+    implicit: bool,
 }
 
 impl<'a> LaneContact<'a> {
     /// Contact for a batch of `model`'s strands whose lane i is rooted at
     /// `root_positions_m[i]` (world, metres, at the step's start).
     /// `near` must be [`NearCells::new`] of the inputs' collider and skin.
+    /// `implicit`: the Exact steps' implicit contact (see the module docs);
+    /// otherwise the explicit penalty.
     pub fn new(
         inputs: ContactInputs<'a>,
         near: &'a NearCells,
         model: &'a BatchModel,
         root_positions_m: [DVec3; LANES],
+        implicit: bool,
     ) -> Self {
         Self {
             inputs,
@@ -216,6 +237,7 @@ impl<'a> LaneContact<'a> {
             lengths_m: &model.lengths_m,
             mass_per_length: f64::from(model.mass_per_length),
             body_from_world: inputs.head.world_from_body.transpose(),
+            implicit,
         }
     }
 
@@ -241,6 +263,15 @@ impl<'a> LaneContact<'a> {
         self.near.contains(cell(0), cell(1), cell(2))
     }
 
+    /// The velocity of the head's surface at world point `point_m`, m/s.
+    fn surface_velocity(&self, point_m: DVec3) -> DVec3 {
+        let head = self.inputs.head;
+        head.velocity_m_per_s
+            + head
+                .angular_velocity_rad_per_s
+                .cross(point_m - head.position_m)
+    }
+
     /// The length element `e`'s end point stands for, metres.
     fn point_length_m(&self, e: usize) -> f64 {
         let next = self.lengths_m.get(e + 1).copied().unwrap_or(0.0);
@@ -258,27 +289,51 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
     ) {
         let length_m = self.point_length_m(e);
         let lane_vec = |x: &V3<T>, i: usize| Vec3::new(x.x.lane(i), x.y.lane(i), x.z.lane(i));
+        // Implicit contact needs the elimination's frame at the end point.
+        let implicit = self.implicit && LOCAL;
         let mut forces_n = [Vec3::ZERO; LANES];
+        let mut axes = [Vec3::ZERO; LANES];
         let mut touching = false;
-        for (i, force) in forces_n.iter_mut().enumerate().take(T::WIDTH) {
+        let h = self.inputs.h_secs;
+        for (i, (force, axis)) in forces_n
+            .iter_mut()
+            .zip(&mut axes)
+            .enumerate()
+            .take(T::WIDTH)
+        {
             let point_m = self.root_positions_m[i] + lane_vec(&end.point_m, i).as_dvec3();
-            if !self.may_touch(point_m) {
+            let velocity = lane_vec(&end.point_velocity, i).as_dvec3();
+            // The implicit contact also acts on a point that will enter
+            // the skin during the step: test where it is headed too.
+            let headed = point_m + h * (velocity - self.surface_velocity(point_m));
+            if !(self.may_touch(point_m) || implicit && self.may_touch(headed)) {
                 continue;
             }
-            let velocity = lane_vec(&end.point_velocity, i).as_dvec3();
-            let f = self.inputs.force(point_m, velocity, self.mass_per_length);
-            if f != DVec3::ZERO {
-                *force = (f * length_m).as_vec3();
-                touching = true;
+            let rho_s = self.mass_per_length;
+            if implicit {
+                if let Some(push) = self.inputs.implicit_force(point_m, velocity, rho_s) {
+                    *force = (push.force_n_per_m * length_m).as_vec3();
+                    *axis = (push.normal * (h * push.gain * length_m).sqrt()).as_vec3();
+                    touching = true;
+                }
+            } else {
+                let f = self.inputs.force(point_m, velocity, rho_s);
+                if f != DVec3::ZERO {
+                    *force = (f * length_m).as_vec3();
+                    touching = true;
+                }
             }
         }
         if touching {
-            let force_n = V3::new(
-                T::from_fn(|i| forces_n[i].x),
-                T::from_fn(|i| forces_n[i].y),
-                T::from_fn(|i| forces_n[i].z),
-            );
-            add_end_point_force::<T, LOCAL>(el, end.point_m, force_n);
+            let lanes = |v: &[Vec3; LANES]| {
+                V3::new(
+                    T::from_fn(|i| v[i].x),
+                    T::from_fn(|i| v[i].y),
+                    T::from_fn(|i| v[i].z),
+                )
+            };
+            add_end_point_force::<T, LOCAL>(el, end.point_m, lanes(&forces_n));
+            el.contact_axis = lanes(&axes);
         }
     }
 }

@@ -144,6 +144,13 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
         } else {
             el.v
         };
+        if LOCAL {
+            // Implicit contact at this element's end point, the origin of
+            // H here: a point inertia a aᵀ, which H holds with a minus
+            // sign (super::contact). Zero for every lane out of contact.
+            let axis = el.contact_axis;
+            h[0] = h[0] - M3::outer(axis, axis);
+        }
         let [h_aa, h_ab, h_ba, h_bb] = &mut h;
         let [carried_a, carried_b] = &mut carried;
         let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);

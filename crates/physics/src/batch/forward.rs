@@ -285,6 +285,7 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
         };
         el.b = b;
         el.span = span;
+        el.contact_axis = V3::zero();
         end_force.at_end::<LOCAL>(e, &next, el);
         s = next;
     }

@@ -18,8 +18,9 @@
 //! previous one, so a frame costs one sweep more than its steps.
 //!
 //! **Recovery is a reset**: a failing strand goes back to its natural shape
-//! at rest (q = qⁿ, q̇ = 0), and its index is reported
-//! ([`super::BatchSystem::last_guard_resets`]). This path does not retry the
+//! at rest (q = qⁿ, q̇ = 0), and reported with the check that failed and
+//! by how much ([`super::BatchSystem::last_guard_events`], the f64
+//! guard's [`crate::guard::GuardEvent`]). This path does not retry the
 //! frame with Exact and more substeps as the f64 guard does: it is the
 //! interactive path, where a frame's cost must stay predictable (a retry
 //! of a whole batch at 32 substeps would stall the frame it happens in), and
@@ -41,7 +42,7 @@ use super::layout::{RootMotion, StepEnv};
 use super::vec::V3;
 use crate::collision::ContactInputs;
 use crate::frame_balance::StrandMeasure;
-use crate::guard::Guard;
+use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
 
 /// Per lane of a batch (`v`: its N rate triples), the speed bound
@@ -90,7 +91,7 @@ pub fn measure_lanes(
     let (mut kinetic, mut elastic, mut power, mut fastest) = (zero, zero, zero, zero);
     let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
         (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
-    let mut mass = zero;
+    let (mut mass, mut second_moment) = (zero, zero);
     let mut s = FrameState::at_root(root);
     let n = q.len();
     let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
@@ -106,6 +107,7 @@ pub fn measure_lanes(
             angular += r.cross(vel).scale(w_mass);
             first_moment += r.scale(w_mass);
             mass += w_mass;
+            second_moment += r.dot(r) * w_mass;
             let drag = (vel - air).scale(nu);
             power -= drag.dot(vel) * w_len;
             let f = (g.scale(rho_s) - drag).scale(w_len);
@@ -133,11 +135,18 @@ pub fn measure_lanes(
                 };
                 let point = pick(s.point_m);
                 let velocity = pick(s.point_velocity);
-                let f = contact.force(
-                    motions[lane].position_m + point,
-                    velocity,
-                    f64::from(model.mass_per_length),
-                ) * f64::from(share);
+                // The implicit push: where it acts is where the Exact
+                // steps' contact acts, and a superset of where the
+                // explicit penalty does (only "is there contact" and the
+                // balance's external terms use it).
+                let f = contact
+                    .implicit_force(
+                        motions[lane].position_m + point,
+                        velocity,
+                        f64::from(model.mass_per_length),
+                    )
+                    .map_or(DVec3::ZERO, |c| c.force_n_per_m)
+                    * f64::from(share);
                 list.push((point, velocity, f));
             }
         }
@@ -165,6 +174,10 @@ pub fn measure_lanes(
                 .any(|(_, _, f)| *f != DVec3::ZERO),
             root_velocity_m_per_s: motion.velocity_m_per_s,
             root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
+            root_acceleration_m_per_s2: motion.acceleration_m_per_s2,
+            root_angular_acceleration_rad_per_s2: motion.angular_acceleration_rad_per_s2,
+            mass_kg: x(mass),
+            second_moment_kg_m2: x(second_moment),
             fastest_relative_m_per_s: x(fastest),
         };
         for (point, velocity, f) in &contact_force[lane] {
@@ -185,7 +198,8 @@ fn s_root_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
 
 /// Checks one batch (`q`, `v`: N triples each) whose lanes started the
 /// frame measured as `start` and ended it as `end`; resets each failing
-/// lane to `model`'s natural shape at rest. Returns the failing lanes.
+/// lane to `model`'s natural shape at rest. Returns, per lane, what failed
+/// (`None`: the lane passed), as the f64 guard names it.
 pub fn check_and_reset(
     guard: &Guard,
     model: &BatchModel,
@@ -194,16 +208,16 @@ pub fn check_and_reset(
     start: &[StrandMeasure; LANES],
     end: &[StrandMeasure; LANES],
     dt_secs: f64,
-) -> [bool; LANES] {
+) -> [Option<GuardCause>; LANES] {
     let finite_q = finite_lanes(q);
     let finite_v = finite_lanes(v);
-    let failed: [bool; LANES] = std::array::from_fn(|i| {
-        !(finite_q[i] && finite_v[i])
-            || guard
-                .check_with_round_off(&[], &[], &start[i], &end[i], dt_secs, F32_ENERGY_ROUND_OFF)
-                .is_some()
+    let failed: [Option<GuardCause>; LANES] = std::array::from_fn(|i| {
+        if !(finite_q[i] && finite_v[i]) {
+            return Some(GuardCause::NotFinite);
+        }
+        guard.check_with_round_off(&[], &[], &start[i], &end[i], dt_secs, F32_ENERGY_ROUND_OFF)
     });
-    for (lane, _) in failed.iter().enumerate().filter(|(_, f)| **f) {
+    for (lane, _) in failed.iter().enumerate().filter(|(_, f)| f.is_some()) {
         set_natural_at_rest(model, q, v, lane);
     }
     failed

@@ -153,6 +153,12 @@ pub struct ElementData<T> {
     /// The element's end point minus its start point, metres (set by the
     /// sweep with local moments, see [`super::forward::forward_with`]).
     pub span: V3<T>,
+    /// The implicit contact at the element's end point, as an axis a with
+    /// a aᵀ = h (h k + c) ℓ n nᵀ (kg·s⁻¹·m·s → kg): the term the Exact
+    /// elimination adds to the articulated inertia there
+    /// ([`super::contact`]). Zero out of contact, and always zero on the
+    /// explicit-contact paths.
+    pub contact_axis: V3<T>,
 }
 
 impl<T: Real> ElementData<T> {
@@ -171,6 +177,7 @@ impl<T: Real> ElementData<T> {
             u: M3::zero(),
             v: M3::zero(),
             span: V3::zero(),
+            contact_axis: V3::zero(),
         }
     }
 }

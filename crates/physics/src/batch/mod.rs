@@ -51,12 +51,16 @@
 //!   ([`BatchSystem::set_collider`]) pushes on each element's END point
 //!   (looked up once per lane, against every quadrature sample in the f64
 //!   reference), and the point force enters the suffix sums of the
-//!   tip-to-root sweep; the module derives where. Without a collider the
-//!   sweep has no such stage at all.
+//!   tip-to-root sweep; the module derives where. On Exact the contact is
+//!   implicit, as in the reference: its stiffness and damping enter the
+//!   elimination as a point inertia at the end point. Without a collider
+//!   the sweep has no such stage at all.
 //! - **Guard** ([`guard`], on by default): after each frame, each strand is
-//!   checked (finite; the speed bound of [`crate::guard`]), and one that
-//!   fails is reset to its natural shape at rest and reported
-//!   ([`BatchSystem::last_guard_resets`]). No retry with another solver:
+//!   measured and checked as [`crate::guard`] checks (finite, true speed,
+//!   energy against the root's work), and one that fails is reset to its
+//!   natural shape at rest and reported with what failed and by how much
+//!   ([`BatchSystem::last_guard_events`]); one that keeps failing is
+//!   pinned ([`crate::guard::ResetMemory`]). No retry with another solver:
 //!   this is the interactive path, and the f64 [`crate::HairSystem`] is the
 //!   careful one.
 //!

@@ -19,7 +19,7 @@ use super::vec::V3;
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
 use crate::frame_balance::StrandMeasure;
-use crate::guard::Guard;
+use crate::guard::{Guard, GuardAction, GuardEvent, ResetMemory};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -37,16 +37,15 @@ struct Group {
     /// The guard's per-lane measures at the end of the last frame, while
     /// the state has not changed since.
     measures: Option<Vec<[StrandMeasure; LANES]>>,
-    /// Per strand (batch-major, padding included): resets in the current
-    /// window, frames left in it, and whether the guard pinned it.
+    /// Per strand (batch-major, padding included): its recent resets and
+    /// whether the guard pinned it.
     guard_standing: Vec<LaneStanding>,
 }
 
 /// One strand's standing with the batch guard.
 #[derive(Clone, Copy, Debug, Default)]
 struct LaneStanding {
-    recent_resets: u32,
-    window_frames: u32,
+    resets: ResetMemory,
     pinned: bool,
 }
 
@@ -129,6 +128,7 @@ pub struct BatchSystem {
     guard: Option<Guard>,
     last_resets: Vec<usize>,
     last_pins: Vec<usize>,
+    last_events: Vec<GuardEvent>,
     reset_count: usize,
 }
 
@@ -159,6 +159,7 @@ impl BatchSystem {
             guard: Some(Guard::default()),
             last_resets: Vec::new(),
             last_pins: Vec::new(),
+            last_events: Vec::new(),
             reset_count: 0,
         })
     }
@@ -272,6 +273,13 @@ impl BatchSystem {
         &self.last_pins
     }
 
+    /// The guard's interventions in the last frame, strand by strand: what
+    /// failed and by how much ([`crate::guard::GuardCause`]), and whether
+    /// the strand was reset or pinned.
+    pub fn last_guard_events(&self) -> &[GuardEvent] {
+        &self.last_events
+    }
+
     /// How many strand resets and pins the guard made since the system was
     /// built.
     pub fn guard_reset_count(&self) -> usize {
@@ -324,19 +332,25 @@ impl BatchSystem {
         self.head = head.motion_at(self.time_secs);
         self.last_resets.clear();
         self.last_pins.clear();
+        self.last_events.clear();
         if let Some(guard) = &self.guard {
             let motion = self.head;
             let contact = contact_inputs(&self.collider, self.contact, &motion, h);
             let dt = self.settings.dt_secs;
             let parallel = self.parallel;
-            let resets = &mut self.last_resets;
-            let pins = &mut self.last_pins;
+            let events = &mut self.last_events;
             for (group, start) in self.groups.iter_mut().zip(&start_measures) {
                 group.hold_pinned();
                 let end = group.measure(&motion, &env, contact.as_ref(), parallel);
-                let before = resets.len();
-                group.guard(guard, start, &end, dt, resets, pins);
-                group.measures = (resets.len() == before).then_some(end);
+                let before = events.len();
+                group.guard(guard, start, &end, dt, start_secs, events);
+                group.measures = (events.len() == before).then_some(end);
+            }
+            for event in &self.last_events {
+                match event.action {
+                    GuardAction::Pinned => self.last_pins.push(event.strand),
+                    _ => self.last_resets.push(event.strand),
+                }
             }
         }
         self.reset_count += self.last_resets.len() + self.last_pins.len();
@@ -538,24 +552,20 @@ impl Group {
         }
     }
 
-    /// The guard's end-of-frame check; appends the reset strands' indices.
+    /// The guard's end-of-frame check of the frame that started at
+    /// `start_secs`; appends an event per reset or pinned strand.
     fn guard(
         &mut self,
         guard: &Guard,
         start: &[[StrandMeasure; LANES]],
         end: &[[StrandMeasure; LANES]],
         dt_secs: f64,
-        resets: &mut Vec<usize>,
-        pins: &mut Vec<usize>,
+        start_secs: f64,
+        events: &mut Vec<GuardEvent>,
     ) {
         let n = self.model.elements();
         for standing in &mut self.guard_standing {
-            if standing.window_frames > 0 {
-                standing.window_frames -= 1;
-                if standing.window_frames == 0 {
-                    standing.recent_resets = 0;
-                }
-            }
+            standing.resets.tick();
         }
         let batches = self
             .q
@@ -563,25 +573,27 @@ impl Group {
             .zip(self.v.chunks_mut(n))
             .zip(start.iter().zip(end));
         for (batch, ((q, v), (start, end))) in batches.enumerate() {
-            let mut failed = check_and_reset(guard, &self.model, q, v, start, end, dt_secs);
-            for (lane, fail) in failed.iter_mut().enumerate() {
+            let failed = check_and_reset(guard, &self.model, q, v, start, end, dt_secs);
+            for (lane, cause) in failed.into_iter().enumerate() {
                 let standing = &mut self.guard_standing[batch * LANES + lane];
                 // A pinned strand is held, not judged.
-                *fail &= !standing.pinned;
-                if !*fail {
+                let Some(cause) = cause.filter(|_| !standing.pinned) else {
                     continue;
-                }
-                standing.recent_resets += 1;
-                standing.window_frames = guard.hold_frames;
+                };
+                standing.pinned = standing.resets.record_reset(guard);
                 let local = batch * LANES + lane;
                 // Padding lanes are reset too, but name no strand.
                 if local < self.roots.len() {
-                    if standing.recent_resets >= guard.resets_before_pinning {
-                        standing.pinned = true;
-                        pins.push(self.first_strand + local);
-                    } else {
-                        resets.push(self.first_strand + local);
-                    }
+                    events.push(GuardEvent {
+                        strand: self.first_strand + local,
+                        time_secs: start_secs,
+                        cause,
+                        action: if standing.pinned {
+                            GuardAction::Pinned
+                        } else {
+                            GuardAction::Reset
+                        },
+                    });
                 }
             }
         }
@@ -624,7 +636,8 @@ impl Group {
             match contact {
                 Some((inputs, near)) => {
                     let positions = std::array::from_fn(|i| motions[i].position_m);
-                    let mut end_force = LaneContact::new(inputs, near, model, positions);
+                    let implicit = step_kind != BatchStep::BlockDiagonal;
+                    let mut end_force = LaneContact::new(inputs, near, model, positions, implicit);
                     step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
                 }
                 None => {
