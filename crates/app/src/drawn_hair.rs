@@ -14,6 +14,7 @@
 use glam::Vec3;
 use helixhair_physics::engine::Engine;
 use helixhair_render::head_shell::HeadShell;
+use helixhair_render::interpolate::resampled_shape;
 use helixhair_render::{HairStrands, StrandBuffers};
 
 use crate::drawn_layout::DrawnLayout;
@@ -48,6 +49,39 @@ pub fn clump_onto(strand: &mut [Vec3], guide: &[Vec3], amount: f32) {
         let target = guide[segment].lerp(guide[segment + 1], t);
         *p = p.lerp(target, amount * s_m / total_m);
     }
+}
+
+/// Points of the blended guide shape [`follow_guides`] pulls towards.
+const FOLLOW_POINTS: usize = 32;
+
+/// The guides' shapes (each as offsets from its own root, resampled by arc
+/// length) blended with their weights, moved to start at `root`.
+fn blended_shape(
+    guides: &[(usize, f64)],
+    root: Vec3,
+    guide_curve: &mut impl FnMut(usize) -> Vec<Vec3>,
+) -> Vec<Vec3> {
+    let mut blended = vec![root; FOLLOW_POINTS];
+    for &(g, weight) in guides {
+        let shape = resampled_shape(&guide_curve(g), FOLLOW_POINTS);
+        for (b, s) in blended.iter_mut().zip(shape) {
+            *b += weight as f32 * s;
+        }
+    }
+    blended
+}
+
+/// Pulls a straight or wavy drawn strand (root first) onto `blended`, its
+/// guides' blended shape from its own root, fully at the tip and not at all
+/// at the root ([`clump_onto`] with amount 1). Such hair takes its shape
+/// from gravity and the head: a strand rebuilt from its guides' strains
+/// alone, from a root whose frame differs from theirs, can carry their
+/// bend over the skull into a direction that points away from the head
+/// (stray strands shooting off the back of the straight style); the
+/// guides' positions carry where the hair actually lies. Clumped curls do
+/// not need it: clumping gathers them onto their guide.
+pub fn follow_guides(strand: &mut [Vec3], blended: &[Vec3]) {
+    clump_onto(strand, blended, 1.0);
 }
 
 /// Keeps a strand (root first) out of the head, root to tip: each point
@@ -98,12 +132,20 @@ pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairS
             &strand.lengths_m,
             &strand.strains(&q),
         )));
+        let mut guide_curve = |g: usize| -> Vec<Vec3> {
+            guides[g]
+                .get_or_insert_with(|| {
+                    let model = engine.strand_model(g);
+                    to_f32(&strand_curve(engine.root(g), &model.lengths_m, &q[g])).collect()
+                })
+                .clone()
+        };
         if let Some((g, amount)) = strand.clump {
-            let guide = guides[g].get_or_insert_with(|| {
-                let model = engine.strand_model(g);
-                to_f32(&strand_curve(engine.root(g), &model.lengths_m, &q[g])).collect()
-            });
-            clump_onto(&mut curve, guide, amount as f32);
+            clump_onto(&mut curve, &guide_curve(g), amount as f32);
+        }
+        if !strand.follow.is_empty() {
+            let blended = blended_shape(&strand.follow, curve[0], &mut guide_curve);
+            follow_guides(&mut curve, &blended);
         }
         drape_over(&mut curve, &groom.shell);
         strands.push_strand(curve.iter().map(|&p| rotation * p + position));

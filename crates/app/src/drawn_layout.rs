@@ -196,12 +196,24 @@ impl DrawnLayout {
                         .collect();
                     let clump = (render.clump > 0.0)
                         .then(|| (root_guides.index[weights[0].0], render.clump));
+                    // Hair that does not clump (straight and wavy) takes its
+                    // shape from gravity and the head more than from its
+                    // own curl: its tips follow the guides' blended shape.
+                    let follow = if clump.is_some() {
+                        Vec::new()
+                    } else {
+                        weights
+                            .iter()
+                            .map(|&(g, w)| (root_guides.index[g], w))
+                            .collect()
+                    };
                     layout.strands.push(DrawnStrand {
                         root,
                         base: vec![DVec3::ZERO; lengths_m.len()],
                         sources: root_guides.sources(&lengths_m, &weights),
                         lengths_m,
                         clump,
+                        follow,
                     });
                 }
                 layout.colours.extend(strand_colours(
@@ -282,6 +294,7 @@ impl DrawnLayout {
                 base,
                 sources,
                 clump: None,
+                follow: Vec::new(),
             });
         }
     }

@@ -69,6 +69,10 @@ pub struct DrawnStrand {
     /// The guide it gathers onto towards its tip, and how far (0 to 1):
     /// the `render` section's `clump`.
     pub clump: Option<(usize, f64)>,
+    /// Guides (simulation index, weight) whose blended shape the strand's
+    /// tip follows, for groups that do not clump (see
+    /// [`crate::drawn_hair::follow_guides`]); empty: none.
+    pub follow: Vec<(usize, f64)>,
 }
 
 /// The element of a strand with `lengths_m` at `fraction` of its length.
@@ -263,6 +267,7 @@ mod tests {
                 &[(0, 0.5, &guide_lengths), (1, 0.5, &guide_lengths)],
             ),
             clump: None,
+            follow: Vec::new(),
         };
         let strains = drawn.strains(&[q.clone(), q.clone()]);
         let curve = strand_curve(&drawn.root, &drawn.lengths_m, &strains);
