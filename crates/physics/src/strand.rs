@@ -14,6 +14,7 @@ use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::settings::{Method, StepScheme};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
+use crate::volume::VolumePull;
 
 /// A Super-Helix strand clamped to a root on the head.
 #[derive(Clone, Debug)]
@@ -23,6 +24,7 @@ pub struct Strand {
     q: Vec<DVec3>,
     v: Vec<DVec3>,
     external_n_per_m: Vec<DVec3>,
+    volume: VolumeState,
     workspace: StepWorkspace,
     checkpoint_q: Vec<DVec3>,
     checkpoint_v: Vec<DVec3>,
@@ -40,6 +42,7 @@ impl Strand {
             q: model.natural.clone(),
             v: vec![DVec3::ZERO; n],
             external_n_per_m: Vec::new(),
+            volume: VolumeState::default(),
             workspace: StepWorkspace::new(method),
             checkpoint_q: model.natural.clone(),
             checkpoint_v: vec![DVec3::ZERO; n],
@@ -110,6 +113,24 @@ impl Strand {
         self.external_n_per_m.extend_from_slice(forces_n_per_m);
     }
 
+    /// Sets the hair–hair model's pull for the coming steps: friction
+    /// rate μ (1/s), and per quadrature sample the grid velocity (m/s) and
+    /// pressure acceleration (m/s²), world coordinates
+    /// ([`crate::volume::friction`]).
+    pub fn set_volume_pull(&mut self, friction_per_s: f64, target: Vec<DVec3>, push: Vec<DVec3>) {
+        self.volume = VolumeState {
+            on: true,
+            friction_per_s,
+            target,
+            push,
+        };
+    }
+
+    /// Removes the hair–hair model's pull.
+    pub fn clear_volume_pull(&mut self) {
+        self.volume = VolumeState::default();
+    }
+
     /// The solver method.
     pub fn method(&self) -> Method {
         self.workspace.solver.method()
@@ -167,6 +188,7 @@ impl Strand {
                 air_velocity_m_per_s: air_velocity,
                 external_n_per_m: &self.external_n_per_m,
                 contact,
+                volume: self.volume.pull(),
             },
         };
         step_strand(
@@ -237,5 +259,24 @@ impl Strand {
         self.q.clone_from(&self.model.natural);
         self.v.fill(DVec3::ZERO);
         self.cached_measure = None;
+    }
+}
+
+/// The hair–hair model's pull on one strand, kept between its steps.
+#[derive(Clone, Debug, Default)]
+struct VolumeState {
+    on: bool,
+    friction_per_s: f64,
+    target: Vec<DVec3>,
+    push: Vec<DVec3>,
+}
+
+impl VolumeState {
+    fn pull(&self) -> Option<VolumePull<'_>> {
+        self.on.then_some(VolumePull {
+            friction_per_s: self.friction_per_s,
+            target_m_per_s: &self.target,
+            push_m_per_s2: &self.push,
+        })
     }
 }
