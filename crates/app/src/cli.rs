@@ -103,6 +103,11 @@ pub struct SimArgs {
     /// comparisons).
     #[arg(long, value_name = "TERMS", value_parser = parse_velocity_terms)]
     pub velocity_terms: Option<StepScheme>,
+    /// Hair–hair interaction (the volume model, docs/volume.md) on or
+    /// off, instead of the style's `sim.interaction.enabled`; reference
+    /// engine only.
+    #[arg(long, value_name = "on|off", value_parser = parse_interaction)]
+    pub interaction: Option<bool>,
     /// Move the head with one of the window's clips (nod, shake, turn or
     /// jerk) or a motion file (FILE.ron, docs/motion-format.md) from time
     /// zero, then hold it still, instead of a still head.
@@ -151,6 +156,15 @@ pub fn parse_velocity_terms(name: &str) -> Result<StepScheme, String> {
         _ => Err(format!(
             "unknown velocity terms `{name}`; expected implicit or explicit"
         )),
+    }
+}
+
+/// Parses `--interaction`: `on` or `off`.
+pub fn parse_interaction(name: &str) -> Result<bool, String> {
+    match name {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("unknown interaction `{name}`; expected on or off")),
     }
 }
 
@@ -210,6 +224,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         dt_secs: args.dt,
         accuracy_target: args.accuracy,
         scheme: args.velocity_terms,
+        interaction: args.interaction,
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;
