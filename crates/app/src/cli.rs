@@ -310,4 +310,37 @@ mod tests {
         );
         assert!(out.is_empty());
     }
+
+    #[test]
+    fn interaction_switches_on_the_reference_engine_and_is_refused_on_the_batch_one() {
+        assert_eq!(parse_interaction("on"), Ok(true));
+        assert_eq!(parse_interaction("off"), Ok(false));
+        assert!(
+            parse_interaction("yes")
+                .expect_err("on or off")
+                .contains("expected on or off")
+        );
+        let style = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/styles/coily.ron");
+        let (result, _, _) = run_args(&[
+            "sim",
+            "--style",
+            style,
+            "--steps",
+            "2",
+            "--interaction",
+            "on",
+        ]);
+        result.expect("the reference engine runs the model");
+        let args = [
+            "sim", "--style", style, "--steps", "1", "--engine", "batch", "--method", "exact",
+        ];
+        let (result, _, _) = run_args(&[&args[..], &["--interaction", "on"]].concat());
+        let error = format!("{:#}", result.expect_err("the batch engine has no model"));
+        assert!(
+            error.contains(
+                "--engine batch --interaction on: the batch engine has no hair-hair interaction"
+            ),
+            "{error}"
+        );
+    }
 }

@@ -28,12 +28,14 @@
 pub mod app_state;
 pub mod collision;
 pub mod default_style;
+pub mod density_view;
 pub mod document;
 pub mod drawn;
 pub mod event_loop;
 pub mod file_picker;
 pub mod guard_status;
 pub mod head_motion;
+pub mod interaction_panel;
 pub mod live_sim;
 pub mod presets;
 pub mod preview;

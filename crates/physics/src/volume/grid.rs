@@ -8,7 +8,9 @@
 //! Nodes sit on the cell corners; a point inside the box spreads onto the
 //! eight corners of its cell with the trilinear weights
 //! w = Π (1 − |x − x_n| / Δx), which sum to one, and reads them back with
-//! the same weights (PIC, as Petrovic et al. 2005 and Unreal's groom do).
+//! the same weights (PIC: the grid's velocity is read back as it is, no
+//! FLIP increment; a FLIP blend would need the grid velocity of the
+//! previous frame and adds noise the friction would have to damp).
 //! A point outside the box takes no part in the model.
 
 use glam::DVec3;

@@ -3,10 +3,11 @@
 //! Strands of the same head would otherwise pass through each other, and
 //! a full head sags into a thin shell on the skull. Pairwise collisions
 //! between thousands of strands are too slow to be interactive, so, like
-//! every tool artists use (Petrovic et al. 2005, "Volumetric methods for
-//! simulation and rendering of hair"; McAdams et al. 2009; Unreal's groom,
-//! AMD TressFX, Unity's hair), the model treats the hair as a continuum on
-//! a grid:
+//! Petrovic et al. 2005 ("Volumetric methods for simulation and rendering
+//! of hair", Pixar), McAdams et al. 2009 and the tools artists use
+//! (Blender's hair volume: internal friction, a voxel cell size, a density
+//! target and strength; Unreal's Niagara groom solver and its pressure
+//! grid), the model treats the hair as a continuum on a grid:
 //!
 //! 1. [`grid`]: a box of cubic cells fitted to the head's hair at rest,
 //!    fixed in head coordinates; a trilinear stencil ties a point to the

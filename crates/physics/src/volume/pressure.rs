@@ -2,12 +2,13 @@
 //!
 //! # Equation of state, not a pressure solve
 //!
-//! The peers split two ways. McAdams et al. (2009) project the grid
-//! velocity onto a divergence-free-like field with a pressure solve (a
-//! Poisson problem per step); Petrovic et al. (2005) and the real-time
-//! tools (Unreal's groom, AMD TressFX's volume, Unity's hair) use an
-//! equation of state: pressure is a function of the local density, and its
-//! gradient is an explicit force. An equation of state costs one pass over
+//! The peers split two ways. McAdams et al. (2009) solve for a pressure
+//! on the grid (a Poisson problem per step), and Unreal's Niagara groom
+//! solver carries a pressure grid; Blender's hair volume instead pulls
+//! toward a "density target" with a "density strength" (its manual's
+//! names), an equation of state: pressure is a function of the local
+//! density, and its gradient is an explicit force. We take the equation of
+//! state. It costs one pass over
 //! the nodes and one over the samples, needs no solver, and is exactly
 //! zero where no node is over its threshold, which is what the rest pose
 //! needs ([`super::rest`]); its price is a stability bound, √P h < Δx,

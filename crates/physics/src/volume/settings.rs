@@ -18,9 +18,9 @@ pub struct InteractionSettings {
     /// Friction rate μ, 1/s, range 0..=200: each sample's velocity relaxes
     /// toward the grid's (the local mean of the hair around it) with time
     /// constant 1/μ. Default 5 /s (0.2 s): at 60 Hz a step moves a sample
-    /// 7.7% of the way (hμ/(1+hμ)), within the 5–10% per step that
-    /// Petrovic et al. (2005) blend toward the grid velocity; hair moves
-    /// as a body during a shake without looking stuck.
+    /// 7.7% of the way (hμ/(1+hμ)), a gentle blend toward the grid
+    /// velocity of the kind Petrovic et al. (2005) apply; hair moves as a
+    /// body during a shake without looking stuck.
     pub friction_per_s: f64,
     /// Pressure stiffness P, m²/s², range 0..=10: a sample in hair denser
     /// than its rest density by a fraction e feels an acceleration −P ∇e.
