@@ -9,7 +9,7 @@
 //! - **volume**: settled 5 s on a still head; mean distance of the hair's
 //!   element points from the nearest root (the scalp) and the volume of
 //!   the 2 cm cells the hair passes through, against the rest pose;
-//! - **interpenetration**: the `shake` clip (1.33 s) and 2 s still after;
+//! - **interpenetration**: the `shake` clip (1.33 s) and 1 s still after;
 //!   per frame, pairs of element chords of different strands closer than
 //!   the strand radius (35 µm) and closer than 1 mm;
 //! - **stability**: the kinetic energy per frame of the same run, and the
@@ -18,7 +18,9 @@
 //!   10,000 strands, and the model's own share (its per-frame pass over
 //!   the strands, timed inside the engine).
 //!
-//! Files: `volume.csv`, `volume_shake.csv`, `volume_cost.csv`,
+//! Each part is its own `--study` (`volume`, `volume-shake`,
+//! `volume-cost`), so a small machine can run them one at a time. Files:
+//! `volume.csv`, `volume_shake.csv`, `volume_cost.csv`,
 //! `volume_shake.svg`, `volume_energy.svg`. Quick mode: 70 strands, a few
 //! frames.
 
@@ -37,6 +39,7 @@ use super::volume_measures::{close_pairs, mean_scalp_distance_m, occupied_volume
 use crate::groom::Groom;
 use crate::head_clip::Clip;
 use crate::headless::{HeadlessSim, SimOverrides};
+use crate::stats::median;
 use crate::style::Style;
 
 const FULL_HEAD_RON: &str = include_str!("../../../../assets/styles/groomed/full_head.ron");
@@ -91,29 +94,47 @@ pub struct CostRow {
     pub median_volume_secs: f64,
 }
 
-/// Runs the study.
-pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
-    let (settle, still, timed) = if ctx.quick {
-        (10, 10, 2)
-    } else {
-        (300, 120, 8)
-    };
-    let base = scaled_groom(if ctx.quick { 70 } else { 3000 })?;
-    let collider = Arc::new(base.collider().context("the default head's collider")?);
-    let build = |groom: &Groom, on: bool| -> anyhow::Result<HeadlessSim> {
-        let overrides = SimOverrides {
-            engine: Some(EngineKind::Reference),
-            interaction: Some(on),
-            ..SimOverrides::default()
-        };
-        let mut sim = HeadlessSim::new(&groom.grown, overrides).context("building the head")?;
-        sim.engine_mut().set_collider(Some(collider.clone()));
-        Ok(sim)
-    };
+/// Which part of the study to run: each is its own `--study` name, so a
+/// small machine can run them one at a time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    /// Volume after 5 s on a still head (`volume.csv`).
+    Settle,
+    /// Interpenetration and energy during and after a shake
+    /// (`volume_shake.csv`, `volume_shake.svg`, `volume_energy.svg`).
+    Shake,
+    /// Cost share at 3,000 and 10,000 strands (`volume_cost.csv`).
+    Cost,
+}
 
+/// The head with the model on or off, reference engine, colliding.
+fn build(groom: &Groom, on: bool) -> anyhow::Result<HeadlessSim> {
+    let overrides = SimOverrides {
+        engine: Some(EngineKind::Reference),
+        interaction: Some(on),
+        ..SimOverrides::default()
+    };
+    let mut sim = HeadlessSim::new(&groom.grown, overrides).context("building the head")?;
+    let collider = groom.collider().context("the default head's collider")?;
+    sim.engine_mut().set_collider(Some(Arc::new(collider)));
+    Ok(sim)
+}
+
+/// Runs `part` of the study.
+pub fn run(ctx: &mut BenchContext<'_>, part: Part) -> anyhow::Result<()> {
+    let strands = if ctx.quick { 70 } else { 3000 };
+    match part {
+        Part::Settle => settle(ctx, &scaled_groom(strands)?),
+        Part::Shake => shake(ctx, &scaled_groom(strands)?),
+        Part::Cost => cost(ctx),
+    }
+}
+
+fn settle(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
+    let settle = if ctx.quick { 10 } else { 300 };
     let mut rows = Vec::new();
     for on in [false, true] {
-        let mut sim = build(&base, on)?;
+        let mut sim = build(base, on)?;
         if !on {
             rows.push(volume_row("rest", sim.engine()));
         }
@@ -130,12 +151,15 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
             1e6 * r.occupied_volume_m3
         )?;
     }
-    write_csv(&ctx.file("volume.csv"), &rows)?;
+    write_csv(&ctx.file("volume.csv"), &rows)
+}
 
+fn shake(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
+    let still = if ctx.quick { 10 } else { 60 };
     let shake_frames = (Clip::Shake.duration_secs() * 60.0).ceil() as usize + still;
     let mut shake = Vec::new();
     for on in [false, true] {
-        let mut sim = build(&base, on)?;
+        let mut sim = build(base, on)?;
         sim.play(Clip::Shake);
         for _ in 0..shake_frames {
             sim.run(1).context("shaking the head")?;
@@ -164,8 +188,11 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
         )?;
     }
     write_csv(&ctx.file("volume_shake.csv"), &shake)?;
-    draw_shake(ctx, &shake)?;
+    draw_shake(ctx, &shake)
+}
 
+fn cost(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
+    let timed = if ctx.quick { 2 } else { 5 };
     let mut cost = Vec::new();
     let counts: &[usize] = if ctx.quick { &[70] } else { &[3000, 10000] };
     for &count in counts {
@@ -183,8 +210,8 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
             let row = CostRow {
                 strands: sim.engine().strand_count(),
                 interaction: on,
-                median_frame_secs: median(frames),
-                median_volume_secs: median(model),
+                median_frame_secs: median(&frames),
+                median_volume_secs: median(&model),
             };
             writeln!(
                 ctx.log,
@@ -247,19 +274,15 @@ fn volume_row(case: &str, engine: &Engine) -> VolumeRow {
 fn shake_row(on: bool, sim: &HeadlessSim) -> ShakeRow {
     let engine = sim.engine();
     let strands = head_points(engine);
+    let [pairs_within_radius, pairs_within_1mm] = close_pairs(&strands, [STRAND_RADIUS_M, 1e-3]);
     ShakeRow {
         interaction: on,
         time_secs: engine.time_secs(),
-        pairs_within_radius: close_pairs(&strands, STRAND_RADIUS_M),
-        pairs_within_1mm: close_pairs(&strands, 1e-3),
+        pairs_within_radius,
+        pairs_within_1mm,
         kinetic_j: engine.energies().kinetic_j,
         guard_events: engine.reference().map_or(0, |r| r.guard_event_count()),
     }
-}
-
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values.get(values.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 fn draw_shake(ctx: &BenchContext<'_>, rows: &[ShakeRow]) -> anyhow::Result<()> {

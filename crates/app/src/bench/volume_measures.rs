@@ -46,11 +46,12 @@ pub fn occupied_volume_m3(strands: &[Vec<DVec3>], cell_m: f64) -> f64 {
 }
 
 /// Number of pairs of element chords of different strands whose closest
-/// points are less than `distance_m` apart. Chords are hashed by midpoint
-/// on cells at least as large as the longest chord plus `distance_m`, so
-/// only the 27 cells around a chord can hold a partner: O(n) for hair of
-/// bounded density.
-pub fn close_pairs(strands: &[Vec<DVec3>], distance_m: f64) -> usize {
+/// points are less than each of `distances_m` apart (one count per
+/// distance, in one pass). Chords are hashed by midpoint on cells at least
+/// as large as the longest chord plus the largest distance, so only the 27
+/// cells around a chord can hold a partner: O(n) for hair of bounded
+/// density.
+pub fn close_pairs<const K: usize>(strands: &[Vec<DVec3>], distances_m: [f64; K]) -> [usize; K] {
     let chords: Vec<(usize, DVec3, DVec3)> = strands
         .iter()
         .enumerate()
@@ -60,14 +61,15 @@ pub fn close_pairs(strands: &[Vec<DVec3>], distance_m: f64) -> usize {
         .iter()
         .map(|(_, a, b)| a.distance(*b))
         .fold(0.0, f64::max);
-    let cell_m = (longest + distance_m).max(1e-6);
+    let reach = distances_m.iter().copied().fold(0.0, f64::max);
+    let cell_m = (longest + reach).max(1e-6);
     let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
     for (k, (_, a, b)) in chords.iter().enumerate() {
         grid.entry(cell_of(0.5 * (*a + *b), cell_m))
             .or_default()
             .push(k);
     }
-    let mut count = 0;
+    let mut counts = [0; K];
     for (k, (strand, a, b)) in chords.iter().enumerate() {
         let c = cell_of(0.5 * (*a + *b), cell_m);
         for dx in -1..=1 {
@@ -82,15 +84,18 @@ pub fn close_pairs(strands: &[Vec<DVec3>], distance_m: f64) -> usize {
                         if j <= k || other == *strand {
                             continue;
                         }
-                        if segment_distance_m(*a, *b, p, q) < distance_m {
-                            count += 1;
+                        let d = segment_distance_m(*a, *b, p, q);
+                        for (count, limit) in counts.iter_mut().zip(distances_m) {
+                            if d < limit {
+                                *count += 1;
+                            }
                         }
                     }
                 }
             }
         }
     }
-    count
+    counts
 }
 
 /// Distance between segments [a, b] and [c, d] (Ericson, "Real-Time
@@ -213,9 +218,8 @@ mod tests {
             DVec3::new(1.0, 0.0, 0.0),
         ];
         let b = vec![DVec3::new(0.5, -1.0, 1e-4), DVec3::new(0.5, 1.0, 1e-4)];
-        assert_eq!(close_pairs(&[a.clone(), b.clone()], 2e-4), 1);
-        assert_eq!(close_pairs(&[a.clone(), b], 5e-5), 0);
-        assert_eq!(close_pairs(&[a], 1.0), 0);
+        assert_eq!(close_pairs(&[a.clone(), b], [2e-4, 5e-5]), [1, 0]);
+        assert_eq!(close_pairs(&[a], [1.0]), [0]);
     }
 
     #[test]
