@@ -14,6 +14,7 @@ use helixhair_physics::{Method, StepScheme};
 
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
+use crate::engine_arg::{parse_engine, parse_interaction};
 use crate::export_cmd::{SimExport, SimExportArgs, run_export};
 use crate::head_clip::Clip;
 use crate::head_playback::{Playback, parse_play};
@@ -159,15 +160,6 @@ pub fn parse_velocity_terms(name: &str) -> Result<StepScheme, String> {
     }
 }
 
-/// Parses `--interaction`: `on` or `off`.
-pub fn parse_interaction(name: &str) -> Result<bool, String> {
-    match name {
-        "on" => Ok(true),
-        "off" => Ok(false),
-        _ => Err(format!("unknown interaction `{name}`; expected on or off")),
-    }
-}
-
 /// Parses a solver name as [`Method::label`] spells it (`exact`,
 /// `iterative:4`, …).
 pub fn parse_method(name: &str) -> Result<Method, String> {
@@ -181,17 +173,6 @@ pub fn parse_method(name: &str) -> Result<Method, String> {
             .collect();
         format!(
             "unknown method `{name}`; expected one of {}",
-            names.join(", ")
-        )
-    })
-}
-
-/// Parses an engine name as [`EngineKind::label`] spells it.
-pub fn parse_engine(name: &str) -> Result<EngineKind, String> {
-    EngineKind::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = EngineKind::ALL.iter().map(|k| k.label()).collect();
-        format!(
-            "unknown engine `{name}`; expected one of {}",
             names.join(", ")
         )
     })

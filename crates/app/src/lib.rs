@@ -50,6 +50,7 @@ pub mod bench;
 pub mod camera_arg;
 pub mod cli;
 pub mod drawn_hair;
+pub mod engine_arg;
 pub mod error_model;
 pub mod export;
 pub mod export_cmd;

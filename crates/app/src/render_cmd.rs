@@ -79,11 +79,11 @@ pub struct RenderArgs {
     #[arg(long)]
     pub accept_resets: bool,
     /// Physics engine, instead of the style's `engine`: reference or batch.
-    #[arg(long, value_name = "ENGINE", value_parser = crate::cli::parse_engine)]
+    #[arg(long, value_name = "ENGINE", value_parser = crate::engine_arg::parse_engine)]
     pub engine: Option<helixhair_physics::engine::EngineKind>,
     /// Hair–hair interaction (docs/volume.md) on or off, instead of the
     /// style's `sim.interaction.enabled`; reference engine only.
-    #[arg(long, value_name = "on|off", value_parser = crate::cli::parse_interaction)]
+    #[arg(long, value_name = "on|off", value_parser = crate::engine_arg::parse_interaction)]
     pub interaction: Option<bool>,
 }
 
