@@ -15,6 +15,7 @@ use crate::reconstruct::{Kinematics, reconstruct};
 use crate::settings::{Method, StepScheme};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
 use crate::volume::VolumePull;
+use crate::volume::balance::add_pull;
 
 /// A Super-Helix strand clamped to a root on the head.
 #[derive(Clone, Debug)]
@@ -91,7 +92,11 @@ impl Strand {
             root,
             &mut self.measure_kinematics,
         );
-        measure(&self.model, &self.q, &self.measure_kinematics, root, inputs)
+        let mut out = measure(&self.model, &self.q, &self.measure_kinematics, root, inputs);
+        if let Some(pull) = self.volume.pull() {
+            add_pull(&mut out, &self.model, &self.measure_kinematics, &pull);
+        }
+        out
     }
 
     /// The measure the last guarded frame ended with, if the state has not
@@ -118,6 +123,8 @@ impl Strand {
     /// pressure acceleration (m/s²), world coordinates
     /// ([`crate::volume::friction`]).
     pub fn set_volume_pull(&mut self, friction_per_s: f64, target: Vec<DVec3>, push: Vec<DVec3>) {
+        // The cached measure counted the old pull's work.
+        self.cached_measure = None;
         self.volume = VolumeState {
             on: true,
             friction_per_s,
@@ -128,6 +135,7 @@ impl Strand {
 
     /// Removes the hair–hair model's pull.
     pub fn clear_volume_pull(&mut self) {
+        self.cached_measure = None;
         self.volume = VolumeState::default();
     }
 

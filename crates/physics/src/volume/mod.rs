@@ -26,13 +26,15 @@
 //! the f64 `HairSystem`'s use of it: once per frame, before the strands
 //! step, it gathers every strand's samples, splats them and hands each
 //! strand its pull ([`friction::VolumePull`]), which the step adds to its
-//! forces and to its drag rate. [`settings`] holds the knobs.
+//! forces and to its drag rate; [`balance`] counts its work in the
+//! guard's energy balance. [`settings`] holds the knobs.
 //!
 //! What is left out: the batch engine and the GPU kernels do not run the
 //! model yet (`docs/volume.md`); the grid is splatted once per frame, so
 //! with several substeps the grid velocity and push are those of the
 //! frame's start.
 
+pub mod balance;
 pub mod field;
 pub mod friction;
 pub mod grid;
