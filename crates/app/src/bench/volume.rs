@@ -62,6 +62,8 @@ pub struct VolumeRow {
     pub mean_scalp_distance_m: f64,
     /// Volume of the 2 cm cells the hair passes through, m³.
     pub occupied_volume_m3: f64,
+    /// Guard events so far.
+    pub guard_events: usize,
 }
 
 /// One line of `volume_shake.csv`: a frame of the shake run.
@@ -144,11 +146,13 @@ fn settle(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
     for r in &rows {
         writeln!(
             ctx.log,
-            "   {:>4} at {:.2} s: mean distance from the scalp {:.2} cm, occupied {:.0} cm³",
+            "   {:>4} at {:.2} s: mean distance from the scalp {:.2} cm, occupied {:.0} cm³, \
+             {} guard events",
             r.case,
             r.time_secs,
             100.0 * r.mean_scalp_distance_m,
-            1e6 * r.occupied_volume_m3
+            1e6 * r.occupied_volume_m3,
+            r.guard_events
         )?;
     }
     write_csv(&ctx.file("volume.csv"), &rows)
@@ -268,6 +272,7 @@ fn volume_row(case: &str, engine: &Engine) -> VolumeRow {
         time_secs: engine.time_secs(),
         mean_scalp_distance_m: mean_scalp_distance_m(&strands),
         occupied_volume_m3: occupied_volume_m3(&strands, CELL_M),
+        guard_events: engine.reference().map_or(0, |r| r.guard_event_count()),
     }
 }
 
