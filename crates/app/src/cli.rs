@@ -14,6 +14,7 @@ use helixhair_physics::{Method, StepScheme};
 
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
+use crate::engine_arg::{parse_engine, parse_interaction};
 use crate::export_cmd::{SimExport, SimExportArgs, run_export, terminal_progress};
 use crate::frame_stepper::FrameStepper;
 use crate::head_clip::Clip;
@@ -105,6 +106,11 @@ pub struct SimArgs {
     /// comparisons).
     #[arg(long, value_name = "TERMS", value_parser = parse_velocity_terms)]
     pub velocity_terms: Option<StepScheme>,
+    /// Hair–hair interaction (the volume model, docs/volume.md) on or
+    /// off, instead of the style's `sim.interaction.enabled`; reference
+    /// engine only.
+    #[arg(long, value_name = "on|off", value_parser = parse_interaction)]
+    pub interaction: Option<bool>,
     /// Move the head with one of the window's clips (nod, shake, turn or
     /// jerk) or a motion file (FILE.ron, docs/motion-format.md) from time
     /// zero, then hold it still, instead of a still head.
@@ -178,17 +184,6 @@ pub fn parse_method(name: &str) -> Result<Method, String> {
     })
 }
 
-/// Parses an engine name as [`EngineKind::label`] spells it.
-pub fn parse_engine(name: &str) -> Result<EngineKind, String> {
-    EngineKind::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = EngineKind::ALL.iter().map(|k| k.label()).collect();
-        format!(
-            "unknown engine `{name}`; expected one of {}",
-            names.join(", ")
-        )
-    })
-}
-
 /// Runs the command `cli` asks for. Normal output goes to `stdout`; the
 /// summary goes to `stderr` when the JSON report takes stdout.
 pub fn run(cli: &Cli, stdout: &mut dyn Write, stderr: &mut dyn Write) -> anyhow::Result<()> {
@@ -216,6 +211,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         dt_secs: args.dt,
         accuracy_target: args.accuracy,
         scheme: args.velocity_terms,
+        interaction: args.interaction,
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;
@@ -313,5 +309,38 @@ mod tests {
             "{error:#}"
         );
         assert!(out.is_empty());
+    }
+
+    #[test]
+    fn interaction_switches_on_the_reference_engine_and_is_refused_on_the_batch_one() {
+        assert_eq!(parse_interaction("on"), Ok(true));
+        assert_eq!(parse_interaction("off"), Ok(false));
+        assert!(
+            parse_interaction("yes")
+                .expect_err("on or off")
+                .contains("expected on or off")
+        );
+        let style = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/styles/coily.ron");
+        let (result, _, _) = run_args(&[
+            "sim",
+            "--style",
+            style,
+            "--steps",
+            "2",
+            "--interaction",
+            "on",
+        ]);
+        result.expect("the reference engine runs the model");
+        let args = [
+            "sim", "--style", style, "--steps", "1", "--engine", "batch", "--method", "exact",
+        ];
+        let (result, _, _) = run_args(&[&args[..], &["--interaction", "on"]].concat());
+        let error = format!("{:#}", result.expect_err("the batch engine has no model"));
+        assert!(
+            error.contains(
+                "--engine batch --interaction on: the batch engine has no hair-hair interaction"
+            ),
+            "{error}"
+        );
     }
 }

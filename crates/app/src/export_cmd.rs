@@ -26,6 +26,7 @@ use crate::export::{
 use crate::frame_stepper::FrameStepper;
 use crate::groom::Groom;
 use crate::head_playback::{Playback, parse_play};
+use crate::headless::SimOverrides;
 use crate::render_cmd::grown_sim;
 use crate::style::Style;
 
@@ -265,7 +266,7 @@ pub fn run_export(args: &ExportArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     };
     check_writable(&args.out)?;
     // Style and head errors already name the file, line and field.
-    let (groom, mut sim) = grown_sim(&args.style, args.head.as_deref())?;
+    let (groom, mut sim) = grown_sim(&args.style, args.head.as_deref(), SimOverrides::default())?;
     if let Some(playback) = playback {
         sim.play_motion(playback);
     }

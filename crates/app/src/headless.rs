@@ -57,6 +57,9 @@ pub struct SimOverrides {
     /// How the reference engine's step treats the velocity terms, instead
     /// of the style's `sim.scheme` (`--velocity-terms`).
     pub scheme: Option<StepScheme>,
+    /// Hair–hair interaction on or off instead of the style's
+    /// `sim.interaction.enabled` (`--interaction`).
+    pub interaction: Option<bool>,
 }
 
 /// Guard events kept for the report; later ones are only counted.
@@ -183,6 +186,9 @@ impl HeadlessSim {
         }
         if let Some(scheme) = overrides.scheme {
             settings.scheme = scheme;
+        }
+        if let Some(on) = overrides.interaction {
+            settings.interaction.enabled = on;
         }
         if let Some(dt_secs) = overrides.dt_secs {
             settings.dt_secs = dt_secs;
@@ -438,6 +444,19 @@ fn check_engine_options(
                 format!("the batch engine runs {allowed} only, not `sim.method` `{method}`"),
             ),
         }
+    } else if settings.interaction.enabled {
+        let option = match (overrides.engine, overrides.interaction) {
+            (Some(_), Some(_)) => "--engine batch --interaction on",
+            (Some(_), None) => "--engine batch",
+            (None, Some(_)) => "--interaction on",
+            (None, None) => "style field `engine: Batch`",
+        };
+        (
+            option.to_owned(),
+            "the batch engine has no hair-hair interaction yet (docs/volume.md); \
+             use --engine reference, or --interaction off"
+                .to_owned(),
+        )
     } else if accuracy_target.is_some() {
         let option = if overrides.engine.is_some() {
             "--engine batch"

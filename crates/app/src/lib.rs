@@ -52,6 +52,7 @@ pub mod camera_arg;
 pub mod cli;
 pub mod drawn_hair;
 pub mod drawn_layout;
+pub mod engine_arg;
 pub mod error_model;
 pub mod export;
 pub mod export_cmd;

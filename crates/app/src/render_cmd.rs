@@ -79,6 +79,13 @@ pub struct RenderArgs {
     /// exits 1: the picture is not the simulation that was asked for).
     #[arg(long)]
     pub accept_resets: bool,
+    /// Physics engine, instead of the style's `engine`: reference or batch.
+    #[arg(long, value_name = "ENGINE", value_parser = crate::engine_arg::parse_engine)]
+    pub engine: Option<helixhair_physics::engine::EngineKind>,
+    /// Hair–hair interaction (docs/volume.md) on or off, instead of the
+    /// style's `sim.interaction.enabled`; reference engine only.
+    #[arg(long, value_name = "on|off", value_parser = crate::engine_arg::parse_interaction)]
+    pub interaction: Option<bool>,
 }
 
 /// The head to grow hair on: `path`'s OBJ, or the default head.
@@ -209,7 +216,11 @@ fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> an
 /// The style at `style_path` grown on `head` (an OBJ, or the default
 /// head), and its simulation colliding with that head: what `render` and
 /// `export` step.
-pub fn grown_sim(style_path: &Path, head: Option<&Path>) -> anyhow::Result<(Groom, HeadlessSim)> {
+pub fn grown_sim(
+    style_path: &Path,
+    head: Option<&Path>,
+    overrides: SimOverrides,
+) -> anyhow::Result<(Groom, HeadlessSim)> {
     let style = Style::load(style_path)?;
     // A style that grows no hair on the scalp (an imported groom brings its
     // own roots) takes any mesh as its head, every face scalp when it has
@@ -222,7 +233,7 @@ pub fn grown_sim(style_path: &Path, head: Option<&Path>) -> anyhow::Result<(Groo
     };
     let groom = Groom::new(style, head_mesh);
     check_placements(&groom, style_path, head)?;
-    let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default())
+    let mut sim = HeadlessSim::new(&groom.grown, overrides)
         .with_context(|| format!("cannot simulate {}", style_path.display()))?;
     let collider = groom
         .collider()
@@ -235,7 +246,15 @@ pub fn grown_sim(style_path: &Path, head: Option<&Path>) -> anyhow::Result<(Groo
 pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
     picture_format(&args.out)?;
     let style_path = args.style.display().to_string();
-    let (groom, mut sim) = grown_sim(&args.style, args.head.as_deref())?;
+    let (groom, mut sim) = grown_sim(
+        &args.style,
+        args.head.as_deref(),
+        SimOverrides {
+            engine: args.engine,
+            interaction: args.interaction,
+            ..SimOverrides::default()
+        },
+    )?;
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;

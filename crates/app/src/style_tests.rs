@@ -706,3 +706,39 @@ fn hostile_input_gives_errors_not_panics() {
         assert!(error.to_string().starts_with(FILE), "{error}");
     }
 }
+
+#[test]
+fn interaction_fields_read_and_their_errors_name_file_line_and_field() {
+    let src = edit(
+        "dt_secs: 0.01,",
+        "dt_secs: 0.01,\n        interaction: (enabled: true, friction_per_s: 8.0, cell_m: 0.03),",
+    );
+    let style = load(&src).unwrap_or_else(|e| panic!("{e}"));
+    let got = style.sim.interaction;
+    assert!(got.enabled);
+    assert_eq!((got.friction_per_s, got.cell_m), (8.0, 0.03));
+    // Left out: the default.
+    assert_eq!(got.pressure_m2_per_s2, 0.2);
+    let src = edit(
+        "dt_secs: 0.01,",
+        "dt_secs: 0.01,\n        interaction: (enabled: true, friction_per_s: 500.0), // <-",
+    );
+    assert_error(
+        &src,
+        StyleErrorKind::InvalidValue,
+        "sim.interaction.friction_per_s",
+        "friction_per_s",
+    );
+    // The batch engine has no model: refused at the switch.
+    let src = edit(
+        "    sim: (method: Dense, dt_secs: 0.01,",
+        "    engine: Batch,\n    sim: (method: Exact, dt_secs: 0.01,\n        interaction: (enabled: true), // <-\n",
+    );
+    let error = assert_error(
+        &src,
+        StyleErrorKind::InvalidValue,
+        "sim.interaction.enabled",
+        "enabled",
+    );
+    assert!(error.to_string().contains("engine: Reference"), "{error}");
+}

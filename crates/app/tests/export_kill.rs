@@ -30,7 +30,7 @@ use std::time::{Duration, Instant};
 
 use helixhair_app::export::{ExportRecorder, ExportSpec, FrameChoice, StrandChoice};
 use helixhair_app::render_cmd::grown_sim;
-use helixhair_app::{Groom, HeadlessSim};
+use helixhair_app::{Groom, HeadlessSim, SimOverrides};
 use helixhair_formats::{Format, ReadOptions, read};
 
 /// The environment variable that makes [`exporter_child_process`] the
@@ -54,7 +54,7 @@ const MIN_INTERRUPTED_WRITES: usize = ROUNDS_PER_FORMAT / 10;
 /// The curly example grown on the default head, at rest.
 fn curly() -> (Groom, HeadlessSim) {
     let style = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/curly.ron");
-    grown_sim(&style, None).expect("the curly example grows")
+    grown_sim(&style, None, SimOverrides::default()).expect("the curly example grows")
 }
 
 /// Exports the drawn strands of `sim` to `path` with `points` per strand.

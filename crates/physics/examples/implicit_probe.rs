@@ -27,6 +27,7 @@ fn forces(model: &StrandModel, q: &[DVec3], v: &[DVec3], root: &RigidMotion) -> 
         air_velocity_m_per_s: DVec3::ZERO,
         external_n_per_m: &[],
         contact: None,
+        volume: None,
     };
     let mut out = vec![DVec3::ZERO; model.elements()];
     generalized_forces(model, &kin, &inputs, &mut out);

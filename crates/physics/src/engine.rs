@@ -51,8 +51,8 @@ use crate::batch::BatchSystem;
 use crate::collision::SignedDistanceField;
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::{
-    Energies, HairSystem, HeadTrajectory, Method, ParamError, RigidMotion, RootPose, SimSettings,
-    Strand, StrandModel, StrandParams,
+    Energies, HairSystem, HeadTrajectory, InteractionSettings, Method, ParamError, RigidMotion,
+    RootPose, SimSettings, Strand, StrandModel, StrandParams,
 };
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -116,8 +116,12 @@ pub enum Engine {
 
 impl Engine {
     /// An empty system on `kind`. Fails if a setting is out of range, or
-    /// (field `method`) if the batch engine cannot run the solver.
+    /// (field `method`) if the batch engine cannot run the solver, or
+    /// (field `interaction.enabled`) if it is asked for the hair–hair model.
     pub fn new(kind: EngineKind, settings: SimSettings) -> Result<Self, ParamError> {
+        if kind == EngineKind::Batch {
+            check_batch_interaction(&settings.interaction)?;
+        }
         Ok(match kind {
             EngineKind::Reference => Self::Reference(HairSystem::new(settings)?),
             EngineKind::Batch => Self::Batch {
@@ -198,6 +202,16 @@ impl Engine {
         match self {
             Self::Reference(system) => system.set_collider(collider),
             Self::Batch { system, .. } => system.set_collider(collider),
+        }
+    }
+
+    /// Turns the hair–hair model ([`crate::volume`]) on, retunes it or
+    /// turns it off. Only the reference engine runs it: the batch engine
+    /// refuses `enabled` with an error naming `interaction.enabled`.
+    pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
+        match self {
+            Self::Reference(system) => system.set_interaction(settings),
+            Self::Batch { .. } => check_batch_interaction(&settings),
         }
     }
 
@@ -340,6 +354,18 @@ impl Engine {
             }
         }
     }
+}
+
+/// The batch engine has no hair–hair model yet (docs/volume.md).
+fn check_batch_interaction(settings: &InteractionSettings) -> Result<(), ParamError> {
+    if settings.enabled {
+        return Err(ParamError::new(
+            "interaction.enabled",
+            1.0,
+            "the batch engine has no hair-hair interaction yet; use engine `Reference`",
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

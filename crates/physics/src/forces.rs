@@ -18,6 +18,7 @@ use crate::collision::ContactInputs;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::reconstruct::Kinematics;
+use crate::volume::VolumePull;
 
 /// Environment of the forces stage.
 #[derive(Clone, Copy, Debug)]
@@ -33,6 +34,9 @@ pub struct ForceInputs<'a> {
     pub external_n_per_m: &'a [DVec3],
     /// The head collider, if any (see [`crate::collision`]).
     pub contact: Option<ContactInputs<'a>>,
+    /// The hair–hair model's pull on this strand, if on
+    /// ([`crate::volume::friction`]).
+    pub volume: Option<VolumePull<'a>>,
 }
 
 /// Force per unit length on sample `i` (N/m).
@@ -49,6 +53,9 @@ pub fn sample_force(
         - model.air_drag * (carried - inputs.air_velocity_m_per_s);
     if let Some(extra) = inputs.external_n_per_m.get(i) {
         f += *extra;
+    }
+    if let Some(volume) = &inputs.volume {
+        f += volume.force_n_per_m(i, carried, model.mass_per_length);
     }
     if let Some(contact) = &inputs.contact {
         // Implicit contact: the predicted push; its Δv term is in the step

@@ -23,6 +23,7 @@ use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings};
 use crate::step::StageTimes;
 use crate::strand::Strand;
+use crate::volume::{InteractionSettings, ReferenceVolume};
 
 /// A head of hair: settings, strands and the simulated time.
 #[derive(Clone, Debug)]
@@ -38,6 +39,7 @@ pub struct HairSystem {
     event_count: usize,
     collider: Option<Arc<SignedDistanceField>>,
     contact: ContactSettings,
+    volume: Option<ReferenceVolume>,
 }
 
 impl HairSystem {
@@ -45,7 +47,6 @@ impl HairSystem {
     pub fn new(settings: SimSettings) -> Result<Self, ParamError> {
         settings.validate()?;
         Ok(Self {
-            settings,
             strands: Vec::new(),
             time_secs: 0.0,
             head: RigidMotion::default(),
@@ -56,6 +57,11 @@ impl HairSystem {
             event_count: 0,
             collider: None,
             contact: ContactSettings::default(),
+            volume: settings
+                .interaction
+                .enabled
+                .then(|| ReferenceVolume::new(settings.interaction)),
+            settings,
         })
     }
 
@@ -74,12 +80,36 @@ impl HairSystem {
             strand.set_scheme(scheme);
             strand
         }));
+        if let Some(volume) = &mut self.volume {
+            volume.forget_rest();
+        }
         Ok(start..self.strands.len())
     }
 
     /// The settings.
     pub fn settings(&self) -> &SimSettings {
         &self.settings
+    }
+
+    /// Turns the hair–hair model on, retunes it, or turns it off; fails if
+    /// a setting is out of range. Takes effect at the next frame.
+    pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
+        settings.validate()?;
+        self.settings.interaction = settings;
+        match (&mut self.volume, settings.enabled) {
+            (Some(volume), true) => volume.set_settings(settings),
+            (None, true) => self.volume = Some(ReferenceVolume::new(settings)),
+            (_, false) => {
+                self.volume = None;
+                self.strands.iter_mut().for_each(Strand::clear_volume_pull);
+            }
+        }
+        Ok(())
+    }
+
+    /// The hair–hair model's state (grid, rest density, last field), if on.
+    pub fn volume(&self) -> Option<&ReferenceVolume> {
+        self.volume.as_ref()
     }
 
     /// Switches every strand's solver; shapes and velocities are kept.
@@ -167,6 +197,10 @@ impl HairSystem {
     /// along `head`. Root motion is sampled at the start of each substep.
     /// With the guard on, a strand that fails its checks is stepped again.
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        if let Some(volume) = &mut self.volume {
+            let motion = head.motion_at(self.time_secs);
+            volume.prepare(&mut self.strands, &motion, self.parallel);
+        }
         let frame = FrameInputs {
             head,
             start_secs: self.time_secs,

@@ -60,6 +60,7 @@ pub mod solve;
 pub mod step;
 pub mod strand;
 pub mod velocity_terms;
+pub mod volume;
 
 pub use energy::Energies;
 pub use engine::{Engine, EngineKind};
@@ -73,3 +74,4 @@ pub use params::{ElementLayout, StrandParams};
 pub use settings::{Method, SimSettings, StepScheme};
 pub use step::StageTimes;
 pub use strand::Strand;
+pub use volume::InteractionSettings;

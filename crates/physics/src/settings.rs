@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::ParamError;
 use crate::params::check_range;
+use crate::volume::InteractionSettings;
 
 /// How the step matrix (M + hC + h²K) Δv = rhs is solved; see `docs/physics.md`
 /// section 5 and [`crate::solve`].
@@ -115,6 +116,9 @@ pub struct SimSettings {
     /// How the step treats the forces that depend on the strain rates.
     /// Default velocity-implicit with at most 8 GMRES iterations (see [`StepScheme`]).
     pub scheme: StepScheme,
+    /// Hair–hair interaction through a volume grid ([`crate::volume`]).
+    /// Default off.
+    pub interaction: InteractionSettings,
 }
 
 /// How a step treats the generalized forces that depend on the strain rates
@@ -163,6 +167,7 @@ impl Default for SimSettings {
             air_velocity_m_per_s: DVec3::ZERO,
             quadrature_points: 4,
             scheme: StepScheme::default(),
+            interaction: InteractionSettings::default(),
         }
     }
 }
@@ -209,7 +214,7 @@ impl SimSettings {
                 format!("must lie in 0..={MAX_VELOCITY_CORRECTIONS}"),
             ));
         }
-        Ok(())
+        self.interaction.validate()
     }
 
     /// Substep length h in seconds.

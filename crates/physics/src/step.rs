@@ -180,7 +180,9 @@ pub fn step_strand(
     times.mass_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let drag_rate = model.air_drag / model.mass_per_length;
+    // The hair–hair friction is a drag too (crate::volume::friction).
+    let volume_rate = inputs.forces.volume.map_or(0.0, |v| v.friction_per_s);
+    let drag_rate = model.air_drag / model.mass_per_length + volume_rate;
     ws.diagonal.clear();
     ws.diagonal
         .extend((0..n).map(|e| DVec3::splat(h * model.friction[e]) + h * h * model.stiffness[e]));

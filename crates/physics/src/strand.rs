@@ -14,6 +14,8 @@ use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::settings::{Method, StepScheme};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
+use crate::volume::VolumePull;
+use crate::volume::balance::add_pull;
 
 /// A Super-Helix strand clamped to a root on the head.
 #[derive(Clone, Debug)]
@@ -23,6 +25,7 @@ pub struct Strand {
     q: Vec<DVec3>,
     v: Vec<DVec3>,
     external_n_per_m: Vec<DVec3>,
+    volume: VolumeState,
     workspace: StepWorkspace,
     checkpoint_q: Vec<DVec3>,
     checkpoint_v: Vec<DVec3>,
@@ -40,6 +43,7 @@ impl Strand {
             q: model.natural.clone(),
             v: vec![DVec3::ZERO; n],
             external_n_per_m: Vec::new(),
+            volume: VolumeState::default(),
             workspace: StepWorkspace::new(method),
             checkpoint_q: model.natural.clone(),
             checkpoint_v: vec![DVec3::ZERO; n],
@@ -88,7 +92,11 @@ impl Strand {
             root,
             &mut self.measure_kinematics,
         );
-        measure(&self.model, &self.q, &self.measure_kinematics, root, inputs)
+        let mut out = measure(&self.model, &self.q, &self.measure_kinematics, root, inputs);
+        if let Some(pull) = self.volume.pull() {
+            add_pull(&mut out, &self.model, &self.measure_kinematics, &pull);
+        }
+        out
     }
 
     /// The measure the last guarded frame ended with, if the state has not
@@ -108,6 +116,27 @@ impl Strand {
     pub fn set_external_forces(&mut self, forces_n_per_m: &[DVec3]) {
         self.external_n_per_m.clear();
         self.external_n_per_m.extend_from_slice(forces_n_per_m);
+    }
+
+    /// Sets the hair–hair model's pull for the coming steps: friction
+    /// rate μ (1/s), and per quadrature sample the grid velocity (m/s) and
+    /// pressure acceleration (m/s²), world coordinates
+    /// ([`crate::volume::friction`]).
+    pub fn set_volume_pull(&mut self, friction_per_s: f64, target: Vec<DVec3>, push: Vec<DVec3>) {
+        // The cached measure counted the old pull's work.
+        self.cached_measure = None;
+        self.volume = VolumeState {
+            on: true,
+            friction_per_s,
+            target,
+            push,
+        };
+    }
+
+    /// Removes the hair–hair model's pull.
+    pub fn clear_volume_pull(&mut self) {
+        self.cached_measure = None;
+        self.volume = VolumeState::default();
     }
 
     /// The solver method.
@@ -167,6 +196,7 @@ impl Strand {
                 air_velocity_m_per_s: air_velocity,
                 external_n_per_m: &self.external_n_per_m,
                 contact,
+                volume: self.volume.pull(),
             },
         };
         step_strand(
@@ -237,5 +267,24 @@ impl Strand {
         self.q.clone_from(&self.model.natural);
         self.v.fill(DVec3::ZERO);
         self.cached_measure = None;
+    }
+}
+
+/// The hair–hair model's pull on one strand, kept between its steps.
+#[derive(Clone, Debug, Default)]
+struct VolumeState {
+    on: bool,
+    friction_per_s: f64,
+    target: Vec<DVec3>,
+    push: Vec<DVec3>,
+}
+
+impl VolumeState {
+    fn pull(&self) -> Option<VolumePull<'_>> {
+        self.on.then_some(VolumePull {
+            friction_per_s: self.friction_per_s,
+            target_m_per_s: &self.target,
+            push_m_per_s2: &self.push,
+        })
     }
 }

@@ -226,6 +226,7 @@ fn gravity_force_is_minus_the_gradient_of_its_potential() {
         air_velocity_m_per_s: DVec3::ZERO,
         external_n_per_m: &[],
         contact: None,
+        volume: None,
     };
     let mut forces = vec![DVec3::ZERO; m.elements()];
     generalized_forces(&m, &kin, &inputs, &mut forces);

@@ -31,6 +31,7 @@ fn generalized(
         air_velocity_m_per_s: DVec3::ZERO,
         external_n_per_m: &[],
         contact: None,
+        volume: None,
     };
     let mut out = vec![DVec3::ZERO; q.len()];
     generalized_forces(m, &kin, &inputs, &mut out);

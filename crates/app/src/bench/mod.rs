@@ -13,6 +13,7 @@
 //! | `stability` | stable, damped-out or blown-up over dt × stiffness × root speed | `stability.csv`, `stability.svg`, `curly_dt.csv` |
 //! | `modes` | first-mode frequency and damping against N and the analytic value | `modes.csv`, `modes_*.svg` |
 //! | `throughput` | element-steps per second and memory per strand, CPU (1 and all threads) and GPU, against strand count and N | `throughput.csv`, `throughput.svg` |
+//! | `volume`, `volume-shake`, `volume-cost` (only when named) | the hair–hair model on a full head: volume kept; interpenetration and energy during a shake; cost share | `volume.csv`; `volume_shake.csv`, `volume_shake.svg`, `volume_energy.svg`; `volume_cost.csv` |
 //! | `soak` (only when named) | a full head for a million frames of random head motion per engine: NaN, guard loops, memory | `soak.csv`, `soak_memory.svg`, `soak_guard.svg` |
 
 pub mod accuracy;
@@ -29,6 +30,8 @@ pub mod stability;
 pub mod table;
 pub mod throughput;
 pub mod timing;
+pub mod volume;
+pub mod volume_measures;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -51,6 +54,14 @@ pub enum Study {
     /// Element-steps per second of the batch and GPU paths against strand
     /// count.
     Throughput,
+    /// The hair–hair model on a full head settled 5 s: volume kept.
+    /// Runs only when named (minutes), as do the two below.
+    Volume,
+    /// The hair–hair model on a full head under a shake: interpenetration
+    /// per frame, energy after, guard events.
+    VolumeShake,
+    /// The hair–hair model's share of a frame at 3,000 and 10,000 strands.
+    VolumeCost,
     /// A full head under random head motion for a million frames per
     /// engine (hours): NaN, guard loops, memory. Runs only when named.
     Soak,
@@ -135,6 +146,9 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             Study::Stability => stability::run(&mut ctx),
             Study::Modes => modes::run(&mut ctx),
             Study::Throughput => throughput::run(&mut ctx),
+            Study::Volume => volume::run(&mut ctx, volume::Part::Settle),
+            Study::VolumeShake => volume::run(&mut ctx, volume::Part::Shake),
+            Study::VolumeCost => volume::run(&mut ctx, volume::Part::Cost),
             Study::Soak => {
                 let engines = if args.soak_engines.is_empty() {
                     &EngineKind::ALL[..]

@@ -242,6 +242,7 @@ fn curly_style_steps(ctx: &mut BenchContext<'_>, duration_secs: f64) -> anyhow::
                         dt_secs: Some(dt),
                         accuracy_target: None,
                         scheme: None,
+                        interaction: None,
                     },
                 )?;
                 let system = sim

@@ -64,6 +64,7 @@ mod tests {
     use super::*;
     use crate::drawn_hair::drawn_hair_full;
     use crate::drawn_layout::DEFAULT_DRAWN_STRANDS;
+    use crate::headless::SimOverrides;
     use crate::render_cmd::grown_sim;
 
     /// The window drew a fringe over the face for styles without `render`
@@ -75,7 +76,8 @@ mod tests {
             env!("CARGO_MANIFEST_DIR"),
             "/../../assets/styles/straight.ron"
         );
-        let (groom, mut sim) = grown_sim(Path::new(path), None).expect("grows");
+        let (groom, mut sim) =
+            grown_sim(Path::new(path), None, SimOverrides::default()).expect("grows");
         sim.run(5).expect("finite");
         let pictured = drawn_hair_full(&groom, sim.engine());
         let mut cache = DrawnCache::default();

@@ -36,6 +36,7 @@
 pub mod app_state;
 pub mod collision;
 pub mod default_style;
+pub mod density_view;
 pub mod document;
 pub mod drawn;
 pub mod event_loop;
@@ -47,6 +48,7 @@ pub mod frame_profile;
 pub mod guard_status;
 pub mod head_motion;
 pub mod import_job;
+pub mod interaction_panel;
 pub mod job;
 pub mod live_sim;
 pub mod motion_recorder;

@@ -102,6 +102,7 @@ pub fn sim_settings(ui: &mut Ui, style: &mut Style, notes: &mut Vec<String>) {
     number(ui, notes, "gravity (y)", g, Look::unit(" m/s²"));
     let wind = &mut sim.air_velocity_m_per_s.x;
     number(ui, notes, "wind (x)", wind, Look::unit(" m/s"));
+    super::interaction_panel::interaction_settings(ui, style, notes);
 }
 
 /// A slider over the track [`TRACKS`] gives `label`.

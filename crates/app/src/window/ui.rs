@@ -95,6 +95,7 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             });
         });
     egui::CentralPanel::no_frame().show(ui, |ui| view_area(ui, app, view));
+    super::density_view::show(ui.ctx(), app);
     if let Some(picker) = &mut view.picker {
         let (chosen, keep) = picker.show(ui.ctx());
         let mode = picker.mode;

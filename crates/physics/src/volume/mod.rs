@@ -1,0 +1,53 @@
+//! Hair with volume: hair–hair interaction through a grid.
+//!
+//! Strands of the same head would otherwise pass through each other, and
+//! a full head sags into a thin shell on the skull. Pairwise collisions
+//! between thousands of strands are too slow to be interactive, so, like
+//! Petrovic et al. 2005 ("Volumetric methods for simulation and rendering
+//! of hair", Pixar), McAdams et al. 2009 and the tools artists use
+//! (Blender's hair volume: internal friction, a voxel cell size, a density
+//! target and strength; Unreal's Niagara groom solver and its pressure
+//! grid), the model treats the hair as a continuum on a grid:
+//!
+//! 1. [`grid`]: a box of cubic cells fitted to the head's hair at rest,
+//!    fixed in head coordinates; a trilinear stencil ties a point to the
+//!    eight nodes around it.
+//! 2. [`splat`]: every quadrature sample spreads its mass and momentum onto
+//!    the nodes: density and mean velocity of the hair around each node.
+//! 3. [`rest`]: the density of the groom's rest pose, node by node, sets
+//!    the threshold above which hair is compressed; at rest nothing is.
+//! 4. [`friction`]: each sample's velocity is pulled toward the grid's, a
+//!    drag toward a velocity field, implicit in the step exactly as air
+//!    drag is.
+//! 5. [`pressure`]: samples in nodes denser than their threshold are
+//!    pushed down the excess's gradient (an equation of state, no solve).
+//!
+//! [`field`] runs 2–5 on any set of sample points, and [`reference`] is
+//! the f64 `HairSystem`'s use of it: once per frame, before the strands
+//! step, it gathers every strand's samples, splats them and hands each
+//! strand its pull ([`friction::VolumePull`]), which the step adds to its
+//! forces and to its drag rate; [`balance`] counts its work in the
+//! guard's energy balance. [`settings`] holds the knobs.
+//!
+//! What is left out: the batch engine and the GPU kernels do not run the
+//! model yet (`docs/volume.md`); the grid is splatted once per frame, so
+//! with several substeps the grid velocity and push are those of the
+//! frame's start.
+
+pub mod balance;
+pub mod field;
+pub mod friction;
+pub mod grid;
+pub mod pressure;
+pub mod reference;
+pub mod rest;
+pub mod settings;
+pub mod splat;
+
+pub use field::{SampleReading, VolumeField};
+pub use friction::VolumePull;
+pub use grid::Grid;
+pub use reference::ReferenceVolume;
+pub use rest::RestDensity;
+pub use settings::InteractionSettings;
+pub use splat::SamplePoint;

@@ -1,0 +1,154 @@
+//! The model on the f64 reference engine ([`crate::HairSystem`]): once per
+//! frame, before the strands step, gather every strand's quadrature
+//! samples, splat them ([`super::field`]), and hand each strand its pull
+//! ([`super::friction::VolumePull`]) for the frame's steps.
+//!
+//! The rest density is built on first use from every strand's rest shape
+//! (natural strains, at rest, head at the origin: head coordinates), on a
+//! grid fitted to those samples with half the longest strand to spare on
+//! each side, room for hair that swings out.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::field::VolumeField;
+use super::rest::RestDensity;
+use super::settings::InteractionSettings;
+use super::splat::SamplePoint;
+use crate::motion::RigidMotion;
+use crate::reconstruct::{Kinematics, reconstruct};
+use crate::strand::Strand;
+
+/// The model's state on a reference engine.
+#[derive(Clone, Debug)]
+pub struct ReferenceVolume {
+    settings: InteractionSettings,
+    rest: Option<RestDensity>,
+    field: VolumeField,
+    points: Vec<Vec<SamplePoint>>,
+    last_secs: f64,
+}
+
+impl ReferenceVolume {
+    /// The model with `settings`; the rest density waits for the first frame.
+    pub fn new(settings: InteractionSettings) -> Self {
+        Self {
+            settings,
+            rest: None,
+            field: VolumeField::default(),
+            points: Vec::new(),
+            last_secs: 0.0,
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &InteractionSettings {
+        &self.settings
+    }
+
+    /// New strengths take effect at the next frame; a new cell size
+    /// rebuilds the rest density.
+    pub fn set_settings(&mut self, settings: InteractionSettings) {
+        if settings.cell_m != self.settings.cell_m {
+            self.rest = None;
+        }
+        self.settings = settings;
+    }
+
+    /// Forgets the rest density (strands were added), rebuilt next frame.
+    pub fn forget_rest(&mut self) {
+        self.rest = None;
+    }
+
+    /// The rest density, once a frame has built it.
+    pub fn rest(&self) -> Option<&RestDensity> {
+        self.rest.as_ref()
+    }
+
+    /// The field of the last frame.
+    pub fn field(&self) -> &VolumeField {
+        &self.field
+    }
+
+    /// Wall time of the last [`Self::prepare`], seconds.
+    pub fn last_secs(&self) -> f64 {
+        self.last_secs
+    }
+
+    /// Gathers the strands' samples with the head at `head`, splats them
+    /// and sets every strand's pull for the coming frame.
+    pub fn prepare(&mut self, strands: &mut [Strand], head: &RigidMotion, parallel: bool) {
+        let start = Instant::now();
+        if self.rest.is_none() {
+            self.rest = rest_density(strands, &self.settings);
+        }
+        let Some(rest) = &self.rest else {
+            return;
+        };
+        self.points.resize_with(strands.len(), Vec::new);
+        let gather = |(s, out): (&Strand, &mut Vec<SamplePoint>)| {
+            let kin = s.kinematics(&head.carry(s.root()));
+            head_points(s, &kin, head, out);
+        };
+        if parallel {
+            strands.par_iter().zip(&mut self.points).for_each(gather);
+        } else {
+            strands.iter().zip(&mut self.points).for_each(gather);
+        }
+        self.field.update(rest, self.points.iter().flatten());
+        let (field, settings) = (&self.field, &self.settings);
+        let hand_out = |(s, points): (&mut Strand, &Vec<SamplePoint>)| {
+            let readings = points.iter().map(|p| field.read(rest, settings, p));
+            let (target, push): (Vec<DVec3>, Vec<DVec3>) = readings
+                .map(|r| (r.target_m_per_s, head.world_from_body * r.push_m_per_s2))
+                .unzip();
+            s.set_volume_pull(settings.friction_per_s, target, push);
+        };
+        if parallel {
+            strands.par_iter_mut().zip(&self.points).for_each(hand_out);
+        } else {
+            strands.iter_mut().zip(&self.points).for_each(hand_out);
+        }
+        self.last_secs = start.elapsed().as_secs_f64();
+    }
+}
+
+/// Strand `s`'s quadrature samples of `kin` (reconstructed with the head
+/// at `head`) as points in head coordinates, written to `out`.
+pub fn head_points(s: &Strand, kin: &Kinematics, head: &RigidMotion, out: &mut Vec<SamplePoint>) {
+    let root_m = head.carry(s.root()).position_m;
+    let body_from_world = head.world_from_body.transpose();
+    let rho_s = s.model().mass_per_length;
+    out.clear();
+    out.extend(kin.samples.iter().map(|sample| SamplePoint {
+        position_m: body_from_world * (root_m + sample.position_m - head.position_m),
+        velocity_m_per_s: sample.velocity_m_per_s,
+        mass_kg: rho_s * sample.weight_m,
+    }));
+}
+
+/// The rest density of `strands`' rest shapes, or `None` without strands.
+pub fn rest_density(strands: &[Strand], settings: &InteractionSettings) -> Option<RestDensity> {
+    let head = RigidMotion::default();
+    let mut points = Vec::new();
+    let mut one = Vec::new();
+    let mut kin = Kinematics::default();
+    let mut longest_m: f64 = 0.0;
+    for s in strands {
+        let model = s.model();
+        let still = vec![DVec3::ZERO; model.elements()];
+        reconstruct(
+            model,
+            &model.natural,
+            &still,
+            &head.carry(s.root()),
+            &mut kin,
+        );
+        head_points(s, &kin, &head, &mut one);
+        points.extend_from_slice(&one);
+        longest_m = longest_m.max(model.lengths_m.iter().sum());
+    }
+    RestDensity::new(&points, settings.cell_m, 0.5 * longest_m)
+}

@@ -1,0 +1,287 @@
+//! Known answers of the hair–hair model (`helixhair_physics::volume`):
+//! friction relaxes relative motion with time constant 1/μ and conserves
+//! momentum; friction in a strand's step is air drag toward the grid
+//! velocity; a block compressed above its rest density expands; the rest
+//! pose feels no pressure; a shaken head with the model calms down without
+//! guard events.
+
+mod common;
+
+use std::sync::Arc;
+
+use common::shake_scene::ShakeThenStill;
+use glam::{DMat3, DVec3};
+use helixhair_physics::volume::friction::implicit_velocity;
+use helixhair_physics::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
+use helixhair_physics::{
+    HairSystem, Method, NaturalShape, RigidMotion, RootPose, SimSettings, Strand, StrandModel,
+    StrandParams,
+};
+
+/// Points on a regular lattice filling a cube of edge `edge_m` about the
+/// origin, `per_axis` to a side, each of `mass_kg`, all at `velocity`.
+fn lattice(edge_m: f64, per_axis: usize, mass_kg: f64, velocity: DVec3) -> Vec<SamplePoint> {
+    let step = edge_m / per_axis as f64;
+    let mut out = Vec::new();
+    for i in 0..per_axis {
+        for j in 0..per_axis {
+            for k in 0..per_axis {
+                let p = (DVec3::new(i as f64, j as f64, k as f64) + 0.5) * step - 0.5 * edge_m;
+                out.push(SamplePoint {
+                    position_m: p,
+                    velocity_m_per_s: velocity,
+                    mass_kg,
+                });
+            }
+        }
+    }
+    out
+}
+
+fn settings() -> InteractionSettings {
+    InteractionSettings {
+        enabled: true,
+        ..InteractionSettings::default()
+    }
+}
+
+/// Two populations of one block, masses 1 : 3, moving through each other
+/// along x: the grid velocity is their mean, friction's implicit step
+/// takes each to it by hμ/(1 + hμ), so the relative velocity falls by
+/// (1 + hμ) per step (→ e^(−μt), time constant 1/μ) and the total momentum
+/// stays.
+#[test]
+fn friction_damps_relative_motion_with_time_constant_one_over_mu() {
+    let s = settings();
+    let (h, mu) = (1.0 / 600.0, s.friction_per_s);
+    let a = lattice(0.1, 10, 1e-6, DVec3::new(0.2, 0.0, 0.0));
+    let b = lattice(0.1, 10, 3e-6, DVec3::new(-0.1, 0.0, 0.0));
+    let rest = RestDensity::new(&[a.clone(), b.clone()].concat(), s.cell_m, 0.05).unwrap();
+    let mut points = [a, b].concat();
+    let momentum = |p: &[SamplePoint]| {
+        p.iter()
+            .map(|x| x.mass_kg * x.velocity_m_per_s)
+            .sum::<DVec3>()
+    };
+    let start_momentum = momentum(&points);
+    let mut field = VolumeField::default();
+    let steps = (1.0 / (mu * h)).round() as i32; // t = 1/μ
+    for _ in 0..steps {
+        field.update(&rest, &points);
+        let targets: Vec<DVec3> = points
+            .iter()
+            .map(|p| field.read(&rest, &s, p).target_m_per_s)
+            .collect();
+        for (p, u) in points.iter_mut().zip(targets) {
+            p.velocity_m_per_s = implicit_velocity(p.velocity_m_per_s, u, mu, h);
+        }
+    }
+    let n = points.len() / 2;
+    let relative = points[0].velocity_m_per_s.x - points[n].velocity_m_per_s.x;
+    // Every pair alike: the block moves as one body of two populations.
+    for i in 0..n {
+        let r = points[i].velocity_m_per_s.x - points[n + i].velocity_m_per_s.x;
+        assert!((r - relative).abs() < 1e-12, "pair {i}: {r} vs {relative}");
+    }
+    let discrete = 0.3 * (1.0 + h * mu).powi(-steps);
+    assert!(
+        (relative - discrete).abs() < 1e-12 * 0.3,
+        "{relative} vs {discrete}"
+    );
+    // Backward Euler's e^(−1) within its first-order error hμ/2 (relative).
+    let continuous = 0.3 * (-1.0f64).exp();
+    assert!(
+        ((relative - continuous) / continuous).abs() < h * mu,
+        "relative velocity {relative} after 1/μ, e^-1 gives {continuous}"
+    );
+    let end = momentum(&points);
+    assert!((end - start_momentum).length() < 1e-12 * start_momentum.length());
+}
+
+/// The friction in a strand's step is exactly air drag toward the grid
+/// velocity: a strand pulled with rate μ toward a uniform u steps like the
+/// same strand with drag ν' = ν + μρS toward air of (ν v_air + μρS u)/ν'.
+#[test]
+fn friction_in_the_step_is_air_drag_toward_the_target() {
+    let mut params = common::curl(8);
+    params.air_drag = 2e-5;
+    let model = Arc::new(StrandModel::new(&params, 4).unwrap());
+    let (mu, u, air) = (7.0, DVec3::new(0.1, -0.2, 0.05), DVec3::new(0.3, 0.0, 0.0));
+    let rho_s = model.mass_per_length;
+    let mut dragged = params.clone();
+    dragged.air_drag = params.air_drag + mu * rho_s;
+    let air_dragged = (params.air_drag * air + mu * rho_s * u) / dragged.air_drag;
+    let dragged_model = Arc::new(StrandModel::new(&dragged, 4).unwrap());
+    let root = common::horizontal_root();
+    let mut pulled = Strand::new(model.clone(), root, Method::Exact);
+    let mut reference = Strand::new(dragged_model, root, Method::Exact);
+    let samples = model.samples();
+    pulled.set_volume_pull(mu, vec![u; samples], vec![DVec3::ZERO; samples]);
+    let head = common::shake();
+    let gravity = DVec3::new(0.0, -9.81, 0.0);
+    use helixhair_physics::HeadTrajectory;
+    for k in 0..60 {
+        let motion = head.motion_at(k as f64 / 60.0).carry(&root);
+        pulled.step(&motion, gravity, air, 1.0 / 60.0);
+        reference.step(&motion, gravity, air_dragged, 1.0 / 60.0);
+    }
+    let scale = reference.v().iter().map(|v| v.length()).fold(0.0, f64::max);
+    assert!(scale > 0.1, "the strand moved: |v| = {scale}");
+    assert!(common::max_diff(pulled.v(), reference.v()) < 1e-9 * scale);
+    assert!(common::max_diff(pulled.q(), reference.q()) < 1e-9);
+}
+
+/// A block squeezed to 60% of its rest size (4.6 times its rest density)
+/// is pushed outward everywhere and, moved by the push alone, spreads out
+/// until its excess density has fallen.
+#[test]
+fn a_block_compressed_above_rest_density_expands() {
+    let s = settings();
+    let rest_points = lattice(0.1, 12, 1e-6, DVec3::ZERO);
+    let rest = RestDensity::new(&rest_points, s.cell_m, 0.1).unwrap();
+    let mut points: Vec<SamplePoint> = rest_points
+        .iter()
+        .map(|p| SamplePoint {
+            position_m: 0.6 * p.position_m,
+            ..*p
+        })
+        .collect();
+    let rms = |p: &[SamplePoint]| {
+        (p.iter().map(|x| x.position_m.length_squared()).sum::<f64>() / p.len() as f64).sqrt()
+    };
+    let mut field = VolumeField::default();
+    field.update(&rest, &points);
+    let start_excess = field.excess().iter().cloned().fold(0.0, f64::max);
+    assert!(start_excess > 1.0, "squeezed: excess {start_excess}");
+    let mut outward = 0.0;
+    for p in &points {
+        let push = field.read(&rest, &s, p).push_m_per_s2;
+        // Within a cell of the centre the excess is flat up to how the
+        // lattice falls on the grid; the outer layers must be pushed out.
+        if p.position_m.abs().max_element() > s.cell_m {
+            assert!(
+                push.dot(p.position_m) > 0.0,
+                "inward push {push} at {}",
+                p.position_m
+            );
+        }
+        outward += push.dot(p.position_m.normalize_or_zero());
+    }
+    assert!(outward > 0.0);
+    let start_rms = rms(&points);
+    let h = 1.0 / 60.0;
+    for _ in 0..120 {
+        field.update(&rest, &points);
+        for p in &mut points {
+            let r = field.read(&rest, &s, p);
+            let v = implicit_velocity(
+                p.velocity_m_per_s + h * r.push_m_per_s2,
+                r.target_m_per_s,
+                s.friction_per_s,
+                h,
+            );
+            p.velocity_m_per_s = v;
+            p.position_m += h * v;
+        }
+    }
+    field.update(&rest, &points);
+    let end_excess = field.excess().iter().cloned().fold(0.0, f64::max);
+    assert!(
+        rms(&points) > 1.2 * start_rms,
+        "rms {} from {start_rms}",
+        rms(&points)
+    );
+    assert!(
+        end_excess < 0.5 * start_excess,
+        "excess {end_excess} from {start_excess}"
+    );
+}
+
+/// Roots on the upper half of a 10 cm head, curly strands of 20 cm.
+fn small_head(count_per_ring: usize, rings: usize) -> (StrandParams, Vec<RootPose>) {
+    let params = StrandParams {
+        length_m: 0.2,
+        elements: 8,
+        natural_shape: NaturalShape::Helix {
+            radius_m: 0.012,
+            step_m: 0.03,
+        },
+        ..StrandParams::default()
+    };
+    let mut roots = Vec::new();
+    for ring in 0..rings {
+        let polar = 0.3 + 1.0 * ring as f64 / rings as f64;
+        for k in 0..count_per_ring {
+            let azimuth = std::f64::consts::TAU * k as f64 / count_per_ring as f64;
+            let n = DVec3::new(
+                polar.sin() * azimuth.cos(),
+                polar.cos(),
+                polar.sin() * azimuth.sin(),
+            );
+            roots.push(RootPose::from_direction(0.1 * n, n, DVec3::Y));
+        }
+    }
+    (params, roots)
+}
+
+fn head_system(interaction: bool, gravity: DVec3) -> HairSystem {
+    let (params, roots) = small_head(12, 4);
+    let mut sim = SimSettings {
+        gravity_m_per_s2: gravity,
+        ..SimSettings::default()
+    };
+    sim.interaction.enabled = interaction;
+    let mut system = HairSystem::new(sim).unwrap();
+    system.add_group(&params, &roots).unwrap();
+    system
+}
+
+/// The rest pose splats to its own rest density: no node is in excess,
+/// so with no gravity and a still (turned) head nothing moves, model on.
+#[test]
+fn rest_pose_feels_no_pressure() {
+    let mut system = head_system(true, DVec3::ZERO);
+    let head = RigidMotion::at_rest(DVec3::new(0.1, 1.6, -0.2), DMat3::from_rotation_y(0.7));
+    for _ in 0..10 {
+        system.step_frame(&head);
+    }
+    let volume = system.volume().expect("model on");
+    assert!(volume.field().excess().iter().all(|e| *e == 0.0));
+    for s in system.strands() {
+        assert!(common::max_diff(s.q(), &s.model().natural) < 1e-12);
+        assert!(s.v().iter().all(|v| v.length() < 1e-12));
+    }
+}
+
+/// A head shaken for 4¼ periods and then held still: with the model the
+/// hair's energy after the shake decays (each second below the last, and
+/// faster than without the model, which it damps), and the guard never
+/// steps in.
+#[test]
+fn energy_after_a_shake_decays_with_the_model_and_no_guard_events() {
+    let gravity = DVec3::new(0.0, -9.81, 0.0);
+    let head = ShakeThenStill::ordinary();
+    let kinetic_after = |interaction: bool| {
+        let mut system = head_system(interaction, gravity);
+        let frames_shake = (head.shake_secs * 60.0).ceil() as usize;
+        let mut seconds = Vec::new();
+        for frame in 0..frames_shake + 180 {
+            system.step_frame(&head);
+            if frame >= frames_shake && (frame - frames_shake).is_multiple_of(60) {
+                seconds.push(system.energies().kinetic_j);
+            }
+        }
+        seconds.push(system.energies().kinetic_j);
+        (seconds, system.guard_event_count())
+    };
+    let (with, events) = kinetic_after(true);
+    let (without, _) = kinetic_after(false);
+    assert_eq!(events, 0, "guard events with the model");
+    for w in with.windows(2) {
+        assert!(w[1] < w[0], "kinetic energy rose after the shake: {with:?}");
+    }
+    assert!(
+        with.last() < without.last(),
+        "with {with:?}, without {without:?}"
+    );
+}
