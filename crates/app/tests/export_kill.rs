@@ -1,5 +1,5 @@
 //! Kill tests for exporting: a child process exporting the curly example's
-//! drawn strands (the export path `helixhair export` and `sim --export`
+//! simulated strands (the export path `helixhair export` and `sim --export`
 //! take: `ExportRecorder::write_single`, the format's writer, then
 //! `atomic_write`) is killed (SIGKILL) at random points, 300 times over the
 //! four formats; the file on disk must always be the old export or the new
@@ -10,9 +10,11 @@
 //! As `save_kill.rs`: the test re-runs its own executable as the child,
 //! filtered to [`exporter_child_process`], with the target file in an
 //! environment variable. The child grows the curly example on the default
-//! head once, then exports its drawn strands alternately at two point
-//! counts (two different files of a few hundred kilobytes) forever, and
-//! prints a line when it starts. The parent writes both exports itself
+//! head once, then exports its simulated strands alternately at two point
+//! counts (two different files of tens of kilobytes) forever, and prints a
+//! line when it starts. Simulated, not drawn, strands: capturing the
+//! thousand drawn strands takes most of an export's time, so few kills
+//! would land inside the write, which is what the test is about. The parent writes both exports itself
 //! first (the exports are deterministic), waits for the child's line,
 //! sleeps a random time of up to three exports, kills the child, and checks
 //! that the file is byte for byte one of the two and that the format's
@@ -57,10 +59,16 @@ fn curly() -> (Groom, HeadlessSim) {
     grown_sim(&style, None, SimOverrides::default()).expect("the curly example grows")
 }
 
-/// Exports the drawn strands of `sim` to `path` with `points` per strand.
+/// Exports the simulated strands of `sim` to `path` with `points` per strand.
 fn export(groom: &Groom, sim: &HeadlessSim, path: &Path, points: usize) {
-    let spec = ExportSpec::new(path, StrandChoice::Drawn, points, FrameChoice::Last, false)
-        .expect("a valid spec");
+    let spec = ExportSpec::new(
+        path,
+        StrandChoice::Simulated,
+        points,
+        FrameChoice::Last,
+        false,
+    )
+    .expect("a valid spec");
     ExportRecorder::new(spec, sim.engine().settings().dt_secs)
         .write_single(sim.engine(), Some(groom), None)
         .expect("exports");
