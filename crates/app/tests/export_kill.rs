@@ -25,15 +25,18 @@
 //! Reproduce the figures of `docs/reliability.md` with
 //! `cargo test --release -p helixhair-app --test export_kill -- --nocapture`.
 
-use std::io::{BufRead as _, BufReader};
+mod support {
+    pub mod kill;
+}
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use helixhair_app::export::{ExportRecorder, ExportSpec, FrameChoice, StrandChoice};
 use helixhair_app::render_cmd::grown_sim;
 use helixhair_app::{Groom, HeadlessSim, SimOverrides};
 use helixhair_formats::{Format, ReadOptions, read};
+use support::kill::{Rng, clear_leftovers, run_and_kill};
 
 /// The environment variable that makes [`exporter_child_process`] the
 /// exporter; its value is the target file, whose extension picks the format.
@@ -74,19 +77,6 @@ fn export(groom: &Groom, sim: &HeadlessSim, path: &Path, points: usize) {
         .expect("exports");
 }
 
-/// A seeded xorshift generator: the delays are reproducible from the seed
-/// the test prints.
-struct Rng(u64);
-
-impl Rng {
-    fn next_unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The child: with [`CHILD_VAR`] set, exports alternately until killed;
 /// without it (a normal test run), does nothing.
 #[test]
@@ -102,10 +92,7 @@ fn exporter_child_process() {
 }
 
 fn scratch_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("helixhair-export-kill-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a scratch folder");
-    dir
+    support::kill::scratch_dir("helixhair-export-kill")
 }
 
 /// Kills the exporting child `ROUNDS_PER_FORMAT` times for `format`;
@@ -129,29 +116,8 @@ fn kill_exports(format: Format, rng: &mut Rng, seed: u64) -> usize {
     let mut interrupted = 0;
     let mut seen = [0usize; 2];
     for round in 0..ROUNDS_PER_FORMAT {
-        let mut child = Command::new(std::env::current_exe().expect("the test executable"))
-            .args([
-                "exporter_child_process",
-                "--exact",
-                "--nocapture",
-                "--test-threads=1",
-            ])
-            .env(CHILD_VAR, &target)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("the child starts");
-        // The test harness prints its own words first, on the same line.
-        let mut lines = BufReader::new(child.stdout.take().expect("its stdout")).lines();
-        while !lines
-            .next()
-            .expect("the child says it started")
-            .expect("a line")
-            .ends_with(STARTED)
-        {}
-        std::thread::sleep(Duration::from_secs_f64(3.0 * export_secs * rng.next_unit()));
-        child.kill().expect("killed");
-        child.wait().expect("reaped");
+        let delay = Duration::from_secs_f64(3.0 * export_secs * rng.next_unit());
+        run_and_kill("exporter_child_process", CHILD_VAR, &target, STARTED, delay);
 
         let on_disk = std::fs::read(&target).expect("the target exists");
         let which = expected
@@ -167,14 +133,7 @@ fn kill_exports(format: Format, rng: &mut Rng, seed: u64) -> usize {
         let imported =
             read(&on_disk, format, &ReadOptions::default()).expect("what is on disk reads");
         assert!(!imported.curves.curves.is_empty(), "strands read back");
-        let mut left = false;
-        for entry in std::fs::read_dir(&dir).expect("the folder lists") {
-            let path = entry.expect("an entry").path();
-            if path != target {
-                left = true;
-                std::fs::remove_file(&path).expect("a temporary file goes");
-            }
-        }
+        let left = clear_leftovers(&dir, &target);
         interrupted += usize::from(left);
     }
     eprintln!(

@@ -21,15 +21,18 @@
 //! Reproduce the figures of `docs/reliability.md` with
 //! `cargo test --release -p helixhair-app --test save_kill -- --nocapture`.
 
-use std::io::{BufRead as _, BufReader};
+mod support {
+    pub mod kill;
+}
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use helixhair_app::Style;
 use helixhair_app::atomic_write::write_atomically;
 use helixhair_app::style::Root;
+use support::kill::{Rng, clear_leftovers, run_and_kill};
 
 /// The environment variable that makes [`saver_child_process`] the saver.
 const CHILD_VAR: &str = "HELIXHAIR_SAVE_KILL_TARGET";
@@ -65,19 +68,6 @@ fn style(which: u32) -> Style {
     style
 }
 
-/// A seeded xorshift generator: the delays are reproducible from the seed
-/// the test prints.
-struct Rng(u64);
-
-impl Rng {
-    fn next_unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The child: with [`CHILD_VAR`] set, saves the two styles alternately
 /// until killed; without it (a normal test run), does nothing.
 #[test]
@@ -95,10 +85,7 @@ fn saver_child_process() {
 }
 
 fn scratch_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("helixhair-save-kill-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a scratch folder");
-    dir
+    support::kill::scratch_dir("helixhair-save-kill")
 }
 
 #[test]
@@ -118,30 +105,9 @@ fn a_save_killed_at_any_point_leaves_the_old_or_the_new_style_whole() {
     let mut interrupted = 0;
     let mut seen = [0usize; 2];
     for round in 0..ROUNDS {
-        let mut child = Command::new(std::env::current_exe().expect("the test executable"))
-            .args([
-                "saver_child_process",
-                "--exact",
-                "--nocapture",
-                "--test-threads=1",
-            ])
-            .env(CHILD_VAR, &target)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("the child starts");
-        // The test harness prints its own words first, on the same line.
-        let mut lines = BufReader::new(child.stdout.take().expect("its stdout")).lines();
-        while !lines
-            .next()
-            .expect("the child says it started")
-            .expect("a line")
-            .ends_with(STARTED)
-        {}
         // Up to three writes.
-        std::thread::sleep(Duration::from_secs_f64(3.0 * save_secs * rng.next_unit()));
-        child.kill().expect("killed");
-        child.wait().expect("reaped");
+        let delay = Duration::from_secs_f64(3.0 * save_secs * rng.next_unit());
+        run_and_kill("saver_child_process", CHILD_VAR, &target, STARTED, delay);
 
         let on_disk = std::fs::read_to_string(&target).expect("the target exists");
         let which = texts.iter().position(|t| *t == on_disk).unwrap_or_else(|| {
@@ -153,14 +119,7 @@ fn a_save_killed_at_any_point_leaves_the_old_or_the_new_style_whole() {
         seen[which] += 1;
         Style::from_ron(&on_disk, &target).expect("what is on disk loads");
         // Temporary files of interrupted writes: count, then clear.
-        let mut left = false;
-        for entry in std::fs::read_dir(&dir).expect("the folder lists") {
-            let path = entry.expect("an entry").path();
-            if path != target {
-                left = true;
-                std::fs::remove_file(&path).expect("a temporary file goes");
-            }
-        }
+        let left = clear_leftovers(&dir, &target);
         interrupted += usize::from(left);
     }
     eprintln!(
