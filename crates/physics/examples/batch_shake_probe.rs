@@ -9,45 +9,13 @@
 //!
 //! `copies` repeats the two roots (default 4: one full batch of 8 lanes).
 
-use glam::DVec3;
-use helixhair_physics::batch::BatchSystem;
-use helixhair_physics::{
-    ElementLayout, Method, NaturalShape, Oscillation, RootPose, SimSettings, StepScheme,
-    StrandParams,
-};
+#[path = "../tests/common/shake_scene.rs"]
+#[allow(dead_code)]
+mod shake_scene;
 
-fn params(shape: &str) -> StrandParams {
-    if shape == "curly" {
-        // assets/styles/curly.ron's crown.
-        return StrandParams {
-            length_m: 0.25,
-            elements: 15,
-            ellipticity: 1.35,
-            natural_shape: NaturalShape::Helix {
-                radius_m: 0.012,
-                step_m: 0.03,
-            },
-            ..StrandParams::default()
-        };
-    }
-    StrandParams {
-        length_m: 0.3,
-        elements: 12,
-        layout: ElementLayout::Graded {
-            tip_to_root_ratio: 3.0,
-        },
-        radius_m: 40e-6,
-        natural_shape: if shape == "wavy" {
-            NaturalShape::Helix {
-                radius_m: 0.025,
-                step_m: 0.12,
-            }
-        } else {
-            NaturalShape::Straight
-        },
-        ..StrandParams::default()
-    }
-}
+use helixhair_physics::batch::BatchSystem;
+use helixhair_physics::{Method, RootPose, SimSettings, StepScheme, StrandParams};
+use shake_scene::{head_roots, ordinary_shake, strands_named};
 
 /// One run of `frames` frames: (finite, physics seconds, fastest point in
 /// the last second, m/s).
@@ -55,11 +23,7 @@ fn run(settings: &SimSettings, params: &StrandParams, roots: &[RootPose]) -> (bo
     let mut sys = BatchSystem::new(settings.clone()).expect("valid settings");
     sys.set_guard(None);
     sys.add_group(params, roots).expect("valid params");
-    let shake = Oscillation {
-        axis: DVec3::Y,
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    };
+    let shake = ordinary_shake();
     let frames = (10.0 / settings.dt_secs).round() as usize;
     let per_second = (1.0 / settings.dt_secs).round() as usize;
     let mut physics_secs = 0.0;
@@ -112,20 +76,9 @@ fn main() {
         substeps: 1,
         ..SimSettings::default()
     };
-    let two = [
-        RootPose::from_direction(
-            DVec3::new(0.0966, 0.0259, 0.0),
-            DVec3::new(0.9659, 0.2588, 0.0),
-            DVec3::Z,
-        ),
-        RootPose::from_direction(
-            DVec3::new(0.0, 0.0866, 0.05),
-            DVec3::new(0.0, 0.866, 0.5),
-            DVec3::X,
-        ),
-    ];
+    let two = head_roots();
     let roots: Vec<RootPose> = two.iter().cycle().take(2 * copies).copied().collect();
-    let params = params(shape);
+    let params = strands_named(shape);
     let mut times = Vec::new();
     for _ in 0..repeats.max(1) {
         let (finite, secs, fastest) = run(&settings, &params, &roots);

@@ -4,11 +4,13 @@
 //!
 //! `cargo run --release -p helixhair-physics --example shake_probe -- [method] [substeps] [straight|wavy|curly] [explicit|CORRECTIONS] [dt_secs]`
 
+#[path = "../tests/common/shake_scene.rs"]
+#[allow(dead_code)]
+mod shake_scene;
+
 use glam::DVec3;
-use helixhair_physics::{
-    ElementLayout, HairSystem, Method, NaturalShape, Oscillation, RootPose, SimSettings,
-    StepScheme, StrandParams,
-};
+use helixhair_physics::{HairSystem, Method, SimSettings, StepScheme};
+use shake_scene::{head_roots, ordinary_shake, strands_named};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -18,39 +20,7 @@ fn main() {
         .unwrap_or(Method::Exact);
     let substeps: u32 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1);
     let shape = args.get(3).map(String::as_str).unwrap_or("straight");
-    let wavy = shape == "wavy";
-    let curly = shape == "curly";
-    let params = if curly {
-        // assets/styles/curly.ron's crown.
-        StrandParams {
-            length_m: 0.25,
-            elements: 15,
-            ellipticity: 1.35,
-            natural_shape: NaturalShape::Helix {
-                radius_m: 0.012,
-                step_m: 0.03,
-            },
-            ..StrandParams::default()
-        }
-    } else {
-        StrandParams {
-            length_m: 0.3,
-            elements: 12,
-            layout: ElementLayout::Graded {
-                tip_to_root_ratio: 3.0,
-            },
-            radius_m: 40e-6,
-            natural_shape: if wavy {
-                NaturalShape::Helix {
-                    radius_m: 0.025,
-                    step_m: 0.12,
-                }
-            } else {
-                NaturalShape::Straight
-            },
-            ..StrandParams::default()
-        }
-    };
+    let params = strands_named(shape);
     let scheme = match args.get(4).map(String::as_str) {
         Some("explicit") => StepScheme::VelocityExplicit,
         Some(k) => StepScheme::VelocityImplicit {
@@ -70,24 +40,9 @@ fn main() {
     };
     let mut sys = HairSystem::new(settings).unwrap();
     sys.set_guard(None);
-    let roots = [
-        RootPose::from_direction(
-            DVec3::new(0.0966, 0.0259, 0.0),
-            DVec3::new(0.9659, 0.2588, 0.0),
-            DVec3::Z,
-        ),
-        RootPose::from_direction(
-            DVec3::new(0.0, 0.0866, 0.05),
-            DVec3::new(0.0, 0.866, 0.5),
-            DVec3::X,
-        ),
-    ];
+    let roots = head_roots();
     sys.add_group(&params, &roots).unwrap();
-    let shake = Oscillation {
-        axis: DVec3::Y,
-        amplitude_rad: 0.5,
-        frequency_hz: 1.5,
-    };
+    let shake = ordinary_shake();
     let frames = 600;
     let mut physics_secs = 0.0;
     let mut max_speed = 0.0f64;

@@ -1,6 +1,8 @@
 //! The head-shake scene of the stable-step tests (both engines): the
 //! straight example's 30 cm strands on two roots of a 10 cm head, and a
-//! shake that stops.
+//! shake that stops. The probes `examples/shake_probe.rs` and
+//! `examples/batch_shake_probe.rs` include this file too, so the tests
+//! and the probes measure one scene.
 
 use glam::DVec3;
 use helixhair_physics::motion::HeadTrajectory;
@@ -18,6 +20,28 @@ pub fn straight_30_cm() -> StrandParams {
         },
         radius_m: 40e-6,
         ..StrandParams::default()
+    }
+}
+
+/// The wavy example's long strands: [`straight_30_cm`] with a 2.5 cm
+/// curl radius and a 12 cm helix step.
+pub fn wavy_30_cm() -> StrandParams {
+    StrandParams {
+        natural_shape: NaturalShape::Helix {
+            radius_m: 0.025,
+            step_m: 0.12,
+        },
+        ..straight_30_cm()
+    }
+}
+
+/// The probes' strands by name: `wavy`, `curly`, or straight for
+/// anything else.
+pub fn strands_named(shape: &str) -> StrandParams {
+    match shape {
+        "wavy" => wavy_30_cm(),
+        "curly" => curly_25_cm(),
+        _ => straight_30_cm(),
     }
 }
 
