@@ -7,7 +7,6 @@ mod common;
 use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::energy::energies;
-use helixhair_physics::forces::{ForceInputs, generalized_forces};
 use helixhair_physics::helix::skew;
 use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::motion::HeadTrajectory;
@@ -219,17 +218,7 @@ fn gravity_force_is_minus_the_gradient_of_its_potential() {
     let (m, q, _, root) = curly_setup(6);
     let zero = vec![DVec3::ZERO; m.elements()];
     let gravity = DVec3::new(0.3, -9.81, 1.2);
-    let kin = kinematics(&m, &q, &zero, &root);
-    let inputs = ForceInputs {
-        root: &root,
-        gravity_m_per_s2: gravity,
-        air_velocity_m_per_s: DVec3::ZERO,
-        external_n_per_m: &[],
-        contact: None,
-        volume: None,
-    };
-    let mut forces = vec![DVec3::ZERO; m.elements()];
-    generalized_forces(&m, &kin, &inputs, &mut forces);
+    let forces = forces_under_gravity(&m, &q, &zero, &root, gravity);
     let potential = |q: &[DVec3]| {
         energies(
             &m,

@@ -10,33 +10,11 @@ mod common;
 use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::RigidMotion;
-use helixhair_physics::forces::{ForceInputs, generalized_forces};
 use helixhair_physics::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
 use helixhair_physics::velocity_terms::{Derivative, VelocityTerms};
 
 /// Agreement relative to the largest entry of G x (round-off only).
 const ROUNDOFF_REL: f64 = 1e-9;
-
-fn generalized(
-    m: &helixhair_physics::StrandModel,
-    q: &[DVec3],
-    v: &[DVec3],
-    root: &RigidMotion,
-) -> Vec<DVec3> {
-    let mut kin = Kinematics::default();
-    reconstruct(m, q, v, root, &mut kin);
-    let inputs = ForceInputs {
-        root,
-        gravity_m_per_s2: DVec3::new(0.0, -9.81, 0.0),
-        air_velocity_m_per_s: DVec3::ZERO,
-        external_n_per_m: &[],
-        contact: None,
-        volume: None,
-    };
-    let mut out = vec![DVec3::ZERO; q.len()];
-    generalized_forces(m, &kin, &inputs, &mut out);
-    out
-}
 
 #[test]
 fn product_matches_differences_of_the_forces() {
@@ -62,7 +40,7 @@ fn product_matches_differences_of_the_forces() {
         // −(∂Q/∂q̇) x by central differences (exact for a quadratic).
         let shift = |sign: f64| -> Vec<DVec3> {
             let vs: Vec<DVec3> = v.iter().zip(&x).map(|(v, x)| *v + sign * *x).collect();
-            generalized(&m, &q, &vs, &root)
+            forces_under_gravity(&m, &q, &vs, &root, DVec3::new(0.0, -9.81, 0.0))
         };
         let (plus, minus) = (shift(1.0), shift(-1.0));
         let expected: Vec<DVec3> = plus

@@ -9,6 +9,7 @@ pub mod sphere;
 use std::sync::Arc;
 
 use glam::{DMat3, DVec3};
+use helixhair_physics::forces::{ForceInputs, generalized_forces};
 use helixhair_physics::reconstruct::{Kinematics, reconstruct};
 use helixhair_physics::{
     Method, NaturalShape, Oscillation, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
@@ -73,6 +74,29 @@ pub fn kinematics(m: &StrandModel, q: &[DVec3], v: &[DVec3], root: &RigidMotion)
     let mut k = Kinematics::default();
     reconstruct(m, q, v, root, &mut k);
     k
+}
+
+/// The generalized forces Q (N·m²) on a strand in state (`q`, `v`) under
+/// `gravity` alone (no wind, contact or hair volume).
+pub fn forces_under_gravity(
+    m: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &RigidMotion,
+    gravity_m_per_s2: DVec3,
+) -> Vec<DVec3> {
+    let kin = kinematics(m, q, v, root);
+    let inputs = ForceInputs {
+        root,
+        gravity_m_per_s2,
+        air_velocity_m_per_s: DVec3::ZERO,
+        external_n_per_m: &[],
+        contact: None,
+        volume: None,
+    };
+    let mut out = vec![DVec3::ZERO; q.len()];
+    generalized_forces(m, &kin, &inputs, &mut out);
+    out
 }
 
 pub fn random_strains(rng: &mut Rng, n: usize, scale_per_m: f64) -> Vec<DVec3> {
