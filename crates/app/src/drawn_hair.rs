@@ -11,7 +11,7 @@
 //! guides' bending, which can cut into the head between guides even when
 //! the guides themselves rest on it.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use helixhair_physics::engine::Engine;
 use helixhair_render::head_shell::HeadShell;
 use helixhair_render::interpolate::resampled_shape;
@@ -54,18 +54,55 @@ pub fn clump_onto(strand: &mut [Vec3], guide: &[Vec3], amount: f32) {
 /// Points of the blended guide shape [`follow_guides`] pulls towards.
 const FOLLOW_POINTS: usize = 32;
 
+/// One frame's guide curves in head coordinates, each built the first time
+/// a drawn strand asks for it (clumping, following) and then shared by
+/// every strand that follows the same guide.
+struct GuideCurves<'a> {
+    engine: &'a Engine,
+    q: &'a [Vec<DVec3>],
+    /// Each guide's curve, root first.
+    curves: Vec<Option<Vec<Vec3>>>,
+    /// Each guide's curve as [`FOLLOW_POINTS`] offsets from its root,
+    /// evenly spaced by arc length.
+    shapes: Vec<Option<Vec<Vec3>>>,
+}
+
+impl<'a> GuideCurves<'a> {
+    fn new(engine: &'a Engine, q: &'a [Vec<DVec3>]) -> Self {
+        Self {
+            engine,
+            q,
+            curves: vec![None; q.len()],
+            shapes: vec![None; q.len()],
+        }
+    }
+
+    /// Guide `g`'s curve.
+    fn curve(&mut self, g: usize) -> &[Vec3] {
+        let (engine, q) = (self.engine, self.q);
+        self.curves[g].get_or_insert_with(|| {
+            let model = engine.strand_model(g);
+            to_f32(&strand_curve(engine.root(g), &model.lengths_m, &q[g])).collect()
+        })
+    }
+
+    /// Guide `g`'s resampled shape.
+    fn shape(&mut self, g: usize) -> &[Vec3] {
+        if self.shapes[g].is_none() {
+            let shape = resampled_shape(self.curve(g), FOLLOW_POINTS);
+            self.shapes[g] = Some(shape);
+        }
+        self.shapes[g].as_deref().unwrap_or_default()
+    }
+}
+
 /// The guides' shapes (each as offsets from its own root, resampled by arc
 /// length) blended with their weights, moved to start at `root`.
-fn blended_shape(
-    guides: &[(usize, f64)],
-    root: Vec3,
-    guide_curve: &mut impl FnMut(usize) -> Vec<Vec3>,
-) -> Vec<Vec3> {
+fn blended_shape(follow: &[(usize, f64)], root: Vec3, guides: &mut GuideCurves) -> Vec<Vec3> {
     let mut blended = vec![root; FOLLOW_POINTS];
-    for &(g, weight) in guides {
-        let shape = resampled_shape(&guide_curve(g), FOLLOW_POINTS);
-        for (b, s) in blended.iter_mut().zip(shape) {
-            *b += weight as f32 * s;
+    for &(g, weight) in follow {
+        for (b, s) in blended.iter_mut().zip(guides.shape(g)) {
+            *b += weight as f32 * *s;
         }
     }
     blended
@@ -121,8 +158,7 @@ pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairS
     let q: Vec<_> = (0..engine.strand_count()).map(|g| engine.q(g)).collect();
     let head = engine.head();
     let (rotation, position) = (head.world_from_body.as_mat3(), head.position_m.as_vec3());
-    // The guides' own curves in head coordinates, for clumping.
-    let mut guides: Vec<Option<Vec<Vec3>>> = vec![None; q.len()];
+    let mut guides = GuideCurves::new(engine, &q);
     let mut strands = StrandBuffers::default();
     let mut curve: Vec<Vec3> = Vec::new();
     for strand in &layout.strands {
@@ -132,19 +168,11 @@ pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairS
             &strand.lengths_m,
             &strand.strains(&q),
         )));
-        let mut guide_curve = |g: usize| -> Vec<Vec3> {
-            guides[g]
-                .get_or_insert_with(|| {
-                    let model = engine.strand_model(g);
-                    to_f32(&strand_curve(engine.root(g), &model.lengths_m, &q[g])).collect()
-                })
-                .clone()
-        };
         if let Some((g, amount)) = strand.clump {
-            clump_onto(&mut curve, &guide_curve(g), amount as f32);
+            clump_onto(&mut curve, guides.curve(g), amount as f32);
         }
         if !strand.follow.is_empty() {
-            let blended = blended_shape(&strand.follow, curve[0], &mut guide_curve);
+            let blended = blended_shape(&strand.follow, curve[0], &mut guides);
             follow_guides(&mut curve, &blended);
         }
         drape_over(&mut curve, &groom.shell);
