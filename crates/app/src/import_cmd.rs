@@ -173,7 +173,11 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         support: collider
             .as_ref()
             .map(|c| (c, ContactSettings::default().skin_m)),
-        stiffen: (!args.no_stiffen).then(StiffenOptions::default),
+        stiffen: if args.no_stiffen {
+            StiffenOptions::none()
+        } else {
+            StiffenOptions::default()
+        },
     };
     let outcomes = fit_all(&jobs, &settings, progress);
     if progress.cancelled() {

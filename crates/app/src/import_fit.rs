@@ -12,9 +12,9 @@ use glam::DVec3;
 use helixhair_physics::collision::SignedDistanceField;
 use helixhair_physics::fit::{
     FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, StrandFit, Support,
-    fit_polyline, sag_free, sag_free_stiffened,
+    fit_polyline, sag_free_stiffened,
 };
-use helixhair_physics::{RigidMotion, StrandModel, StrandParams};
+use helixhair_physics::{RigidMotion, StrandParams};
 
 use crate::style::Root;
 use crate::style_imported::ImportedStrand;
@@ -63,9 +63,9 @@ pub struct FitSettings<'a> {
     pub gravity_m_per_s2: Option<DVec3>,
     /// The head as a support for sag-free, with its contact skin (metres).
     pub support: Option<(&'a SignedDistanceField, f64)>,
-    /// How strands whose sag-free equilibrium is unstable are stiffened;
-    /// `None`: they are left as they are (and fall when simulated).
-    pub stiffen: Option<StiffenOptions>,
+    /// How strands whose sag-free equilibrium is unstable are stiffened
+    /// ([`StiffenOptions::none`]: left as they are, to fall when simulated).
+    pub stiffen: StiffenOptions,
 }
 
 /// Fits every job on all cores; results in job order. Each strand fitted
@@ -131,20 +131,11 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
             }),
         };
         let q = &fit.chain.strains_per_m;
-        let (rest, scale) = match &settings.stiffen {
-            Some(options) => {
-                let stiff =
-                    sag_free_stiffened(&params, SAMPLES_PER_ELEMENT, q, &inputs, options).ok()?;
-                (stiff.rest, stiff.stiffness_scale)
-            }
-            None => {
-                let model = StrandModel::new(&params, SAMPLES_PER_ELEMENT).ok()?;
-                (sag_free(&model, q, &inputs), 1.0)
-            }
-        };
-        strand.natural = rest.natural_per_m;
-        strand.stiffness_scale = scale;
-        Some(rest.status)
+        let stiff =
+            sag_free_stiffened(&params, SAMPLES_PER_ELEMENT, q, &inputs, &settings.stiffen).ok()?;
+        strand.natural = stiff.rest.natural_per_m;
+        strand.stiffness_scale = stiff.stiffness_scale;
+        Some(stiff.rest.status)
     });
     if strand
         .strains

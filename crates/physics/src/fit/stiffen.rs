@@ -64,6 +64,17 @@ impl Default for StiffenOptions {
     }
 }
 
+impl StiffenOptions {
+    /// No strand is stiffened (a cap of 1): [`sag_free_stiffened`] is then
+    /// the plain sag-free solve.
+    pub fn none() -> Self {
+        Self {
+            max_scale: 1.0,
+            ..Self::default()
+        }
+    }
+}
+
 /// A sag-free rest shape, stiffened where it had to be.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StiffenedRest {
