@@ -22,8 +22,8 @@ use glam::DVec3;
 use helixhair_formats::{Format, ReadOptions};
 use helixhair_physics::collision::ContactSettings;
 use helixhair_physics::engine::EngineKind;
-use helixhair_physics::fit::{FitOptions, StiffenOptions};
-use helixhair_physics::{SimSettings, StrandParams};
+use helixhair_physics::fit::{FitOptions, RestContact, StiffenOptions};
+use helixhair_physics::{RigidMotion, SimSettings, StrandParams};
 
 use crate::groom::head_collider;
 use crate::import_fit::{FitJob, FitOutcome, FitSettings, fit_all};
@@ -33,6 +33,11 @@ use crate::json_report::{summary_stream, write_json_report};
 use crate::style::{DEFAULT_REFERENCE, STYLE_VERSION, StrandGroup, Style};
 use crate::style_imported::ImportedStrands;
 use crate::work_progress::WorkProgress;
+
+/// The engine an imported style runs on: every strand of a groom
+/// simulated needs the batch engine's throughput. The sag-free rest shapes
+/// are solved for its contact law ([`RestContact`]).
+const IMPORTED_ENGINE: EngineKind = EngineKind::Batch;
 
 /// Largest groom file `import` reads, bytes (1 GiB): far above any public
 /// groom (Sintel's is 2.9 MB), below what would exhaust a desktop's memory
@@ -170,9 +175,15 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         options,
         material: &material,
         gravity_m_per_s2: (!args.no_sag_free).then_some(SimSettings::default().gravity_m_per_s2),
-        support: collider
-            .as_ref()
-            .map(|c| (c, ContactSettings::default().skin_m)),
+        support: collider.as_ref().map(|collider| {
+            RestContact::for_engine(
+                IMPORTED_ENGINE,
+                &SimSettings::default(),
+                ContactSettings::default(),
+                collider,
+                RigidMotion::default(),
+            )
+        }),
         stiffen: if args.no_stiffen {
             StiffenOptions::none()
         } else {
@@ -219,7 +230,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
             |s| s.to_string_lossy().into_owned(),
         ),
         sim: SimSettings::default(),
-        engine: EngineKind::Batch,
+        engine: IMPORTED_ENGINE,
         accuracy_target: None,
         groups: vec![StrandGroup {
             name: "imported".to_owned(),

@@ -9,9 +9,8 @@
 //! depends on nothing else: imports are reproducible.
 
 use glam::DVec3;
-use helixhair_physics::collision::SignedDistanceField;
 use helixhair_physics::fit::{
-    FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, StrandFit, Support,
+    FitError, FitOptions, RestContact, SagFreeInputs, SagFreeStatus, StiffenOptions, StrandFit,
     fit_polyline, sag_free_stiffened,
 };
 use helixhair_physics::{RigidMotion, StrandParams};
@@ -61,8 +60,9 @@ pub struct FitSettings<'a> {
     pub material: &'a StrandParams,
     /// Gravity for the sag-free solve; `None`: no sag-free.
     pub gravity_m_per_s2: Option<DVec3>,
-    /// The head as a support for sag-free, with its contact skin (metres).
-    pub support: Option<(&'a SignedDistanceField, f64)>,
+    /// The head as a support for sag-free, with the contact law of the
+    /// engine the style will run on.
+    pub support: Option<RestContact<'a>>,
     /// How strands whose sag-free equilibrium is unstable are stiffened
     /// ([`StiffenOptions::none`]: left as they are, to fall when simulated).
     pub stiffen: StiffenOptions,
@@ -120,15 +120,10 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
     let sag = settings.gravity_m_per_s2.and_then(|gravity| {
         let params = strand.params(settings.material);
         let root = RigidMotion::at_rest(fit.root_m, fit.chain.root_frame);
-        let head = RigidMotion::default();
         let inputs = SagFreeInputs {
             root: &root,
             gravity_m_per_s2: gravity,
-            support: settings.support.map(|(collider, skin_m)| Support {
-                collider,
-                head: &head,
-                skin_m,
-            }),
+            support: settings.support,
         };
         let q = &fit.chain.strains_per_m;
         let stiff =

@@ -49,6 +49,7 @@ use std::sync::Arc;
 
 use crate::batch::BatchSystem;
 use crate::collision::SignedDistanceField;
+use crate::fit::RestContact;
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::{
     Energies, HairSystem, HeadTrajectory, InteractionSettings, Method, ParamError, RigidMotion,
@@ -203,6 +204,32 @@ impl Engine {
             Self::Reference(system) => system.set_collider(collider),
             Self::Batch { system, .. } => system.set_collider(collider),
         }
+    }
+
+    /// The head's collider, if any.
+    pub fn collider(&self) -> Option<&Arc<SignedDistanceField>> {
+        match self {
+            Self::Reference(system) => system.collider(),
+            Self::Batch { system, .. } => system.collider(),
+        }
+    }
+
+    /// The head as a support for a strand at rest, with this engine's
+    /// contact law ([`RestContact`]): what "set current shape as rest"
+    /// solves the rest shape against. `None` without a collider.
+    pub fn rest_contact(&self) -> Option<RestContact<'_>> {
+        let contact = match self {
+            Self::Reference(system) => system.contact_settings(),
+            Self::Batch { system, .. } => system.contact_settings(),
+        };
+        let collider = self.collider()?;
+        Some(RestContact::for_engine(
+            self.kind(),
+            self.settings(),
+            contact,
+            collider,
+            *self.head(),
+        ))
     }
 
     /// Turns the hair–hair model ([`crate::volume`]) on, retunes it or

@@ -167,6 +167,11 @@ impl HairSystem {
         self.collider.as_ref()
     }
 
+    /// How hair meets the collider.
+    pub fn contact_settings(&self) -> ContactSettings {
+        self.contact
+    }
+
     /// Sets how hair meets the collider.
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
         self.contact = settings;

@@ -17,8 +17,10 @@
 //! the hair is then at rest in its equilibrium and stays put. The edit is
 //! one undo step.
 //!
-//! Where strands lie on the head, the head carries the weight pressing
-//! into it (the import's support, within the contact skin).
+//! Where strands lie on the head, the rest shape also holds them against
+//! the head's contact push where they are now, by the engine's own
+//! contact law ([`helixhair_physics::fit::rest_contact`]): the pose is then
+//! an exact equilibrium of the step, contact included.
 //!
 //! Limits: procedural groups with graded element layouts are refused (an
 //! imported strand has uniform elements). A pose is only kept if it is a
@@ -33,12 +35,9 @@
 //!
 //! [`HeadDriver::hold`]: super::head_motion::HeadDriver::hold
 
-use helixhair_physics::collision::{ContactSettings, SignedDistanceField};
 use helixhair_physics::engine::Engine;
 use helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE;
-use helixhair_physics::fit::{
-    SagFreeInputs, SagFreeStatus, StiffenOptions, Support, sag_free_stiffened,
-};
+use helixhair_physics::fit::{SagFreeInputs, SagFreeStatus, StiffenOptions, sag_free_stiffened};
 use helixhair_physics::{ElementLayout, RigidMotion};
 
 use crate::style::Style;
@@ -70,12 +69,11 @@ struct Frozen {
 }
 
 /// Strand `index` of `engine` frozen as it is now, resting on the head
-/// `collider` where it lies on it; stiffened if its equilibrium is
+/// where it lies on it; stiffened if its equilibrium is
 /// unstable, so that its whole scale (`scale_now` times the new factor)
 /// stays within the style's limit.
 fn rest_of(
     engine: &Engine,
-    collider: Option<&SignedDistanceField>,
     index: usize,
     scale_now: f64,
     counts: &mut RestCounts,
@@ -83,15 +81,10 @@ fn rest_of(
     let q = engine.q(index);
     let (root, _) = engine.kinematics(index);
     let root = RigidMotion::at_rest(root.position_m, root.world_from_body);
-    let head = RigidMotion::at_rest(engine.head().position_m, engine.head().world_from_body);
     let inputs = SagFreeInputs {
         root: &root,
         gravity_m_per_s2: engine.settings().gravity_m_per_s2,
-        support: collider.map(|collider| Support {
-            collider,
-            head: &head,
-            skin_m: ContactSettings::default().skin_m,
-        }),
+        support: engine.rest_contact(),
     };
     let model = engine.strand_model(index);
     let options = StiffenOptions {
@@ -117,11 +110,7 @@ fn rest_of(
 /// `grown` (the style as the engine was built from it: scalp placements
 /// grown into roots) with every simulated strand frozen in `engine`'s
 /// current shape as its rest shape.
-pub fn rest_style(
-    grown: &Style,
-    engine: &Engine,
-    collider: Option<&SignedDistanceField>,
-) -> Result<(Style, RestCounts), String> {
+pub fn rest_style(grown: &Style, engine: &Engine) -> Result<(Style, RestCounts), String> {
     let mut style = grown.clone();
     let mut counts = RestCounts::default();
     let mut index = 0;
@@ -135,7 +124,7 @@ pub fn rest_style(
         let element_length_m = group.params.length_m / group.params.elements as f64;
         let mut frozen = Vec::with_capacity(group.roots.len());
         for root in &group.roots {
-            let rest = rest_of(engine, collider, index, 1.0, &mut counts)?;
+            let rest = rest_of(engine, index, 1.0, &mut counts)?;
             index += 1;
             frozen.push(ImportedStrand {
                 root: *root,
@@ -148,7 +137,7 @@ pub fn rest_style(
         }
         if let Some(imported) = &mut group.imported {
             for strand in imported.strands.iter_mut().filter(|s| s.guide) {
-                let rest = rest_of(engine, collider, index, strand.stiffness_scale, &mut counts)?;
+                let rest = rest_of(engine, index, strand.stiffness_scale, &mut counts)?;
                 (strand.strains, strand.natural) = (rest.strains, rest.natural);
                 strand.stiffness_scale *= rest.stiffened_by;
                 index += 1;
@@ -185,9 +174,7 @@ impl AppState {
             self.message = Some("fix the style first: it is not being simulated".into());
             return;
         }
-        let collider = self.sim.collider().map(|c| c.field());
-        let (style, counts) = match rest_style(self.sim.grown_style(), self.sim.engine(), collider)
-        {
+        let (style, counts) = match rest_style(self.sim.grown_style(), self.sim.engine()) {
             Ok(done) => done,
             Err(e) => {
                 self.message = Some(format!("not set as rest: {e}"));

@@ -5,20 +5,25 @@ use glam::DVec3;
 use super::super::default_style::default_style;
 use super::*;
 
-/// Stiff short hair (radius 0.1 mm, 10 cm: ρSgL³/EI ≈ 1.3, so poses
-/// off the hanging one are stable equilibria once set as rest), its head
-/// turned and the hair still swinging after it.
+/// Frames the head turns for before the button is pressed: mid-turn, the
+/// hair lags behind the head, so its shape is far from the rest it had
+/// (stopped there with its old rest shape, it moves 12 mm).
+const POSE_FRAMES: usize = 5;
+
+/// Stiff short hair (radius 60 µm, 10 cm: ρSgL³/EI ≈ 3.6, so poses off
+/// the hanging one are stable equilibria once set as rest), caught while
+/// its head turns 1.2 rad and the hair swings after it.
 fn posed_app() -> AppState {
     let mut style = default_style(6);
     for g in &mut style.groups {
-        g.params.radius_m = 1e-4;
+        g.params.radius_m = 6e-5;
         g.params.length_m = 0.1;
         g.params.elements = 8;
     }
     let mut app = AppState::new(style, None).unwrap();
-    app.head.target.turn_rad = 0.6;
+    app.head.target.turn_rad = 1.2;
     app.head.target.offset_m = DVec3::new(0.0, 0.01, 0.0);
-    for _ in 0..40 {
+    for _ in 0..POSE_FRAMES {
         app.step_frame();
     }
     app
@@ -43,15 +48,7 @@ const WATCH_FRAMES: usize = 120;
 /// criterion for a groom holding its shape (issue 11).
 const HELD_M: f64 = 1e-3;
 
-// Known failure, not fixed (2026-11-24): of these 6 strands the 4 that
-// hang free stay within 1 µm, but the 2 lying on the head move 5.9 and
-// 6.1 mm in the first 20 frames and then stay; and the control below
-// moves only 0.01 mm (this stiff hair was already at rest after 40
-// frames), so the test does not yet pose hair that would move without
-// the button. Cause not found: it is not the sag-free solve's head
-// support (solved without it, the two drift 6.8 mm the same way).
 #[test]
-#[ignore = "known failure: strands resting on the head drift 6 mm after set as rest"]
 fn after_set_as_rest_the_hair_stays_put_on_a_still_head() {
     let mut app = posed_app();
     let before = app.doc.style().clone();

@@ -243,6 +243,11 @@ impl BatchSystem {
         self.collider.as_ref().map(|(field, _)| field)
     }
 
+    /// How hair meets the collider.
+    pub fn contact_settings(&self) -> ContactSettings {
+        self.contact
+    }
+
     /// Sets how hair meets the collider.
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
         self.contact = settings;

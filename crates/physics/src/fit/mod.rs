@@ -15,7 +15,8 @@
 //!    ([`FitOptions`]).
 //!
 //! [`sag_free`] then solves the natural strains q⁰ that make the fitted
-//! shape a static equilibrium under gravity (and the head's support), so
+//! shape a static equilibrium under gravity (and the head's contact push,
+//! by the law of the engine that will step it: [`rest_contact`]), so
 //! an imported groom keeps its shape instead of sagging, and
 //! [`sag_free_stiffened`] stiffens a strand whose equilibrium is unstable
 //! by the least that holds it. `docs/import.md` teaches all three with the
@@ -26,6 +27,7 @@
 pub mod curve;
 pub mod initial;
 pub mod refine;
+pub mod rest_contact;
 pub mod sag_free;
 pub mod stiffen;
 
@@ -33,7 +35,8 @@ use glam::DVec3;
 use thiserror::Error;
 
 pub use curve::UniformHelixChain;
-pub use sag_free::{SagFree, SagFreeInputs, SagFreeStatus, Support, sag_free};
+pub use rest_contact::{ContactPoints, RestContact};
+pub use sag_free::{SagFree, SagFreeInputs, SagFreeStatus, sag_free};
 pub use stiffen::{StiffenOptions, StiffenedRest, sag_free_stiffened, stiffness_scale_for_margin};
 
 /// How closely and with how many elements to fit.

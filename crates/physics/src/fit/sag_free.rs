@@ -12,13 +12,11 @@
 //! strains follow exactly, one element at a time: q⁰ = q − K⁻¹ Q(q). No
 //! iteration: this is the inverse of the statics problem, not the problem.
 //!
-//! Head support. Where the strand lies on the head (samples within the
-//! contact skin of the collider's surface) the head carries the part of
-//! the sample's weight that presses into it: the reaction −(ρS g·n) n is
-//! added wherever ρS g·n < 0, n the outward normal. The strand's
-//! stiffness then only has to hold the rest. In simulation the penalty
-//! contact supplies that reaction after sinking a little into the skin
-//! (`collision/contact.rs`), a fraction of a millimetre.
+//! Head support. Where the strand lies on the head, the head's contact
+//! pushes on it, and the rest shape must hold the shape against that push
+//! too: Q(q) then includes the contact's generalized force at rest,
+//! exactly as the engine that will hold the strand applies it
+//! ([`super::rest_contact`], which explains why nothing less will do).
 //!
 //! Two things can go wrong, and both are reported ([`SagFreeStatus`]):
 //!
@@ -42,29 +40,18 @@
 use glam::DVec3;
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use crate::collision::SignedDistanceField;
 use crate::forces::project_sample_forces;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::natural_shape::MAX_NATURAL_STRAIN_PER_M;
+
+use super::rest_contact::RestContact;
 use crate::reconstruct::{Kinematics, reconstruct};
 
 /// Step of the central differences of Q, m⁻¹: Q is smooth in q on the
 /// scale of the strains themselves (1–1000 m⁻¹), so the O(h²) error is
 /// ~1e-8 relative while round-off stays far below.
 const DIFFERENCE_STEP_PER_M: f64 = 1e-3;
-
-/// The head as a support: its surface and where it is.
-#[derive(Clone, Copy, Debug)]
-pub struct Support<'a> {
-    /// The head's signed distance field, head coordinates.
-    pub collider: &'a SignedDistanceField,
-    /// The head's pose (at rest).
-    pub head: &'a RigidMotion,
-    /// Samples closer to the surface than this rest on it, metres (the
-    /// contact skin, `ContactSettings::skin_m`).
-    pub skin_m: f64,
-}
 
 /// What the rest shape is solved for.
 #[derive(Clone, Copy, Debug)]
@@ -73,8 +60,8 @@ pub struct SagFreeInputs<'a> {
     pub root: &'a RigidMotion,
     /// Gravity, m/s².
     pub gravity_m_per_s2: DVec3,
-    /// The head, if the strand may rest on it.
-    pub support: Option<Support<'a>>,
+    /// The head and its contact law, if the strand may rest on it.
+    pub support: Option<RestContact<'a>>,
 }
 
 /// How the sag-free solve went for one strand.
@@ -105,46 +92,30 @@ pub struct SagFree {
     pub max_strain_per_m: f64,
 }
 
-/// The generalized gravity (plus head support) on shape `q`, N·m².
+/// The generalized gravity (plus the head's push at rest) on shape `q`,
+/// N·m².
 pub fn applied_forces(model: &StrandModel, q: &[DVec3], inputs: &SagFreeInputs) -> Vec<DVec3> {
-    let mut kin = Kinematics::default();
-    let v = vec![DVec3::ZERO; q.len()];
-    reconstruct(model, q, &v, inputs.root, &mut kin);
-    let weight = model.mass_per_length * inputs.gravity_m_per_s2;
-    let mut out = vec![DVec3::ZERO; q.len()];
-    project_sample_forces(
-        model,
-        &kin,
-        |i| {
-            let s = &kin.samples[i];
-            let world = inputs.root.position_m + s.position_m;
-            (weight + support_force(inputs.support.as_ref(), world, weight)) * s.weight_m
-        },
-        &mut out,
-    );
+    let kin = shape(model, q, inputs.root);
+    let mut out = gravity_load(model, &kin, inputs.gravity_m_per_s2);
+    if let Some(support) = &inputs.support {
+        support.add_load(model, &kin, inputs.root, &mut out);
+    }
     out
 }
 
-/// The head's reaction on a sample of weight `weight` (N/m) at `world`.
-fn support_force(support: Option<&Support>, world: DVec3, weight: DVec3) -> DVec3 {
-    let Some(support) = support else {
-        return DVec3::ZERO;
-    };
-    let head = support.head;
-    let local = head.world_from_body.transpose() * (world - head.position_m);
-    let Some((distance, gradient)) = support.collider.sample(local) else {
-        return DVec3::ZERO;
-    };
-    if distance >= support.skin_m || gradient == DVec3::ZERO {
-        return DVec3::ZERO;
-    }
-    let n = (head.world_from_body * gradient).normalize();
-    let pressing = weight.dot(n);
-    if pressing < 0.0 {
-        -pressing * n
-    } else {
-        DVec3::ZERO
-    }
+/// The shape `q` at rest on `root`.
+fn shape(model: &StrandModel, q: &[DVec3], root: &RigidMotion) -> Kinematics {
+    let mut kin = Kinematics::default();
+    reconstruct(model, q, &vec![DVec3::ZERO; q.len()], root, &mut kin);
+    kin
+}
+
+/// The generalized gravity on shape `kin`, N·m².
+fn gravity_load(model: &StrandModel, kin: &Kinematics, gravity_m_per_s2: DVec3) -> Vec<DVec3> {
+    let weight = model.mass_per_length * gravity_m_per_s2;
+    let mut out = vec![DVec3::ZERO; model.elements()];
+    project_sample_forces(model, kin, |i| weight * kin.samples[i].weight_m, &mut out);
+    out
 }
 
 /// Natural strains holding `q` (the fitted shape of a strand with `model`'s
@@ -181,7 +152,8 @@ pub fn sag_free(model: &StrandModel, q: &[DVec3], inputs: &SagFreeInputs) -> Sag
     }
 }
 
-/// Smallest eigenvalue of K^{-1/2}(K − ∂Q/∂q)K^{-1/2} at `q`.
+/// Smallest eigenvalue of K^{-1/2}(K − ∂Q/∂q)K^{-1/2} at `q`, the head's
+/// contact taken with its normals frozen at `q`.
 pub fn stability(model: &StrandModel, q: &[DVec3], inputs: &SagFreeInputs) -> f64 {
     let dim = 3 * q.len();
     let scale: Vec<f64> = model
@@ -190,14 +162,27 @@ pub fn stability(model: &StrandModel, q: &[DVec3], inputs: &SagFreeInputs) -> f6
         .flat_map(|k| k.to_array())
         .map(f64::sqrt)
         .collect();
+    // The contact's push with its normals frozen at q (see
+    // `RestContact::linearize`): differentiable where the exact one is not.
+    let springs = inputs
+        .support
+        .map(|support| support.linearize(model, &shape(model, q, inputs.root), inputs.root));
+    let smooth_forces = |q: &[DVec3]| {
+        let kin = shape(model, q, inputs.root);
+        let mut out = gravity_load(model, &kin, inputs.gravity_m_per_s2);
+        if let Some(springs) = &springs {
+            springs.add_load(model, &kin, inputs.root, &mut out);
+        }
+        out
+    };
     let mut h = DMatrix::<f64>::identity(dim, dim);
     let mut probe = q.to_vec();
     for col in 0..dim {
         let (e, c) = (col / 3, col % 3);
         probe[e][c] = q[e][c] + DIFFERENCE_STEP_PER_M;
-        let plus = applied_forces(model, &probe, inputs);
+        let plus = smooth_forces(&probe);
         probe[e][c] = q[e][c] - DIFFERENCE_STEP_PER_M;
-        let minus = applied_forces(model, &probe, inputs);
+        let minus = smooth_forces(&probe);
         probe[e][c] = q[e][c];
         for row in 0..dim {
             let dq =

@@ -1,0 +1,272 @@
+//! The head's push on a strand at rest, exactly as an engine's contact
+//! applies it: the head support of the sag-free solve.
+//!
+//! # Why the engine's own law
+//!
+//! A shape holds still in simulation only if it is a static equilibrium of
+//! the forces the engine applies, contact included. The head's contact is
+//! a penalty spring in a skin above the surface (`collision/contact.rs`):
+//! at rest a point at distance d < skin from the surface is pushed out by
+//! min(k (skin − d), ρS a_max) per unit length, k = α ρS / h². That push is
+//! set by where the point is, not by how much of its weight presses on the
+//! head. A strand posed on the head by the simulation sits at the depth
+//! where the spring balances everything that presses it there: its weight
+//! and its own elasticity bending it around the skull. An imported strand
+//! sits wherever the groom put it. Solving the rest shape for any other
+//! support (an earlier version assumed the head carried exactly the part
+//! of the weight pressing into it) leaves the spring's actual push
+//! unbalanced, and the strand moves until it balances: measured, 6 mm at
+//! the tips of stiff 10 cm hair frozen on the head in the window, where
+//! strands hanging free held to 1 µm.
+//!
+//! So the support is the engine's contact force at rest, in the shape:
+//!
+//! - **which law**: the implicit contact (α = `implicit_stiffness_ratio`)
+//!   where the engine steps it (the reference always; the batch engine on
+//!   Exact), the explicit penalty (α = `stiffness_ratio`) on the batch
+//!   engine's Block-diagonal; h is the engine's step, dt / substeps;
+//! - **where it acts**: at every quadrature sample on the reference; at
+//!   each element's end point on the batch engine, carrying the force of
+//!   the half of each element beside it ([`crate::batch::contact`]).
+//!
+//! Solved this way, the shape is an equilibrium of that engine's step
+//! exactly; another engine's contact differs by the points it pushes on,
+//! which the rest shape is not solved for.
+
+use glam::DVec3;
+
+use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
+use crate::engine::EngineKind;
+use crate::forces::{project_end_point_forces, project_sample_forces};
+use crate::model::StrandModel;
+use crate::motion::RigidMotion;
+use crate::reconstruct::Kinematics;
+use crate::settings::{Method, SimSettings};
+
+/// Where an engine's head contact pushes on a strand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactPoints {
+    /// Every quadrature sample (the f64 reference).
+    Samples,
+    /// Each element's end point, for the half of each element beside it
+    /// (the batch engine).
+    ElementEnds,
+}
+
+/// The head as a support: its surface, where it is, and the contact law
+/// of the engine that will hold the strand.
+#[derive(Clone, Copy, Debug)]
+pub struct RestContact<'a> {
+    /// The head's signed distance field, head coordinates.
+    pub collider: &'a SignedDistanceField,
+    /// The head's pose (at rest).
+    pub head: RigidMotion,
+    /// The contact's settings (skin, stiffness ratios, cap).
+    pub settings: ContactSettings,
+    /// The engine's step h, seconds (k = α ρS / h²).
+    pub h_secs: f64,
+    /// Whether the engine steps the contact implicitly (α =
+    /// `implicit_stiffness_ratio`) or explicitly (α = `stiffness_ratio`).
+    pub implicit: bool,
+    /// Where the engine pushes.
+    pub points: ContactPoints,
+}
+
+impl<'a> RestContact<'a> {
+    /// The contact of engine `kind` stepping with `settings` and `contact`
+    /// against `collider` on a head at rest at `head_position_m` and
+    /// `world_from_head`.
+    pub fn for_engine(
+        kind: EngineKind,
+        settings: &SimSettings,
+        contact: ContactSettings,
+        collider: &'a SignedDistanceField,
+        head: RigidMotion,
+    ) -> Self {
+        let (implicit, points) = match kind {
+            EngineKind::Reference => (true, ContactPoints::Samples),
+            EngineKind::Batch => (
+                settings.method != Method::BlockDiagonal,
+                ContactPoints::ElementEnds,
+            ),
+        };
+        Self {
+            collider,
+            head: RigidMotion::at_rest(head.position_m, head.world_from_body),
+            settings: contact,
+            h_secs: settings.dt_secs / f64::from(settings.substeps.max(1)),
+            implicit,
+            points,
+        }
+    }
+
+    /// The push per unit length (N/m) at rest on a point at `world_m` of a
+    /// strand of mass per length `rho_s`; zero out of the skin.
+    pub fn push_n_per_m(&self, world_m: DVec3, rho_s: f64) -> DVec3 {
+        let inputs = ContactInputs {
+            collider: self.collider,
+            head: &self.head,
+            settings: self.settings,
+            h_secs: self.h_secs,
+        };
+        if self.implicit {
+            inputs
+                .implicit_force(world_m, DVec3::ZERO, rho_s)
+                .map_or(DVec3::ZERO, |c| c.force_n_per_m)
+        } else {
+            inputs.force(world_m, DVec3::ZERO, rho_s)
+        }
+    }
+
+    /// Adds the generalized contact force on the strand in shape `kin`
+    /// (reconstructed at rest from `root`) to `out`, N·m².
+    pub fn add_load(
+        &self,
+        model: &StrandModel,
+        kin: &Kinematics,
+        root: &RigidMotion,
+        out: &mut [DVec3],
+    ) {
+        let rho_s = model.mass_per_length;
+        project(
+            self.points,
+            model,
+            kin,
+            root,
+            |_, world_m| self.push_n_per_m(world_m, rho_s),
+            out,
+        );
+    }
+
+    /// The contact in shape `kin` as springs with frozen normals: the
+    /// smooth part of its derivative, for the stability test. The signed
+    /// distance field's gradient is piecewise (its grid's cells), so the
+    /// exact push is not differentiable where a point sits on a cell face;
+    /// freezing the normal drops only the surface's curvature, of relative
+    /// size depth / radius (~1e-2 on a head).
+    pub fn linearize(&self, model: &StrandModel, kin: &Kinematics, root: &RigidMotion) -> Springs {
+        let rho_s = model.mass_per_length;
+        let alpha = if self.implicit {
+            self.settings.implicit_stiffness_ratio
+        } else {
+            self.settings.stiffness_ratio
+        };
+        let stiffness = alpha * rho_s / (self.h_secs * self.h_secs);
+        let cap = rho_s * self.settings.max_acceleration_m_per_s2;
+        let count = match self.points {
+            ContactPoints::Samples => kin.samples.len(),
+            ContactPoints::ElementEnds => model.elements(),
+        };
+        let mut springs = vec![Spring::default(); count];
+        project(
+            self.points,
+            model,
+            kin,
+            root,
+            |i, world_m| {
+                let push = self.push_n_per_m(world_m, rho_s);
+                let magnitude = push.length();
+                if magnitude > 0.0 {
+                    springs[i] = Spring {
+                        at_m: world_m,
+                        normal: push / magnitude,
+                        push_n_per_m: magnitude,
+                        // Capped, the push does not change with depth.
+                        stiffness_n_per_m2: if magnitude < cap { stiffness } else { 0.0 },
+                    };
+                }
+                push
+            },
+            &mut vec![DVec3::ZERO; model.elements()],
+        );
+        Springs {
+            points: self.points,
+            springs,
+        }
+    }
+}
+
+/// One point's contact frozen about a shape.
+#[derive(Clone, Copy, Debug, Default)]
+struct Spring {
+    /// Where the point was, world, metres.
+    at_m: DVec3,
+    /// The push's direction there.
+    normal: DVec3,
+    /// The push there, N/m (zero: out of contact).
+    push_n_per_m: f64,
+    /// How fast the push grows as the point moves in along the normal,
+    /// N/m².
+    stiffness_n_per_m2: f64,
+}
+
+/// The head's contact linearized about a shape ([`RestContact::linearize`]).
+#[derive(Clone, Debug)]
+pub struct Springs {
+    points: ContactPoints,
+    springs: Vec<Spring>,
+}
+
+impl Springs {
+    /// Adds the linearized contact's generalized force on shape `kin`
+    /// (reconstructed at rest from `root`) to `out`, N·m².
+    pub fn add_load(
+        &self,
+        model: &StrandModel,
+        kin: &Kinematics,
+        root: &RigidMotion,
+        out: &mut [DVec3],
+    ) {
+        project(
+            self.points,
+            model,
+            kin,
+            root,
+            |i, world_m| {
+                let s = &self.springs[i];
+                let inward_m = -s.normal.dot(world_m - s.at_m);
+                s.normal * (s.push_n_per_m + s.stiffness_n_per_m2 * inward_m)
+            },
+            out,
+        );
+    }
+}
+
+/// Adds to `out` the generalized force of `force_n_per_m(point, world_m)`
+/// acting at `points`: per unit length at each quadrature sample (point =
+/// sample index) or, for the half of each element beside it, at each
+/// element's end point (point = element index).
+fn project(
+    points: ContactPoints,
+    model: &StrandModel,
+    kin: &Kinematics,
+    root: &RigidMotion,
+    mut force_n_per_m: impl FnMut(usize, DVec3) -> DVec3,
+    out: &mut [DVec3],
+) {
+    let mut load = vec![DVec3::ZERO; out.len()];
+    match points {
+        ContactPoints::Samples => {
+            let forces: Vec<DVec3> = (0..kin.samples.len())
+                .map(|i| {
+                    let s = &kin.samples[i];
+                    force_n_per_m(i, root.position_m + s.position_m) * s.weight_m
+                })
+                .collect();
+            project_sample_forces(model, kin, |i| forces[i], &mut load);
+        }
+        ContactPoints::ElementEnds => {
+            let forces: Vec<DVec3> = (0..model.elements())
+                .map(|e| {
+                    let beside_m = 0.5
+                        * (model.lengths_m[e] + model.lengths_m.get(e + 1).copied().unwrap_or(0.0));
+                    force_n_per_m(e, root.position_m + kin.points_m[e + 1]) * beside_m
+                })
+                .collect();
+            project_end_point_forces(model, kin, |e| forces[e], &mut load);
+        }
+    }
+    for (o, l) in out.iter_mut().zip(load) {
+        *o += l;
+    }
+}
