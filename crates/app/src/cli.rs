@@ -5,24 +5,28 @@
 
 use std::io::Write;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 use helixhair_physics::engine::EngineKind;
 use helixhair_physics::settings::MAX_ITERATIONS;
 use helixhair_physics::{Method, StepScheme};
+use helixhair_render::obj::load_mesh_obj;
 
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
 use crate::engine_arg::{parse_engine, parse_interaction};
 use crate::export_cmd::{SimExport, SimExportArgs, run_export, terminal_progress};
 use crate::frame_stepper::FrameStepper;
+use crate::groom::{head_collider, needs_head};
 use crate::head_clip::Clip;
 use crate::head_playback::{Playback, parse_play};
 use crate::headless::{HeadlessSim, SimOverrides};
 use crate::json_report::{summary_stream, write_json_report};
 use crate::sim_report::{SimReport, refuse_lost_strands};
 use crate::style::Style;
+use crate::style_head::{head_pivot_m, style_head_path};
 use crate::tip_trajectories::Tracked;
 #[cfg(feature = "window")]
 use crate::window::{WindowArgs, run_window};
@@ -215,6 +219,14 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;
+    if let Some(head) = style_head_path(&style, &args.style).filter(|_| !needs_head(&style)) {
+        // An imported groom rests on and turns with its own head.
+        let mesh = load_mesh_obj(&head)?;
+        let collider = head_collider(&mesh)
+            .with_context(|| format!("cannot build the collision field of {}", head.display()))?;
+        sim.engine_mut().set_collider(Some(Arc::new(collider)));
+        sim.set_head_pivot(head_pivot_m(&style));
+    }
     if let Some(play) = &args.play {
         sim.play_motion(play.load()?);
     }

@@ -121,6 +121,17 @@ impl HeadTrajectory for ClipTrajectory {
     }
 }
 
+/// A head pose (world from head, position) turned about `pivot_m` instead
+/// of the origin: the clips and motion files turn the head about the
+/// origin of head coordinates, which is the default head's skull; an
+/// imported groom's head stands wherever its file put it (Sintel's bust
+/// 1.5 m up), so its motion turns about its own pivot
+/// ([`crate::style_head::head_pivot_m`]). A head point y goes to
+/// o + c + R (y − c) = (o + c − R c) + R y: same rotation, shifted.
+pub fn about_pivot((rotation, offset_m): (DMat3, DVec3), pivot_m: DVec3) -> (DMat3, DVec3) {
+    (rotation, offset_m + pivot_m - rotation * pivot_m)
+}
+
 /// The head's motion at `t_secs` from its pose (world from head, position)
 /// as a function of time: velocities and accelerations by central
 /// differences over ±[`DIFF_SECS`].

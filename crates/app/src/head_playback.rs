@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use glam::{DMat3, DVec3};
 use helixhair_physics::{HeadTrajectory, RigidMotion};
 
-use crate::head_clip::{Clip, ClipTrajectory};
+use crate::head_clip::{Clip, ClipTrajectory, about_pivot, motion_from_pose};
 use crate::motion_file::{Motion, MotionError, MotionTrajectory};
 
 /// A head motion as the command line names it.
@@ -85,6 +85,26 @@ impl HeadTrajectory for HeadPlayback {
             HeadPlayback::Clip(clip) => clip.motion_at(t_secs),
             HeadPlayback::Motion(motion) => motion.motion_at(t_secs),
         }
+    }
+}
+
+/// A playback turning the head about `pivot_m` ([`about_pivot`]).
+pub struct PivotedPlayback<'a> {
+    /// The playback.
+    pub playback: &'a HeadPlayback,
+    /// The pivot, world coordinates at rest, metres.
+    pub pivot_m: DVec3,
+}
+
+impl HeadTrajectory for PivotedPlayback<'_> {
+    fn motion_at(&self, t_secs: f64) -> RigidMotion {
+        if self.pivot_m == DVec3::ZERO {
+            return self.playback.motion_at(t_secs);
+        }
+        motion_from_pose(
+            |t| about_pivot(self.playback.pose_at(t), self.pivot_m),
+            t_secs,
+        )
     }
 }
 

@@ -24,6 +24,7 @@
 use std::ops::Range;
 use std::time::Instant;
 
+use glam::DVec3;
 use helixhair_physics::engine::{Engine, EngineKind};
 use helixhair_physics::{
     GuardAction, GuardEvent, HairSystem, Method, ParamError, RigidMotion, StepScheme,
@@ -36,7 +37,7 @@ use crate::error_model::ErrorModel;
 use crate::field_path::FieldPath;
 use crate::groom::{grow_scalp_roots, needs_head};
 use crate::head_clip::{Clip, ClipTrajectory};
-use crate::head_playback::HeadPlayback;
+use crate::head_playback::{HeadPlayback, PivotedPlayback};
 use crate::style::Style;
 use crate::style_error::StyleIssue;
 use crate::style_imported::ImportedStrands;
@@ -125,6 +126,8 @@ pub struct HeadlessSim {
     group_of_strand: Vec<usize>,
     head: RigidMotion,
     clip: Option<HeadPlayback>,
+    /// The point the head turns about ([`crate::style_head`]), metres.
+    head_pivot_m: DVec3,
     strands_lost: usize,
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
@@ -160,6 +163,17 @@ impl HeadlessSim {
     /// (the window's clips; `helixhair sim --play`).
     pub fn play(&mut self, clip: Clip) {
         self.clip = Some(HeadPlayback::Clip(ClipTrajectory(clip)));
+    }
+
+    /// Turns the played head about `pivot_m` (world, metres) instead of
+    /// the origin: an imported groom's head ([`crate::style_head`]).
+    pub fn set_head_pivot(&mut self, pivot_m: DVec3) {
+        self.head_pivot_m = pivot_m;
+    }
+
+    /// The point the played head turns about, metres.
+    pub fn head_pivot_m(&self) -> DVec3 {
+        self.head_pivot_m
     }
 
     /// Plays a clip or a motion file on the head from time zero, then
@@ -286,6 +300,7 @@ impl HeadlessSim {
             group_of_strand,
             head: RigidMotion::default(),
             clip: None,
+            head_pivot_m: DVec3::ZERO,
             strands_lost: 0,
             choices,
             guard_events: Vec::new(),
@@ -337,7 +352,10 @@ impl HeadlessSim {
     pub fn step(&mut self) -> f64 {
         let start = Instant::now();
         match &self.clip {
-            Some(clip) => self.engine.step_frame(clip),
+            Some(playback) => self.engine.step_frame(&PivotedPlayback {
+                playback,
+                pivot_m: self.head_pivot_m,
+            }),
             None => self.engine.step_frame(&self.head),
         }
         let secs = start.elapsed().as_secs_f64();

@@ -81,6 +81,7 @@ pub mod style_checks;
 pub mod style_error;
 pub mod style_groom;
 pub mod style_groom_validate;
+pub mod style_head;
 pub mod style_imported;
 pub mod style_imported_validate;
 pub mod style_root;

@@ -36,6 +36,7 @@ use crate::sim_report::refuse_lost_strands;
 use crate::source_map::SourceMap;
 use crate::style::Style;
 use crate::style_error::{StyleError, StyleErrorKind};
+use crate::style_head::{head_pivot_m, style_head_path};
 
 /// Largest picture side, pixels.
 pub const MAX_SIDE_PX: u32 = 8192;
@@ -222,19 +223,26 @@ pub fn grown_sim(
     overrides: SimOverrides,
 ) -> anyhow::Result<(Groom, HeadlessSim)> {
     let style = Style::load(style_path)?;
+    // Without `--head`, an imported groom's own head (`imported.head`).
+    let head = head
+        .map(Path::to_path_buf)
+        .or_else(|| style_head_path(&style, style_path));
+    let head = head.as_deref();
     // A style that grows no hair on the scalp (an imported groom brings its
     // own roots) takes any mesh as its head, every face scalp when it has
     // no `scalp` group.
+    let own_head = head.is_some() && !crate::groom::needs_head(&style);
     let head_mesh = match head {
-        Some(path) if !crate::groom::needs_head(&style) => {
-            helixhair_render::obj::load_mesh_obj(path)?
-        }
+        Some(path) if own_head => helixhair_render::obj::load_mesh_obj(path)?,
         path => load_head(path)?,
     };
     let groom = Groom::new(style, head_mesh);
     check_placements(&groom, style_path, head)?;
     let mut sim = HeadlessSim::new(&groom.grown, overrides)
         .with_context(|| format!("cannot simulate {}", style_path.display()))?;
+    if own_head {
+        sim.set_head_pivot(head_pivot_m(&groom.grown));
+    }
     let collider = groom
         .collider()
         .context("cannot build the head's collision field")?;
@@ -259,7 +267,7 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;
     let mut camera: OrbitCamera = args.camera.camera();
-    if args.head.is_some() && !crate::groom::needs_head(&groom.style) {
+    if sim.head_pivot_m() != glam::DVec3::ZERO {
         // An imported groom's head need not sit at the origin (Sintel's
         // bust stands 1.4 m up): aim at the middle of its hair instead.
         let hair = guide_curves(sim.engine());

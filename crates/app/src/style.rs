@@ -153,10 +153,11 @@ impl Style {
         })
     }
 
-    /// Total number of listed roots over all groups (scalp placements not
-    /// counted: they need a head, see [`crate::groom`]).
+    /// Strands the simulation runs over all groups: listed roots and
+    /// imported guides (scalp placements not counted: they need a head,
+    /// see [`crate::groom`]).
     pub fn strand_count(&self) -> usize {
-        self.groups.iter().map(|g| g.roots.len()).sum()
+        self.groups.iter().map(StrandGroup::simulated_count).sum()
     }
 }
 

@@ -65,6 +65,8 @@ pub struct AppState {
     pub head: HeadDriver,
     /// The head mesh, head coordinates.
     pub head_mesh: Arc<HeadMesh>,
+    /// The file `head_mesh` came from (`None`: the default head).
+    pub head_path: Option<PathBuf>,
     /// Live numbers.
     pub readouts: Readouts,
     /// Physics paused.
@@ -107,12 +109,13 @@ impl AppState {
             message = Some(format!("{e:#}"));
             Vec::new()
         });
-        Ok(Self {
+        let mut app = Self {
             doc,
             sim,
             compare: None,
             head: HeadDriver::default(),
             head_mesh,
+            head_path: None,
             readouts: Readouts::default(),
             paused: false,
             invalid: None,
@@ -123,7 +126,9 @@ impl AppState {
             leaving: None,
             quit: false,
             guard: GuardStatus::default(),
-        })
+        };
+        app.adopt_head();
+        Ok(app)
     }
 
     /// Simulated time, seconds.
@@ -169,6 +174,7 @@ impl AppState {
             Ok(()) => Some(format!("loaded {}", path.display())),
             Err(e) => Some(e.to_string()),
         };
+        self.adopt_head();
     }
 
     /// Saves the style (to `path`, or its file).

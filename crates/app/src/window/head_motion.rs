@@ -37,7 +37,7 @@ use crate::head_playback::HeadPlayback;
 pub const FOLLOW_RAD_PER_S: f64 = 12.0;
 
 pub use crate::head_clip::Clip;
-use crate::head_clip::motion_from_pose;
+use crate::head_clip::{about_pivot, motion_from_pose};
 
 /// The user's pose: turn about the vertical, tilt about the sideways axis,
 /// and an offset.
@@ -89,6 +89,9 @@ pub struct HeadDriver {
     clip: Playing,
     /// The head's poses being recorded, while recording.
     pub recorder: Option<MotionRecorder>,
+    /// The point the head turns about, world, metres: the origin for the
+    /// default head, an imported head's own ([`crate::style_head`]).
+    pub pivot_m: DVec3,
 }
 
 impl HeadDriver {
@@ -128,6 +131,7 @@ impl HeadDriver {
             rate: self.rate,
             accel,
             clip: self.clip.clone(),
+            pivot_m: self.pivot_m,
         }
     }
 
@@ -170,10 +174,13 @@ pub struct FrameHead {
     rate: [f64; 5],
     accel: [f64; 5],
     clip: Playing,
+    pivot_m: DVec3,
 }
 
 impl FrameHead {
-    /// Rotation (world from head) and position of the head at `t_secs`.
+    /// Rotation (world from head) and position of the head at `t_secs`,
+    /// turning about the origin (as motion files record it; the
+    /// simulation's motion turns it about the pivot).
     pub fn pose_at(&self, t_secs: f64) -> (DMat3, DVec3) {
         let dt = t_secs - self.start_secs;
         let manual = ManualPose::from_array(std::array::from_fn(|i| {
@@ -192,7 +199,7 @@ impl FrameHead {
 
 impl HeadTrajectory for FrameHead {
     fn motion_at(&self, t_secs: f64) -> RigidMotion {
-        motion_from_pose(|t| self.pose_at(t), t_secs)
+        motion_from_pose(|t| about_pivot(self.pose_at(t), self.pivot_m), t_secs)
     }
 }
 

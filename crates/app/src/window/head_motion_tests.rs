@@ -19,6 +19,7 @@ fn differences_match_an_analytic_oscillation() {
         rate: [0.0; 5],
         accel: [0.0; 5],
         clip: None,
+        pivot_m: DVec3::ZERO,
     };
     for t in [0.05, 0.2, 0.31] {
         let want = reference.motion_at(t);

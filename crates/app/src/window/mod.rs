@@ -47,6 +47,7 @@ pub mod file_picker;
 pub mod frame_profile;
 pub mod guard_status;
 pub mod head_motion;
+pub mod head_of_style;
 pub mod import_job;
 pub mod interaction_panel;
 pub mod job;

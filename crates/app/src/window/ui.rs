@@ -8,6 +8,7 @@
 //! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, F frame the head, Space pause.
 
 use egui::{Key, Modifiers, PointerButton, Sense, Ui};
+use glam::DVec3;
 use helixhair_render::OrbitCamera;
 
 use super::app_state::AppState;
@@ -41,13 +42,16 @@ pub struct ViewState {
     pub open_groups: Option<bool>,
     /// The File menu's dialogs and jobs.
     pub files: FileWindows,
+    /// The head pivot the camera was last framed on: a style with another
+    /// head reframes it.
+    pub framed_on_m: DVec3,
 }
 
 impl ViewState {
     /// A view framing the head, for a style with `guides` strands.
     pub fn new(guides: usize) -> Self {
         Self {
-            camera: framed_camera(),
+            camera: framed_camera(DVec3::ZERO),
             textures: [None, None],
             view_px: [1, 1],
             picker: None,
@@ -55,12 +59,17 @@ impl ViewState {
             guides,
             open_groups: None,
             files: FileWindows::default(),
+            framed_on_m: DVec3::ZERO,
         }
     }
 }
 
 /// Draws the whole window for one frame.
 pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    if view.framed_on_m != app.head.pivot_m {
+        view.framed_on_m = app.head.pivot_m;
+        view.camera = framed_camera(view.framed_on_m);
+    }
     shortcuts(ui.ctx(), app, view);
     egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, app, view));
     egui::Panel::bottom("messages").show(ui, |ui| {
@@ -138,7 +147,7 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
             view.picker = Some(open_picker(app, PickerMode::Open));
         }
         if !typing && i.consume_key(Modifiers::NONE, Key::F) {
-            view.camera = framed_camera();
+            view.camera = framed_camera(app.head.pivot_m);
         }
         if !typing && i.consume_key(Modifiers::NONE, Key::Space) {
             app.paused = !app.paused;

@@ -31,9 +31,13 @@ const ORBIT_RAD_PER_PT: f32 = 0.008;
 /// Head turn speed under Alt-drag, radians per point.
 const HEAD_TURN_RAD_PER_PT: f64 = 0.006;
 
-/// A camera that frames the head and its hair from a three-quarter view.
-pub fn framed_camera() -> OrbitCamera {
-    OrbitCamera::default()
+/// A camera that frames the head and its hair from a three-quarter view,
+/// the head turning about `pivot_m` (the origin for the default head;
+/// [`crate::style_head`]).
+pub fn framed_camera(pivot_m: DVec3) -> OrbitCamera {
+    let mut camera = OrbitCamera::default();
+    camera.target_m += pivot_m.as_vec3();
+    camera
 }
 
 /// Pans `camera` by a drag of (`dx`, `dy`) points in a view `height_pt`
