@@ -7,7 +7,8 @@
 //! the head as a collider, records every simulated strand's element
 //! boundary points, steps FRAMES frames of 1/60 s on a still head and
 //! prints the distances points moved (median, p95, p99, max, and how many
-//! moved more than 1 mm), and the median
+//! moved more than 1 mm; the strands that moved most; the guard's
+//! resets), and the median
 //! and 90th-percentile wall time of a frame.
 
 use std::path::Path;
@@ -34,6 +35,27 @@ fn main() -> anyhow::Result<()> {
         .map(|i| sim.engine().boundary_points_world(i))
         .collect();
     let mut secs = sim.run(frames)?;
+    // The strands that moved most, to look at by hand.
+    let mut worst: Vec<(f64, usize)> = (0..count)
+        .map(|i| {
+            let now = sim.engine().boundary_points_world(i);
+            let far = start[i]
+                .iter()
+                .zip(now)
+                .map(|(a, b)| (*a - b).length())
+                .fold(0.0, f64::max);
+            (far, i)
+        })
+        .collect();
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for (far, i) in worst.iter().take(5).filter(|(far, _)| *far > 1e-3) {
+        println!(
+            "strand {i}: moved up to {:.3} mm, {} elements",
+            1e3 * far,
+            sim.engine().q(*i).len()
+        );
+    }
+    println!("guard: {} strands reset or pinned", sim.strands_lost());
     let mut moved: Vec<f64> = (0..count)
         .flat_map(|i| {
             let now = sim.engine().boundary_points_world(i);
