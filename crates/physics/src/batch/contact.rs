@@ -84,8 +84,9 @@
 use glam::{DMat3, DVec3, Vec3};
 
 use super::forward::FrameState;
+use super::lane_model::LaneModel;
 use super::lanes::{LANES, Real};
-use super::layout::{BatchModel, ElementData};
+use super::layout::ElementData;
 use super::vec::V3;
 use crate::collision::{ContactInputs, SignedDistanceField};
 
@@ -209,8 +210,7 @@ pub struct LaneContact<'a> {
     inputs: ContactInputs<'a>,
     near: &'a NearCells,
     root_positions_m: [DVec3; LANES],
-    lengths_m: &'a [f32],
-    mass_per_length: f64,
+    model: &'a LaneModel,
     /// The head's frame transposed: world offsets to head coordinates.
     body_from_world: DMat3,
     /// Whether the contact is implicit (Exact) or the explicit penalty.
@@ -218,7 +218,8 @@ pub struct LaneContact<'a> {
 }
 
 impl<'a> LaneContact<'a> {
-    /// Contact for a batch of `model`'s strands whose lane i is rooted at
+    /// Contact for a batch of strands (lane i's constants: lane i of
+    /// `model`) whose lane i is rooted at
     /// `root_positions_m[i]` (world, metres, at the step's start).
     /// `near` must be [`NearCells::new`] of the inputs' collider and skin.
     /// `implicit`: the Exact steps' implicit contact (see the module docs);
@@ -226,7 +227,7 @@ impl<'a> LaneContact<'a> {
     pub fn new(
         inputs: ContactInputs<'a>,
         near: &'a NearCells,
-        model: &'a BatchModel,
+        model: &'a LaneModel,
         root_positions_m: [DVec3; LANES],
         implicit: bool,
     ) -> Self {
@@ -234,8 +235,7 @@ impl<'a> LaneContact<'a> {
             inputs,
             near,
             root_positions_m,
-            lengths_m: &model.lengths_m,
-            mass_per_length: f64::from(model.mass_per_length),
+            model,
             body_from_world: inputs.head.world_from_body.transpose(),
             implicit,
         }
@@ -272,10 +272,12 @@ impl<'a> LaneContact<'a> {
                 .cross(point_m - head.position_m)
     }
 
-    /// The length element `e`'s end point stands for, metres.
-    fn point_length_m(&self, e: usize) -> f64 {
-        let next = self.lengths_m.get(e + 1).copied().unwrap_or(0.0);
-        0.5 * f64::from(self.lengths_m[e] + next)
+    /// The length element `e`'s end point stands for in lane `lane`,
+    /// metres.
+    fn point_length_m(&self, e: usize, lane: usize) -> f64 {
+        let lengths = &self.model.lengths_m;
+        let next = lengths.get(e + 1).map_or(0.0, |l| l.lane(lane));
+        0.5 * f64::from(lengths[e].lane(lane) + next)
     }
 }
 
@@ -287,7 +289,6 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
         end: &FrameState<T>,
         el: &mut ElementData<T>,
     ) {
-        let length_m = self.point_length_m(e);
         let lane_vec = |x: &V3<T>, i: usize| Vec3::new(x.x.lane(i), x.y.lane(i), x.z.lane(i));
         // Implicit contact needs the elimination's frame at the end point.
         let implicit = self.implicit && LOCAL;
@@ -309,7 +310,8 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
             if !(self.may_touch(point_m) || implicit && self.may_touch(headed)) {
                 continue;
             }
-            let rho_s = self.mass_per_length;
+            let rho_s = f64::from(self.model.mass_per_length.lane(i));
+            let length_m = self.point_length_m(e, i);
             if implicit {
                 if let Some(push) = self.inputs.implicit_force(point_m, velocity, rho_s) {
                     *force = (push.force_n_per_m * length_m).as_vec3();
