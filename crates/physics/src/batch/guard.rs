@@ -39,8 +39,8 @@ use super::geometry::local_point;
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
+use super::near_cells::SkinTest;
 use super::vec::V3;
-use crate::collision::ContactInputs;
 use crate::frame_balance::StrandMeasure;
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
@@ -83,7 +83,7 @@ pub fn measure_lanes(
     motions: &[RigidMotion; LANES],
     q: &[V3<Lanes>],
     v: &[V3<Lanes>],
-    contact: Option<&ContactInputs<'_>>,
+    contact: Option<&SkinTest<'_>>,
 ) -> [StrandMeasure; LANES] {
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
@@ -142,19 +142,23 @@ pub fn measure_lanes(
                 };
                 let point = pick(s.point_m);
                 let velocity = pick(s.point_velocity);
-                // The implicit push: where it acts is where the Exact
-                // steps' contact acts, and a superset of where the
-                // explicit penalty does (only "is there contact" and the
-                // balance's external terms use it).
+                let world = motions[lane].position_m + point;
+                // Screened as the step screens (exact: a rejected point
+                // has no force), then the implicit push: where it acts is
+                // where the Exact steps' contact acts, and a superset of
+                // where the explicit penalty does (only "is there contact"
+                // and the balance's external terms use it).
+                if !contact.may_feel(world, velocity, true) {
+                    continue;
+                }
                 let f = contact
-                    .implicit_force(
-                        motions[lane].position_m + point,
-                        velocity,
-                        f64::from(rho_s.lane(lane)),
-                    )
+                    .inputs
+                    .implicit_force(world, velocity, f64::from(rho_s.lane(lane)))
                     .map_or(DVec3::ZERO, |c| c.force_n_per_m)
                     * f64::from(0.5 * share.lane(lane));
-                list.push((point, velocity, f));
+                if f != DVec3::ZERO {
+                    list.push((point, velocity, f));
+                }
             }
         }
     }
@@ -176,9 +180,7 @@ pub fn measure_lanes(
             external_power_w: x(power),
             contact_power_w: 0.0,
             contact_j: 0.0,
-            in_contact: contact_force[lane]
-                .iter()
-                .any(|(_, _, f)| *f != DVec3::ZERO),
+            in_contact: !contact_force[lane].is_empty(),
             root_velocity_m_per_s: motion.velocity_m_per_s,
             root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
             root_acceleration_m_per_s2: motion.acceleration_m_per_s2,

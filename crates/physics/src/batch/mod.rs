@@ -98,6 +98,7 @@ pub mod implicit;
 pub mod lane_model;
 pub mod lanes;
 pub mod layout;
+pub mod near_cells;
 pub mod suffix;
 mod system;
 pub mod vec;

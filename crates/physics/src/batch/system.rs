@@ -23,7 +23,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 use super::block_diagonal::step_block_diagonal_with;
-use super::contact::{EndPointForce, LaneContact, NearCells, NoContact};
+use super::contact::{EndPointForce, LaneContact, NearCells, NoContact, SkinTest};
 use super::exact::{Elimination, step_exact_with};
 use super::forward::{FrameState, advance};
 use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
@@ -343,7 +343,7 @@ impl BatchSystem {
         let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
             Some(_) => {
                 let motion = head.motion_at(start_secs);
-                let contact = contact_inputs(&self.collider, self.contact, &motion, h);
+                let contact = contact_test(&self.collider, self.contact, &motion, h);
                 let parallel = self.parallel;
                 self.groups
                     .iter_mut()
@@ -357,15 +357,7 @@ impl BatchSystem {
         };
         for _ in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
-            let contact = self.collider.as_ref().map(|(collider, near)| {
-                let inputs = ContactInputs {
-                    collider,
-                    head: &motion,
-                    settings: self.contact,
-                    h_secs: h,
-                };
-                (inputs, near)
-            });
+            let contact = contact_test(&self.collider, self.contact, &motion, h);
             for group in &mut self.groups {
                 group.step(&motion, &env, step_kind, contact, self.parallel);
             }
@@ -377,7 +369,7 @@ impl BatchSystem {
         self.last_events.clear();
         if let Some(guard) = &self.guard {
             let motion = self.head;
-            let contact = contact_inputs(&self.collider, self.contact, &motion, h);
+            let contact = contact_test(&self.collider, self.contact, &motion, h);
             let dt = self.settings.dt_secs;
             let parallel = self.parallel;
             let events = &mut self.last_events;
@@ -632,7 +624,7 @@ impl Group {
         &self,
         motion: &RigidMotion,
         env: &StepEnv,
-        contact: Option<&ContactInputs<'_>>,
+        contact: Option<&SkinTest<'_>>,
         parallel: bool,
     ) -> Vec<[StrandMeasure; LANES]> {
         let n = self.n;
@@ -731,7 +723,7 @@ impl Group {
         motion: &RigidMotion,
         env: &StepEnv,
         step_kind: BatchStep,
-        contact: Option<(ContactInputs<'_>, &NearCells)>,
+        contact: Option<SkinTest<'_>>,
         parallel: bool,
     ) {
         let n = self.n;
@@ -742,10 +734,10 @@ impl Group {
             // One branch per batch: without a collider, the sweep has no
             // contact stage at all.
             match contact {
-                Some((inputs, near)) => {
+                Some(test) => {
                     let positions = std::array::from_fn(|i| motions[i].position_m);
                     let implicit = step_kind != BatchStep::BlockDiagonal;
-                    let mut end_force = LaneContact::new(inputs, near, model, positions, implicit);
+                    let mut end_force = LaneContact::new(test, model, positions, implicit);
                     step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
                 }
                 None => {
@@ -772,17 +764,20 @@ impl Group {
     }
 }
 
-/// The contact inputs for the head moving as `motion`, if a collider is set.
-fn contact_inputs<'a>(
+/// The contact test for the head moving as `motion`, if a collider is set.
+fn contact_test<'a>(
     collider: &'a Option<(Arc<SignedDistanceField>, NearCells)>,
     settings: ContactSettings,
     motion: &'a RigidMotion,
     h_secs: f64,
-) -> Option<ContactInputs<'a>> {
-    collider.as_ref().map(|(collider, _)| ContactInputs {
-        collider,
-        head: motion,
-        settings,
-        h_secs,
+) -> Option<SkinTest<'a>> {
+    collider.as_ref().map(|(collider, near)| {
+        let inputs = ContactInputs {
+            collider,
+            head: motion,
+            settings,
+            h_secs,
+        };
+        SkinTest::new(inputs, near)
     })
 }
