@@ -13,7 +13,9 @@
 //! row also gives the thread's own CPU time per frame
 //! (`/proc/thread-self/schedstat`: time on a core, not waiting for one),
 //! which a busy machine inflates far less than the wall time: the work a
-//! frame is, whoever else runs.
+//! frame is, whoever else runs. The scheduler adds to it at its ticks and
+//! switches, so it is exact to a few milliseconds over the whole run: good
+//! for a groom's frames of tens of milliseconds, not for a small style's.
 //!
 //! Where a frame goes is measured by taking parts away, each variant
 //! stepping the same groom from its own rest: `full` (the style's settings:
