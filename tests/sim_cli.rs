@@ -653,6 +653,54 @@ fn every_report_field_is_documented_and_the_doc_example_matches() {
 }
 
 #[test]
+fn bench_groom_times_a_whole_style_and_counts_its_lanes() {
+    let out = scratch_dir("bench-groom");
+    let out_arg = out.to_string_lossy().into_owned();
+    let output = run_helixhair(&[
+        "bench",
+        "--study",
+        "groom",
+        "--quick",
+        "--style",
+        "assets/styles/curly.ron",
+        "--out",
+        &out_arg,
+    ]);
+    assert!(output.status.success(), "{}", describe(&output));
+    let csv = std::fs::read_to_string(out.join("groom.csv")).expect("groom.csv");
+    let header: Vec<&str> = csv.lines().next().expect("a header").split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).expect(name);
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    // Five variants, each on one thread and on all.
+    assert_eq!(rows.len(), 10, "{csv}");
+    for row in &rows {
+        // curly.ron: 35 strands, all of 15 elements, in five groups of
+        // seven (one curls the other way): packed by element count,
+        // ⌈35/8⌉ = 5 batches, 5 lanes of padding.
+        assert_eq!(row[column("strands")], "35");
+        assert_eq!(row[column("elements")], "525");
+        assert_eq!(row[column("batches")], "5");
+        assert_eq!(row[column("padding_lanes")], "5");
+        let median: f64 = row[column("median_ms")].parse().expect("a number");
+        assert!(median > 0.0, "{row:?}");
+    }
+    let svg = std::fs::read_to_string(out.join("groom.svg")).expect("groom.svg");
+    assert!(svg.contains("<svg") && svg.contains("</svg>"));
+    // Without a style the study says what it needs.
+    let output = run_helixhair(&["bench", "--study", "groom", "--out", &out_arg]);
+    assert!(!output.status.success());
+    assert!(
+        describe(&output).contains("--style"),
+        "{}",
+        describe(&output)
+    );
+}
+
+#[test]
 fn bench_quick_writes_every_study_as_csv_and_svg() {
     let out = scratch_dir("bench-quick");
     let out_arg = out.to_string_lossy().into_owned();

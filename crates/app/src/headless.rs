@@ -136,7 +136,9 @@ pub struct HeadlessSim {
 
 /// Adds the guides of an imported group, one engine group per strand (each
 /// has its own length, elements and natural strains), each started in its
-/// fitted shape; returns their indices.
+/// fitted shape; returns their indices. On the batch engine strands of the
+/// same element count share SIMD batches, eight to a batch, whatever
+/// their other constants (`helixhair_physics::batch`, "Packing").
 pub fn add_imported(
     system: &mut Engine,
     material: &helixhair_physics::StrandParams,

@@ -48,6 +48,7 @@ use std::ops::Range;
 use std::sync::Arc;
 
 use crate::batch::BatchSystem;
+use crate::batch::layout::BatchModel;
 use crate::collision::SignedDistanceField;
 use crate::fit::RestContact;
 use crate::reconstruct::{Kinematics, reconstruct};
@@ -150,11 +151,11 @@ impl Engine {
         match self {
             Self::Reference(system) => system.add_group(params, roots),
             Self::Batch { system, strands } => {
-                let range = system.add_group(params, roots)?;
                 let model = Arc::new(StrandModel::new(
                     params,
                     system.settings().quadrature_points,
                 )?);
+                let range = system.add_strands(&BatchModel::new(&model), roots);
                 strands.extend(roots.iter().map(|r| (model.clone(), *r)));
                 Ok(range)
             }

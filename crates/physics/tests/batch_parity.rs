@@ -89,18 +89,9 @@ fn one_step_error(method: Method, params: StrandParams, points: usize) -> f64 {
     let mut rng = Rng::new(7);
     let roots = roots(11, &mut rng);
     let (mut reference, mut batch) = systems(method, &params, &roots, points);
-    let n = params.elements;
     let mut worst: f64 = 0.0;
     for i in 0..roots.len() {
-        let natural = reference.strands()[i].q().to_vec();
-        // Round to f32 first so both start from the same numbers.
-        let q: Vec<DVec3> = natural
-            .iter()
-            .map(|k| (*k + rng.vec3(5.0)).as_vec3().as_dvec3())
-            .collect();
-        let v: Vec<DVec3> = (0..n)
-            .map(|_| rng.vec3(20.0).as_vec3().as_dvec3())
-            .collect();
+        let (q, v) = common::f32_random_state(&mut rng, reference.strands()[i].q());
         reference.strands_mut()[i].set_state(&q, &v);
         batch.set_state(i, &q, &v);
     }

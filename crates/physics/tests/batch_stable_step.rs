@@ -188,14 +188,7 @@ fn one_step_error(params: &StrandParams, reference_method: Method) -> f64 {
     let mut hair = batch(settings, params, &roots);
     hair.set_guard(None);
     for i in 0..roots.len() {
-        let natural = reference.strands()[i].q().to_vec();
-        let q: Vec<DVec3> = natural
-            .iter()
-            .map(|k| (*k + rng.vec3(5.0)).as_vec3().as_dvec3())
-            .collect();
-        let v: Vec<DVec3> = (0..params.elements)
-            .map(|_| rng.vec3(20.0).as_vec3().as_dvec3())
-            .collect();
+        let (q, v) = common::f32_random_state(&mut rng, reference.strands()[i].q());
         reference.strands_mut()[i].set_state(&q, &v);
         hair.set_state(i, &q, &v);
     }

@@ -14,12 +14,14 @@
 //! | `modes` | first-mode frequency and damping against N and the analytic value | `modes.csv`, `modes_*.svg` |
 //! | `throughput` | element-steps per second and memory per strand, CPU (1 and all threads) and GPU, against strand count and N | `throughput.csv`, `throughput.svg` |
 //! | `volume`, `volume-shake`, `volume-cost` (only when named) | the hair–hair model on a full head: volume kept; interpenetration and energy during a shake; cost share | `volume.csv`; `volume_shake.csv`, `volume_shake.svg`, `volume_energy.svg`; `volume_cost.csv` |
+//! | `groom` (only when named, with `--style`) | physics ms per 60 Hz frame of a whole groom (an imported one: every strand simulated) on the batch engine, 1 and all threads, and where a frame goes; lanes used and padded | `groom.csv`, `groom.svg` |
 //! | `soak` (only when named) | a full head for a million frames of random head motion per engine: NaN, guard loops, memory | `soak.csv`, `soak_memory.svg`, `soak_guard.svg` |
 
 pub mod accuracy;
 pub mod chart;
 pub mod cost;
 pub mod error_model_build;
+pub mod groom;
 pub mod iterations;
 pub mod modes;
 pub mod pareto;
@@ -65,6 +67,9 @@ pub enum Study {
     /// A full head under random head motion for a million frames per
     /// engine (hours): NaN, guard loops, memory. Runs only when named.
     Soak,
+    /// Physics time per frame of a whole groom (`--style`, `--head`) on
+    /// the batch engine, and where it goes. Runs only when named.
+    Groom,
 }
 
 impl Study {
@@ -104,6 +109,13 @@ pub struct BenchArgs {
     /// absent): reference or batch.
     #[arg(long = "soak-engine", value_name = "ENGINE", value_parser = soak::parse_engine)]
     pub soak_engines: Vec<EngineKind>,
+    /// The style the `groom` study times (an imported groom's, say).
+    #[arg(long, value_name = "STYLE")]
+    pub style: Option<PathBuf>,
+    /// The head mesh of the `groom` study; default: the head its imported
+    /// group names, else the default head.
+    #[arg(long, value_name = "MESH")]
+    pub head: Option<PathBuf>,
 }
 
 /// What every study gets: where to write, how big to go, where to report.
@@ -160,6 +172,17 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
                     minutes: args.soak_minutes,
                 };
                 soak::run(&mut ctx, length, engines)
+            }
+            Study::Groom => {
+                let style = args
+                    .style
+                    .clone()
+                    .context("the groom study needs --style STYLE.ron")?;
+                let input = groom::GroomInput {
+                    style,
+                    head: args.head.clone(),
+                };
+                groom::run(&mut ctx, &input)
             }
         }
         .with_context(|| format!("study {study:?}"))?;

@@ -7,8 +7,9 @@
 
 use super::contact::EndPointForce;
 use super::forward::forward_with;
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::layout::{ElementData, RootMotion, StepEnv};
 use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use super::vec::V3;
 
@@ -19,7 +20,7 @@ use super::vec::V3;
 /// suffix sums then move by −span from each element to the next).
 #[inline(always)]
 pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &mut [V3<T>],
@@ -28,7 +29,7 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>
     end_force: &mut H,
 ) {
     forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, end_force);
-    let s = T::splat(mass_scale(model, env));
+    let s = mass_scale(model, env);
     let mut beyond = Beyond::zero();
     for e in (0..q.len()).rev() {
         let el = &scratch[e];

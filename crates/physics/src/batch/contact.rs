@@ -4,7 +4,7 @@
 //! # How it works
 //!
 //! The f64 reference ([`crate::HairSystem`]) adds the contact force per
-//! unit length of [`ContactInputs::force`] at every quadrature sample.
+//! unit length of [`ContactInputs::force`](crate::collision::ContactInputs::force) at every quadrature sample.
 //! Here the signed distance field is looked up once per lane at each
 //! element's END point only: the lookup is scalar (one grid cell per lane),
 //! so it is kept to N lookups per strand and step instead of N × points,
@@ -51,7 +51,7 @@
 //!
 //! **Implicit on Exact, as in the reference.** On the Exact steps
 //! ([`LaneContact::new`] with `implicit`), the force is the reference's
-//! implicit one ([`ContactInputs::implicit_force`]): the predicted push
+//! implicit one ([`ContactInputs::implicit_force`](crate::collision::ContactInputs::implicit_force)): the predicted push
 //! k (skin − d − h v_rel·n) − c v_rel·n on the right-hand side, and its
 //! derivative in Δv, h (h k + c) ℓ aᵀ n nᵀ a on the left, with α =
 //! [`ContactSettings::implicit_stiffness_ratio`](crate::collision::ContactSettings)
@@ -81,77 +81,14 @@
 //! Measured (docs/gpu.md): about a third of the step's time with 6% of
 //! end points in contact.
 
-use glam::{DMat3, DVec3, Vec3};
+use glam::{DVec3, Vec3};
 
 use super::forward::FrameState;
+use super::lane_model::LaneModel;
 use super::lanes::{LANES, Real};
-use super::layout::{BatchModel, ElementData};
+use super::layout::ElementData;
+pub use super::near_cells::{NearCells, SkinTest};
 use super::vec::V3;
-use crate::collision::{ContactInputs, SignedDistanceField};
-
-/// The eight corners of a grid cell, as offsets.
-const CELL_CORNERS: [(usize, usize, usize); 8] = [
-    (0, 0, 0),
-    (1, 0, 0),
-    (0, 1, 0),
-    (1, 1, 0),
-    (0, 0, 1),
-    (1, 0, 1),
-    (0, 1, 1),
-    (1, 1, 1),
-];
-
-/// Slack of the cell test, metres: far above the rounding of a trilinear
-/// lookup (1e-18 m on centimetre distances), far below anything physical.
-const CORNER_MARGIN_M: f64 = 1e-12;
-
-/// Which cells of a field's grid can hold a point within the contact skin:
-/// one bit per cell, set where the lowest of its eight corner values is
-/// within the skin (the lookup interpolates between them, so a point of a
-/// cell with every corner beyond the skin feels no force). A skipped point
-/// costs one bit instead of eight grid values and the gradient: most
-/// points of a head of hair are nowhere near the scalp. 1 bit per cell:
-/// 256 KiB for the largest field ([`MAX_CELLS`](crate::collision::sdf::MAX_CELLS)).
-#[derive(Clone, Debug, PartialEq)]
-pub struct NearCells {
-    bits: Vec<u64>,
-    cells: [usize; 3],
-}
-
-impl NearCells {
-    /// The cells of `field` that may be within `skin_m` of its surface.
-    pub fn new(field: &SignedDistanceField, skin_m: f64) -> Self {
-        let cells = field.dims.map(|d| d.saturating_sub(1));
-        let count = cells[0] * cells[1] * cells[2];
-        let mut bits = vec![0u64; count.div_ceil(64)];
-        for z in 0..cells[2] {
-            for y in 0..cells[1] {
-                for x in 0..cells[0] {
-                    let corners = CELL_CORNERS.map(|(dx, dy, dz)| field.at(x + dx, y + dy, z + dz));
-                    let lowest = corners.iter().copied().fold(f64::INFINITY, f64::min);
-                    // An interpolated value can round below its lowest
-                    // corner by an ulp or so: the margin keeps the test on
-                    // the safe side. A NaN corner counts as near (the
-                    // lookup would give a NaN force, not none).
-                    if corners.iter().any(|c| c.is_nan()) || lowest <= skin_m + CORNER_MARGIN_M {
-                        let i = x + cells[0] * (y + cells[1] * z);
-                        bits[i / 64] |= 1 << (i % 64);
-                    }
-                }
-            }
-        }
-        Self { bits, cells }
-    }
-
-    /// Whether cell (x, y, z) may be within the skin.
-    #[inline(always)]
-    pub fn contains(&self, x: usize, y: usize, z: usize) -> bool {
-        let i = x + self.cells[0] * (y + self.cells[1] * z);
-        self.bits
-            .get(i / 64)
-            .is_some_and(|word| word & (1 << (i % 64)) != 0)
-    }
-}
 
 /// A force applied at each element's end point during the forward sweep.
 pub trait EndPointForce<T> {
@@ -206,76 +143,39 @@ pub fn add_end_point_force<T: Real, const LOCAL: bool>(
 /// each lane's root position.
 #[derive(Clone, Copy, Debug)]
 pub struct LaneContact<'a> {
-    inputs: ContactInputs<'a>,
-    near: &'a NearCells,
+    test: SkinTest<'a>,
     root_positions_m: [DVec3; LANES],
-    lengths_m: &'a [f32],
-    mass_per_length: f64,
-    /// The head's frame transposed: world offsets to head coordinates.
-    body_from_world: DMat3,
+    model: &'a LaneModel,
     /// Whether the contact is implicit (Exact) or the explicit penalty.
     implicit: bool,
 }
 
 impl<'a> LaneContact<'a> {
-    /// Contact for a batch of `model`'s strands whose lane i is rooted at
-    /// `root_positions_m[i]` (world, metres, at the step's start).
-    /// `near` must be [`NearCells::new`] of the inputs' collider and skin.
-    /// `implicit`: the Exact steps' implicit contact (see the module docs);
-    /// otherwise the explicit penalty.
+    /// Contact for a batch of strands (lane i's constants: lane i of
+    /// `model`) whose lane i is rooted at `root_positions_m[i]` (world,
+    /// metres, at the step's start); `test` screens the points
+    /// ([`SkinTest`]). `implicit`: the Exact steps' implicit contact (see
+    /// the module docs); otherwise the explicit penalty.
     pub fn new(
-        inputs: ContactInputs<'a>,
-        near: &'a NearCells,
-        model: &'a BatchModel,
+        test: SkinTest<'a>,
+        model: &'a LaneModel,
         root_positions_m: [DVec3; LANES],
         implicit: bool,
     ) -> Self {
         Self {
-            inputs,
-            near,
+            test,
             root_positions_m,
-            lengths_m: &model.lengths_m,
-            mass_per_length: f64::from(model.mass_per_length),
-            body_from_world: inputs.head.world_from_body.transpose(),
+            model,
             implicit,
         }
     }
 
-    /// Whether the point at `point_m` (world) can feel the collider: false
-    /// only where [`ContactInputs::force`] is exactly zero, because the
-    /// point is outside the field's grid or in a cell that is not
-    /// [`NearCells`]. The position is computed with the same operations as
-    /// in the full lookup, so the cell is the one the lookup would use.
-    #[inline(always)]
-    fn may_touch(&self, point_m: DVec3) -> bool {
-        let field = self.inputs.collider;
-        let local = self.body_from_world * (point_m - self.inputs.head.position_m);
-        let g = (local - field.origin_m) / field.cell_m;
-        let max = |d: usize| d.saturating_sub(1) as f64;
-        if g.min_element() < 0.0
-            || g.x > max(field.dims[0])
-            || g.y > max(field.dims[1])
-            || g.z > max(field.dims[2])
-        {
-            return false;
-        }
-        let cell = |a: usize| (g[a] as usize).min(field.dims[a].saturating_sub(2));
-        self.near.contains(cell(0), cell(1), cell(2))
-    }
-
-    /// The velocity of the head's surface at world point `point_m`, m/s.
-    fn surface_velocity(&self, point_m: DVec3) -> DVec3 {
-        let head = self.inputs.head;
-        head.velocity_m_per_s
-            + head
-                .angular_velocity_rad_per_s
-                .cross(point_m - head.position_m)
-    }
-
-    /// The length element `e`'s end point stands for, metres.
-    fn point_length_m(&self, e: usize) -> f64 {
-        let next = self.lengths_m.get(e + 1).copied().unwrap_or(0.0);
-        0.5 * f64::from(self.lengths_m[e] + next)
+    /// The length element `e`'s end point stands for in lane `lane`,
+    /// metres.
+    fn point_length_m(&self, e: usize, lane: usize) -> f64 {
+        let lengths = &self.model.lengths_m;
+        let next = lengths.get(e + 1).map_or(0.0, |l| l.lane(lane));
+        0.5 * f64::from(lengths[e].lane(lane) + next)
     }
 }
 
@@ -287,14 +187,14 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
         end: &FrameState<T>,
         el: &mut ElementData<T>,
     ) {
-        let length_m = self.point_length_m(e);
         let lane_vec = |x: &V3<T>, i: usize| Vec3::new(x.x.lane(i), x.y.lane(i), x.z.lane(i));
         // Implicit contact needs the elimination's frame at the end point.
         let implicit = self.implicit && LOCAL;
         let mut forces_n = [Vec3::ZERO; LANES];
         let mut axes = [Vec3::ZERO; LANES];
         let mut touching = false;
-        let h = self.inputs.h_secs;
+        let inputs = &self.test.inputs;
+        let h = inputs.h_secs;
         for (i, (force, axis)) in forces_n
             .iter_mut()
             .zip(&mut axes)
@@ -303,21 +203,19 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
         {
             let point_m = self.root_positions_m[i] + lane_vec(&end.point_m, i).as_dvec3();
             let velocity = lane_vec(&end.point_velocity, i).as_dvec3();
-            // The implicit contact also acts on a point that will enter
-            // the skin during the step: test where it is headed too.
-            let headed = point_m + h * (velocity - self.surface_velocity(point_m));
-            if !(self.may_touch(point_m) || implicit && self.may_touch(headed)) {
+            if !self.test.may_feel(point_m, velocity, implicit) {
                 continue;
             }
-            let rho_s = self.mass_per_length;
+            let rho_s = f64::from(self.model.mass_per_length.lane(i));
+            let length_m = self.point_length_m(e, i);
             if implicit {
-                if let Some(push) = self.inputs.implicit_force(point_m, velocity, rho_s) {
+                if let Some(push) = inputs.implicit_force(point_m, velocity, rho_s) {
                     *force = (push.force_n_per_m * length_m).as_vec3();
                     *axis = (push.normal * (h * push.gain * length_m).sqrt()).as_vec3();
                     touching = true;
                 }
             } else {
-                let f = self.inputs.force(point_m, velocity, rho_s);
+                let f = inputs.force(point_m, velocity, rho_s);
                 if f != DVec3::ZERO {
                     *force = (f * length_m).as_vec3();
                     touching = true;

@@ -33,8 +33,9 @@
 //! overwrite the lower triangle (L d_k below the diagonal, D on it).
 
 use super::forward::forward;
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::layout::{ElementData, RootMotion, StepEnv};
 use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use super::vec::{M3, V3};
 
@@ -197,7 +198,7 @@ pub fn ldlt_solve<T: Real>(dim: usize, matrix: &mut [T], rhs: &mut [T]) {
 /// One Dense step of every lane's strand; `scratch` has N entries and
 /// `dense` was made for N.
 pub fn step_dense<T: Real>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &mut [V3<T>],
@@ -216,7 +217,7 @@ pub fn step_dense<T: Real>(
     assemble(
         scratch,
         &dense.columns,
-        T::splat(mass_scale(model, env)),
+        mass_scale(model, env),
         &dense.diagonal,
         &mut dense.matrix,
     );

@@ -20,8 +20,9 @@
 
 use super::contact::{EndPointForce, NoContact};
 use super::forward::forward_with;
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::layout::{ElementData, RootMotion, StepEnv};
 use super::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use super::vec::{M3, V3};
 
@@ -54,7 +55,7 @@ impl<T: Real> Elimination<T> {
 /// N entries.
 #[inline(always)]
 pub fn step_exact<T: Real>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &mut [V3<T>],
@@ -95,7 +96,7 @@ fn shift_articulated<T: Real>(h: &mut [M3<T>; 4], carried: &mut [V3<T>; 2], delt
 )]
 #[inline(always)]
 pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &mut [V3<T>],
@@ -120,7 +121,7 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
 )]
 #[inline(always)]
 pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &[V3<T>],
@@ -130,7 +131,7 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     end_force: &mut H,
 ) -> T {
     forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force);
-    let s = T::splat(mass_scale(model, env));
+    let s = mass_scale(model, env);
     let mut beyond = Beyond::zero();
     let mut h = [M3::zero(); 4];
     let mut carried = [V3::zero(); 2];

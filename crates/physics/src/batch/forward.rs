@@ -19,8 +19,9 @@
 
 use super::contact::{EndPointForce, NoContact};
 use super::geometry::{local_end, local_point};
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::layout::{ElementData, RootMotion, StepEnv};
 use super::vec::{M3, V3};
 
 /// The frame and point at an element boundary, with time derivatives.
@@ -79,7 +80,7 @@ impl<T: Real> FrameState<T> {
 #[inline(always)]
 pub fn advance<T: Real>(
     s: &FrameState<T>,
-    length_m: f32,
+    length_m: T,
     k: V3<T>,
     k_dot: V3<T>,
 ) -> (FrameState<T>, M3<T>, M3<T>) {
@@ -102,16 +103,13 @@ pub fn root_jacobian<T: Real>(a_local: M3<T>, end_m: V3<T>, b: &M3<T>) -> M3<T> 
 #[inline(always)]
 pub fn advance_local<T: Real>(
     s: &FrameState<T>,
-    length_m: f32,
+    length_m: T,
     k: V3<T>,
     k_dot: V3<T>,
 ) -> (FrameState<T>, M3<T>, M3<T>, V3<T>) {
     let (end, turn) = local_end(length_m, k, k_dot);
     let [p, pv, pa] = s.carry(end.h, end.h_dot, end.h_ddot);
-    let b = s
-        .frame
-        .mul_mat(&turn.left_jacobian)
-        .scale(T::splat(length_m));
+    let b = s.frame.mul_mat(&turn.left_jacobian).scale(length_m);
     let a = s.frame.mul_mat(&end.jacobian);
     let spin = s.frame * turn.spin;
     let next = FrameState {
@@ -139,7 +137,7 @@ pub fn advance_local<T: Real>(
 /// V = Σ wρS [r]×G = [p]×U + R Σ wρS [h]×J.
 #[inline(always)]
 pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     e: usize,
     s: &FrameState<T>,
@@ -158,7 +156,7 @@ pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
 /// Block-diagonal step).
 #[inline(always)]
 pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     e: usize,
     s: &FrameState<T>,
@@ -166,9 +164,9 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
     k_dot: V3<T>,
     el: &mut ElementData<T>,
 ) {
-    let length_m = model.lengths_m[e];
-    let rho_s = T::splat(model.mass_per_length);
-    let nu = T::splat(model.air_drag);
+    let length_m = model.length_m(e);
+    let rho_s = model.mass_per_length();
+    let nu = model.air_drag();
     let g = V3::splat(env.gravity_m_per_s2);
     let air = V3::splat(env.air_velocity_m_per_s);
     let zero = T::splat(0.0);
@@ -180,10 +178,10 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
     let mut local_force = V3::zero();
     let mut u_local = M3::zero();
     let mut v_local = M3::zero();
-    for (node, weight) in model.nodes.iter().zip(&model.weights) {
-        let lp = local_point(node * length_m, k, k_dot);
+    for (node, weight) in model.nodes().iter().zip(model.weights()) {
+        let lp = local_point(T::splat(*node) * length_m, k, k_dot);
         let [r, vel, acc] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
-        let w_len = T::splat(weight * length_m);
+        let w_len = T::splat(*weight) * length_m;
         let w_mass = w_len * rho_s;
         let force = ((g - acc).scale(rho_s) - (vel - air).scale(nu)).scale(w_len);
         let jac = &lp.jacobian;
@@ -228,7 +226,7 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
 /// The whole root-to-tip sweep: `out[e]` gets element e's data.
 #[inline(always)]
 pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &[V3<T>],
@@ -257,7 +255,7 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
 /// distances of the size of what it describes.
 #[inline(always)]
 pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: EndPointForce<T>>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &[V3<T>],
@@ -277,7 +275,7 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
             s
         };
         own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &moments_origin, q[e], v[e], el);
-        let (next, a_local, b, span) = advance_local(&s, model.lengths_m[e], q[e], v[e]);
+        let (next, a_local, b, span) = advance_local(&s, model.length_m(e), q[e], v[e]);
         el.a = if LOCAL {
             a_local
         } else {

@@ -170,8 +170,8 @@ struct PhiJet<T> {
 }
 
 #[inline(always)]
-fn phi_jet<T: Real>(sigma: f32, k: V3<T>, k_dot: V3<T>, with_a: bool) -> PhiJet<T> {
-    let s = T::splat(sigma);
+fn phi_jet<T: Real>(sigma: T, k: V3<T>, k_dot: V3<T>, with_a: bool) -> PhiJet<T> {
+    let s = sigma;
     let phi = k.scale(s);
     let phi_dot = k_dot.scale(s);
     let y = phi.dot(phi);
@@ -198,7 +198,7 @@ fn coefficient_jet<T: Real>(f: [T; 3], j: &PhiJet<T>) -> [T; 3] {
 }
 
 #[inline(always)]
-fn point_from_jet<T: Real>(sigma: f32, j: &PhiJet<T>) -> LocalPoint<T> {
+fn point_from_jet<T: Real>(sigma: T, j: &PhiJet<T>) -> LocalPoint<T> {
     let zero = T::splat(0.0);
     let one = T::splat(1.0);
     let (phi, pd) = (j.phi, j.phi_dot);
@@ -218,11 +218,11 @@ fn point_from_jet<T: Real>(sigma: f32, j: &PhiJet<T>) -> LocalPoint<T> {
     let two = T::splat(2.0);
     let u = g1.scale(two * j.co.b[1]) + g2.scale(two * j.co.c[1]) - V3::new(two * c, zero, zero);
     let cx = c * phi.x;
-    let s2 = T::splat(sigma * sigma);
+    let s2 = sigma * sigma;
     let col0 = u.scale(phi.x) + V3::new(cx, zero, zero) + phi.scale(c);
     let col1 = u.scale(phi.y) + V3::new(zero, cx, -b);
     let col2 = u.scale(phi.z) + V3::new(zero, b, cx);
-    let s = T::splat(sigma);
+    let s = sigma;
     LocalPoint {
         h: f.scale(s),
         h_dot: fd.scale(s),
@@ -231,15 +231,17 @@ fn point_from_jet<T: Real>(sigma: f32, j: &PhiJet<T>) -> LocalPoint<T> {
     }
 }
 
-/// The centreline of an element with strains k and rates k̇ at arc length σ.
+/// The centreline of an element with strains k and rates k̇ at arc length σ
+/// (metres, per lane).
 #[inline(always)]
-pub fn local_point<T: Real>(sigma: f32, k: V3<T>, k_dot: V3<T>) -> LocalPoint<T> {
+pub fn local_point<T: Real>(sigma: T, k: V3<T>, k_dot: V3<T>) -> LocalPoint<T> {
     point_from_jet(sigma, &phi_jet(sigma, k, k_dot, false))
 }
 
-/// The element's end point and turn, for an element of length `length_m`.
+/// The element's end point and turn, for an element of length `length_m`
+/// (per lane).
 #[inline(always)]
-pub fn local_end<T: Real>(length_m: f32, k: V3<T>, k_dot: V3<T>) -> (LocalPoint<T>, LocalTurn<T>) {
+pub fn local_end<T: Real>(length_m: T, k: V3<T>, k_dot: V3<T>) -> (LocalPoint<T>, LocalTurn<T>) {
     let j = phi_jet(length_m, k, k_dot, true);
     let point = point_from_jet(length_m, &j);
     let (phi, pd) = (j.phi, j.phi_dot);

@@ -36,22 +36,24 @@ use glam::DVec3;
 
 use super::forward::{FrameState, advance};
 use super::geometry::local_point;
+use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
-use super::layout::BatchModel;
 use super::layout::{RootMotion, StepEnv};
+use super::near_cells::SkinTest;
 use super::vec::V3;
-use crate::collision::ContactInputs;
 use crate::frame_balance::StrandMeasure;
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
 
 /// Per lane of a batch (`v`: its N rate triples), the speed bound
 /// Σ_Q ℓ_Q |q̇_Q| (L − s_Q), m/s.
-pub fn speed_bound_m_per_s(model: &BatchModel, v: &[V3<Lanes>]) -> Lanes {
-    let mut beyond_m: f32 = model.lengths_m.iter().sum();
+pub fn speed_bound_m_per_s(model: &impl Constants<Lanes>, v: &[V3<Lanes>]) -> Lanes {
+    let n = model.element_count();
+    let mut beyond_m = (0..n).fold(Lanes::splat(0.0), |sum, e| sum + model.length_m(e));
     let mut bound = Lanes::splat(0.0);
-    for (l, rate) in model.lengths_m.iter().zip(v) {
-        bound += rate.dot(*rate).sqrt() * Lanes::splat(l * beyond_m);
+    for (e, rate) in v.iter().enumerate().take(n) {
+        let l = model.length_m(e);
+        bound += rate.dot(*rate).sqrt() * (l * beyond_m);
         beyond_m -= l;
     }
     bound
@@ -75,16 +77,16 @@ pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
 /// moving as `root` (lanes) with root points at `root_positions_m`
 /// (world), under `env`'s gravity and air, with the head's `contact` if any.
 pub fn measure_lanes(
-    model: &BatchModel,
+    model: &impl Constants<Lanes>,
     env: &StepEnv,
     root: &RootMotion<Lanes>,
     motions: &[RigidMotion; LANES],
     q: &[V3<Lanes>],
     v: &[V3<Lanes>],
-    contact: Option<&ContactInputs<'_>>,
+    contact: Option<&SkinTest<'_>>,
 ) -> [StrandMeasure; LANES] {
-    let rho_s = Lanes::splat(model.mass_per_length);
-    let nu = Lanes::splat(model.air_drag);
+    let rho_s = model.mass_per_length();
+    let nu = model.air_drag();
     let g = V3::splat(env.gravity_m_per_s2);
     let air = V3::splat(env.air_velocity_m_per_s);
     let zero = Lanes::splat(0.0);
@@ -96,11 +98,11 @@ pub fn measure_lanes(
     let n = q.len();
     let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
     for e in 0..n {
-        let length_m = model.lengths_m[e];
-        for (node, weight) in model.nodes.iter().zip(&model.weights) {
-            let lp = local_point(node * length_m, q[e], v[e]);
+        let length_m = model.length_m(e);
+        for (node, weight) in model.nodes().iter().zip(model.weights()) {
+            let lp = local_point(Lanes::splat(*node) * length_m, q[e], v[e]);
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
-            let w_len = Lanes::splat(weight * length_m);
+            let w_len = Lanes::splat(*weight) * length_m;
             let w_mass = w_len * rho_s;
             kinetic += vel.dot(vel) * w_mass * Lanes::splat(0.5);
             momentum += vel.scale(w_mass);
@@ -117,14 +119,19 @@ pub fn measure_lanes(
             let rel = vel - carried;
             fastest = fastest.max(rel.dot(rel).sqrt());
         }
-        let d = q[e] - V3::splat(model.natural[e]);
-        let k = V3::splat(model.stiffness[e]);
+        let d = q[e] - model.natural(e);
+        let k = model.stiffness(e);
         elastic += (d.x * d.x * k.x + d.y * d.y * k.y + d.z * d.z * k.z) * Lanes::splat(0.5);
         s = advance(&s, length_m, q[e], v[e]).0;
         if let Some(contact) = contact {
             // The step's contact: f at each end point, carrying half of
             // each element beside it (super::contact).
-            let share = 0.5 * (length_m + model.lengths_m.get(e + 1).copied().unwrap_or(0.0));
+            let next_m = if e + 1 < n {
+                model.length_m(e + 1)
+            } else {
+                Lanes::splat(0.0)
+            };
+            let share = length_m + next_m;
             for (lane, list) in contact_force.iter_mut().enumerate() {
                 let pick = |x: V3<Lanes>| {
                     DVec3::new(
@@ -135,19 +142,23 @@ pub fn measure_lanes(
                 };
                 let point = pick(s.point_m);
                 let velocity = pick(s.point_velocity);
-                // The implicit push: where it acts is where the Exact
-                // steps' contact acts, and a superset of where the
-                // explicit penalty does (only "is there contact" and the
-                // balance's external terms use it).
+                let world = motions[lane].position_m + point;
+                // Screened as the step screens (exact: a rejected point
+                // has no force), then the implicit push: where it acts is
+                // where the Exact steps' contact acts, and a superset of
+                // where the explicit penalty does (only "is there contact"
+                // and the balance's external terms use it).
+                if !contact.may_feel(world, velocity, true) {
+                    continue;
+                }
                 let f = contact
-                    .implicit_force(
-                        motions[lane].position_m + point,
-                        velocity,
-                        f64::from(model.mass_per_length),
-                    )
+                    .inputs
+                    .implicit_force(world, velocity, f64::from(rho_s.lane(lane)))
                     .map_or(DVec3::ZERO, |c| c.force_n_per_m)
-                    * f64::from(share);
-                list.push((point, velocity, f));
+                    * f64::from(0.5 * share.lane(lane));
+                if f != DVec3::ZERO {
+                    list.push((point, velocity, f));
+                }
             }
         }
     }
@@ -169,9 +180,7 @@ pub fn measure_lanes(
             external_power_w: x(power),
             contact_power_w: 0.0,
             contact_j: 0.0,
-            in_contact: contact_force[lane]
-                .iter()
-                .any(|(_, _, f)| *f != DVec3::ZERO),
+            in_contact: !contact_force[lane].is_empty(),
             root_velocity_m_per_s: motion.velocity_m_per_s,
             root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
             root_acceleration_m_per_s2: motion.acceleration_m_per_s2,
@@ -202,7 +211,7 @@ fn s_root_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
 /// (`None`: the lane passed), as the f64 guard names it.
 pub fn check_and_reset(
     guard: &Guard,
-    model: &BatchModel,
+    model: &LaneModel,
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     start: &[StrandMeasure; LANES],
@@ -223,15 +232,16 @@ pub fn check_and_reset(
     failed
 }
 
-/// Puts lane `lane` of a batch (`q`, `v`: N triples each) at `model`'s
-/// natural shape, at rest.
+/// Puts lane `lane` of a batch (`q`, `v`: N triples each) at that lane's
+/// natural shape in `model`, at rest.
 pub fn set_natural_at_rest(
-    model: &BatchModel,
+    model: &LaneModel,
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     lane: usize,
 ) {
-    for ((q, v), natural) in q.iter_mut().zip(v.iter_mut()).zip(&model.natural) {
+    let natural = model.natural_of_lane(lane);
+    for ((q, v), natural) in q.iter_mut().zip(v.iter_mut()).zip(natural) {
         q.x.set_lane(lane, natural[0]);
         q.y.set_lane(lane, natural[1]);
         q.z.set_lane(lane, natural[2]);

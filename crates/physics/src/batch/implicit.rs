@@ -34,8 +34,9 @@
 
 use super::contact::EndPointForce;
 use super::exact::{Elimination, back_substitute, eliminate, solve_again};
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::layout::{ElementData, RootMotion, StepEnv};
 use super::suffix::integrate;
 use super::vec::V3;
 use super::velocity_terms::{OwnProduct, velocity_product};
@@ -87,7 +88,7 @@ impl<T: Real> Krylov<T> {
 )]
 #[inline(always)]
 pub fn step_exact_implicit<T: Real, H: EndPointForce<T>>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &mut [V3<T>],
@@ -140,7 +141,7 @@ fn pick<T: Real>(mask: T, if_set: T, otherwise: T) -> T {
 )]
 #[inline(always)]
 fn gmres<T: Real>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &[V3<T>],

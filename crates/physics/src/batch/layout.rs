@@ -1,8 +1,10 @@
-//! The fast path's data: per-group constants in f32, the root motion of a
-//! batch, and the per-element scratch one step fills.
+//! The fast path's data: one strand's constants in f32 ([`BatchModel`];
+//! a batch's, one per lane, are a [`super::LaneModel`]), the root motion
+//! of a batch, and the per-element scratch one step fills.
 //!
-//! Layout. A group of strands sharing a [`StrandModel`] is cut into batches
-//! of [`LANES`](super::LANES) strands. A batch's state is N strain triples
+//! Layout. Strands of one element count are cut into batches of
+//! [`LANES`](super::LANES) strands (packed as they are added, see
+//! [`super::BatchSystem`]). A batch's state is N strain triples
 //! and N rate triples, each a [`V3`] of [`Lanes`](super::Lanes): element e's
 //! κ₁ for the 8 strands of the batch are 8 consecutive floats, so every
 //! operation of the step loads and stores whole SIMD registers
@@ -18,7 +20,9 @@ use super::vec::{M3, V3};
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 
-/// A group's per-element constants in f32 (see [`StrandModel`]).
+/// One strand's per-element constants in f32 (see [`StrandModel`]): what
+/// the f32 twins of the GPU kernels step, and what a [`super::LaneModel`]
+/// is built from, lane by lane.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BatchModel {
     /// Element lengths ℓ_Q, metres.

@@ -8,8 +8,8 @@
 //! parameters, settings and head motion) but steps them with
 //! Block-diagonal or Exact only, in f32, and lays them out for speed:
 //!
-//! - **Lanes across strands** ([`lanes`]): [`LANES`] = 8 strands of a
-//!   group form a batch, and every number of the step is a [`Lanes`]
+//! - **Lanes across strands** ([`lanes`]): [`LANES`] = 8 strands of the
+//!   same element count form a batch, and every number of the step is a [`Lanes`]
 //!   (a `wide::f32x8`), so each arithmetic operation of the step serves the
 //!   whole batch as one explicit SIMD instruction: one AVX register where
 //!   the build enables AVX (the repository's `.cargo/config.toml` builds for
@@ -17,6 +17,18 @@
 //!   on the target for correctness. LLVM's auto-vectoriser is not relied on:
 //!   on plain `[f32; 8]` arrays it gave up on the long inlined step
 //!   (measured: no faster than 4 lanes).
+//! - **Per-lane constants** ([`lane_model`]): each lane carries its own
+//!   strand's lengths, stiffness, natural strains, friction, ρS and drag
+//!   (a [`LaneModel`]), so strands that share only N and the quadrature
+//!   (an imported groom's) fill a batch; strands added one at a time fill
+//!   the last batch of their N before a new one opens (the packing of
+//!   [`BatchSystem::add_group`]). Lanes stay independent: a strand's
+//!   results are bit for bit the same alone or packed with seven others
+//!   (`tests/batch_lanes.rs`). The imported Sintel groom (11,241 strands
+//!   of 1 to 9 elements) fills 1,410 batches with 39 lanes of padding
+//!   where it had 78,687, and a frame is 12× faster; it is still 26 ms of
+//!   CPU per frame on one thread, over the 8 ms target (docs/RESULTS.md,
+//!   "A whole imported groom").
 //! - **Structure of arrays** ([`layout`]): a batch's state is N strain and
 //!   N rate triples of lanes, contiguous; a step allocates nothing.
 //! - **Fused stages**: one root-to-tip sweep ([`forward`]: reconstruct,
@@ -87,12 +99,15 @@ pub mod forward;
 pub mod geometry;
 pub mod guard;
 pub mod implicit;
+pub mod lane_model;
 pub mod lanes;
 pub mod layout;
+pub mod near_cells;
 pub mod suffix;
 mod system;
 pub mod vec;
 pub mod velocity_terms;
 
+pub use lane_model::{Constants, LaneModel};
 pub use lanes::{LANES, Lanes, Real};
-pub use system::{BatchSystem, MemoryUse};
+pub use system::{BatchSystem, LaneUse, MemoryUse};

@@ -13,8 +13,9 @@
 //! rhs = h[Q − K(q − qⁿ) − (γℓ + hK)q̇], D = hγℓ + h²K and the mass scale
 //! s = 1 + hν/ρS.
 
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, StepEnv};
+use super::layout::{ElementData, StepEnv};
 use super::vec::{M3, V3};
 
 /// Sums over every sample past the current element.
@@ -100,33 +101,43 @@ pub fn element_terms<T: Real>(el: &ElementData<T>, beyond: &Beyond<T>) -> Elemen
 /// The step's per-element scalars: (D = hγℓ + h²K, rhs) for element `e`.
 #[inline(always)]
 pub fn step_terms<T: Real>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     env: &StepEnv,
     e: usize,
     force: V3<T>,
     q: V3<T>,
     v: V3<T>,
 ) -> (V3<T>, V3<T>) {
-    let h = env.h_secs;
-    let k = model.stiffness[e];
-    let friction = model.friction[e];
-    let n = V3::splat(model.natural[e]);
-    let kv: V3<T> = V3::splat(k);
-    let diagonal = V3::splat(k.map(|ki| h * friction + h * h * ki));
-    let damping: V3<T> = V3::splat(k.map(|ki| friction + h * ki));
+    let h = T::splat(env.h_secs);
+    let h_squared = T::splat(env.h_secs * env.h_secs);
+    let kv = model.stiffness(e);
+    let friction = model.friction(e);
+    let n = model.natural(e);
+    let h_friction = h * friction;
+    let diagonal = V3::new(
+        h_friction + h_squared * kv.x,
+        h_friction + h_squared * kv.y,
+        h_friction + h_squared * kv.z,
+    );
+    let damping = V3::new(
+        friction + h * kv.x,
+        friction + h * kv.y,
+        friction + h * kv.z,
+    );
     let elastic = q - n;
     let rhs = V3::new(
         force.x - kv.x * elastic.x - damping.x * v.x,
         force.y - kv.y * elastic.y - damping.y * v.y,
         force.z - kv.z * elastic.z - damping.z * v.z,
     )
-    .scale(T::splat(h));
+    .scale(h);
     (diagonal, rhs)
 }
 
 /// s = 1 + hν/ρS, which folds the implicit drag into the mass term.
-pub fn mass_scale(model: &BatchModel, env: &StepEnv) -> f32 {
-    1.0 + env.h_secs * model.air_drag / model.mass_per_length
+#[inline(always)]
+pub fn mass_scale<T: Real>(model: &impl Constants<T>, env: &StepEnv) -> T {
+    T::splat(1.0) + T::splat(env.h_secs) * model.air_drag() / model.mass_per_length()
 }
 
 /// Stage "integrate": v ← v + Δv, q ← q + h v.

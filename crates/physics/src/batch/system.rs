@@ -1,5 +1,20 @@
-//! [`BatchSystem`]: groups of strands in lane batches, stepped frame by
+//! [`BatchSystem`]: strands packed into lane batches, stepped frame by
 //! frame like a [`crate::HairSystem`].
+//!
+//! # Packing
+//!
+//! Strands are grouped by element count N (the quadrature is the system's,
+//! the same for all), and within a group packed [`LANES`] to a batch in the
+//! order they were added, whatever their other constants: each batch
+//! carries its lanes' constants as a [`LaneModel`]. So [`BatchSystem::add_group`]
+//! called once per strand (an imported groom, where every strand has its
+//! own length and rest shape) fills batches as well as one call with many
+//! roots: a strand lands in its group's last batch while it has a free
+//! lane, and opens a new batch otherwise. Only a group's last batch can be
+//! short; its free lanes (padding) copy its last strand, and are computed
+//! and ignored. Batches filled by one call share one [`LaneModel`].
+//! Strand indices stay those `add_group` returned: a table maps each to
+//! its group and slot (batch · [`LANES`] + lane).
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -8,11 +23,12 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 use super::block_diagonal::step_block_diagonal_with;
-use super::contact::{EndPointForce, LaneContact, NearCells, NoContact};
+use super::contact::{EndPointForce, LaneContact, NearCells, NoContact, SkinTest};
 use super::exact::{Elimination, step_exact_with};
 use super::forward::{FrameState, advance};
 use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
 use super::implicit::{Krylov, step_exact_implicit};
+use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::vec::V3;
@@ -25,15 +41,21 @@ use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings, StepScheme};
 
-/// Strands sharing one model, in batches of [`LANES`].
+/// Strands of one element count, in batches of [`LANES`] (see the module
+/// docs' "Packing").
 #[derive(Clone, Debug)]
 struct Group {
-    model: BatchModel,
+    /// Elements per strand, N.
+    n: usize,
+    /// Per batch: its lanes' constants.
+    models: Vec<Arc<LaneModel>>,
+    /// Per slot (batch · LANES + lane; padding has none): the strand's root.
     roots: Vec<RootPose>,
+    /// Per slot: the strand's index in the system.
+    strands: Vec<usize>,
     /// Batch-major: batch b's element e is entry b·N + e.
     q: Vec<V3<Lanes>>,
     v: Vec<V3<Lanes>>,
-    first_strand: usize,
     /// The guard's per-lane measures at the end of the last frame, while
     /// the state has not changed since.
     measures: Option<Vec<[StrandMeasure; LANES]>>,
@@ -49,11 +71,19 @@ struct LaneStanding {
     pinned: bool,
 }
 
-/// One batch's state and roots, read only, as the guard's measure takes them.
-type BatchView<'a> = ((&'a [V3<Lanes>], &'a [V3<Lanes>]), &'a [RootPose]);
+/// One batch's state, roots and constants, read only, as the guard's
+/// measure takes them.
+type BatchView<'a> = (
+    ((&'a [V3<Lanes>], &'a [V3<Lanes>]), &'a [RootPose]),
+    &'a Arc<LaneModel>,
+);
 
-/// One batch's state and roots, as the step's iterators hand them out.
-type BatchRef<'a> = ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]);
+/// One batch's state, roots and constants, as the step's iterators hand
+/// them out.
+type BatchRef<'a> = (
+    ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]),
+    &'a Arc<LaneModel>,
+);
 
 /// Per-thread step buffers.
 struct Scratch {
@@ -119,7 +149,8 @@ pub struct MemoryUse {
 pub struct BatchSystem {
     settings: SimSettings,
     groups: Vec<Group>,
-    strand_count: usize,
+    /// Per strand index: its group and slot.
+    slots: Vec<(usize, usize)>,
     time_secs: f64,
     head: RigidMotion,
     parallel: bool,
@@ -150,7 +181,7 @@ impl BatchSystem {
         Ok(Self {
             settings,
             groups: Vec::new(),
-            strand_count: 0,
+            slots: Vec::new(),
             time_secs: 0.0,
             head: RigidMotion::default(),
             parallel: true,
@@ -165,33 +196,47 @@ impl BatchSystem {
     }
 
     /// Adds strands sharing `params`, one per root, at their natural shape
-    /// and at rest; returns their indices.
+    /// and at rest; returns their indices. They fill the free lanes of the
+    /// last batch of strands with as many elements before opening new
+    /// batches (module docs, "Packing").
     pub fn add_group(
         &mut self,
         params: &StrandParams,
         roots: &[RootPose],
     ) -> Result<Range<usize>, ParamError> {
         let model = StrandModel::new(params, self.settings.quadrature_points)?;
-        let model = BatchModel::new(&model);
+        Ok(self.add_strands(&BatchModel::new(&model), roots))
+    }
+
+    /// [`Self::add_group`] for a model already built (with this system's
+    /// quadrature: the f32 constants of a [`StrandModel`] made with
+    /// `settings().quadrature_points`).
+    pub fn add_strands(&mut self, model: &BatchModel, roots: &[RootPose]) -> Range<usize> {
         let n = model.elements();
-        let batches = roots.len().div_ceil(LANES);
-        let natural: Vec<V3<Lanes>> = model.natural.iter().map(|k| V3::splat(*k)).collect();
-        let mut q = Vec::with_capacity(batches * n);
-        for _ in 0..batches {
-            q.extend_from_slice(&natural);
+        let group = match self.groups.iter().position(|g| g.n == n) {
+            Some(g) => g,
+            None => {
+                self.groups.push(Group::new(n));
+                self.groups.len() - 1
+            }
+        };
+        let uniform = Arc::new(LaneModel::splat(model));
+        let start = self.slots.len();
+        for (i, root) in roots.iter().enumerate() {
+            let slot = self.groups[group].push(model, &uniform, *root, start + i);
+            self.slots.push((group, slot));
         }
-        let start = self.strand_count;
-        self.groups.push(Group {
-            v: vec![V3::zero(); batches * n],
-            q,
-            roots: roots.to_vec(),
-            first_strand: start,
-            measures: None,
-            guard_standing: vec![LaneStanding::default(); batches * LANES],
-            model,
-        });
-        self.strand_count += roots.len();
-        Ok(start..self.strand_count)
+        start..self.slots.len()
+    }
+
+    /// Lanes holding strands and lanes of padding, over all batches.
+    pub fn lanes_used(&self) -> LaneUse {
+        let batches: usize = self.groups.iter().map(|g| g.models.len()).sum();
+        LaneUse {
+            batches,
+            strands: self.slots.len(),
+            padding: batches * LANES - self.slots.len(),
+        }
     }
 
     /// The settings.
@@ -207,15 +252,12 @@ impl BatchSystem {
 
     /// Number of strands.
     pub fn strand_count(&self) -> usize {
-        self.strand_count
+        self.slots.len()
     }
 
     /// Total element count over all strands.
     pub fn element_count(&self) -> usize {
-        self.groups
-            .iter()
-            .map(|g| g.roots.len() * g.model.elements())
-            .sum()
+        self.groups.iter().map(|g| g.roots.len() * g.n).sum()
     }
 
     /// Simulated time in seconds.
@@ -306,7 +348,7 @@ impl BatchSystem {
         let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
             Some(_) => {
                 let motion = head.motion_at(start_secs);
-                let contact = contact_inputs(&self.collider, self.contact, &motion, h);
+                let contact = contact_test(&self.collider, self.contact, &motion, h);
                 let parallel = self.parallel;
                 self.groups
                     .iter_mut()
@@ -320,15 +362,7 @@ impl BatchSystem {
         };
         for _ in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
-            let contact = self.collider.as_ref().map(|(collider, near)| {
-                let inputs = ContactInputs {
-                    collider,
-                    head: &motion,
-                    settings: self.contact,
-                    h_secs: h,
-                };
-                (inputs, near)
-            });
+            let contact = contact_test(&self.collider, self.contact, &motion, h);
             for group in &mut self.groups {
                 group.step(&motion, &env, step_kind, contact, self.parallel);
             }
@@ -340,7 +374,7 @@ impl BatchSystem {
         self.last_events.clear();
         if let Some(guard) = &self.guard {
             let motion = self.head;
-            let contact = contact_inputs(&self.collider, self.contact, &motion, h);
+            let contact = contact_test(&self.collider, self.contact, &motion, h);
             let dt = self.settings.dt_secs;
             let parallel = self.parallel;
             let events = &mut self.last_events;
@@ -351,6 +385,8 @@ impl BatchSystem {
                 group.guard(guard, start, &end, dt, start_secs, events);
                 group.measures = (events.len() == before).then_some(end);
             }
+            // Groups are by element count, not by index: events in index order.
+            self.last_events.sort_by_key(|event| event.strand);
             for event in &self.last_events {
                 match event.action {
                     GuardAction::Pinned => self.last_pins.push(event.strand),
@@ -361,14 +397,13 @@ impl BatchSystem {
         self.reset_count += self.last_resets.len() + self.last_pins.len();
     }
 
-    fn locate(&self, index: usize) -> (&Group, usize, usize) {
-        let group = self
-            .groups
-            .iter()
-            .find(|g| (g.first_strand..g.first_strand + g.roots.len()).contains(&index))
-            .unwrap_or_else(|| panic!("strand {index} out of range 0..{}", self.strand_count));
-        let local = index - group.first_strand;
-        (group, local / LANES, local % LANES)
+    /// Strand `index`'s group, batch and lane (panics if out of range).
+    fn locate(&self, index: usize) -> (usize, usize, usize) {
+        let &(group, slot) = self
+            .slots
+            .get(index)
+            .unwrap_or_else(|| panic!("strand {index} out of range 0..{}", self.slots.len()));
+        (group, slot / LANES, slot % LANES)
     }
 
     fn lane_values(values: &[V3<Lanes>], n: usize, batch: usize, lane: usize) -> Vec<DVec3> {
@@ -381,25 +416,23 @@ impl BatchSystem {
     /// Strains q of strand `index`, m⁻¹ (panics if out of range).
     pub fn q(&self, index: usize) -> Vec<DVec3> {
         let (g, batch, lane) = self.locate(index);
-        Self::lane_values(&g.q, g.model.elements(), batch, lane)
+        let g = &self.groups[g];
+        Self::lane_values(&g.q, g.n, batch, lane)
     }
 
     /// Strain rates q̇ of strand `index`, m⁻¹/s (panics if out of range).
     pub fn v(&self, index: usize) -> Vec<DVec3> {
         let (g, batch, lane) = self.locate(index);
-        Self::lane_values(&g.v, g.model.elements(), batch, lane)
+        let g = &self.groups[g];
+        Self::lane_values(&g.v, g.n, batch, lane)
     }
 
     /// Sets strand `index`'s strains and rates (rounded to f32; lengths
     /// must match its element count).
     pub fn set_state(&mut self, index: usize, q: &[DVec3], v: &[DVec3]) {
-        let (_, batch, lane) = self.locate(index);
-        let g = self
-            .groups
-            .iter_mut()
-            .find(|g| (g.first_strand..g.first_strand + g.roots.len()).contains(&index))
-            .expect("located above");
-        let n = g.model.elements();
+        let (g, batch, lane) = self.locate(index);
+        let g = &mut self.groups[g];
+        let n = g.n;
         assert!(q.len() == n && v.len() == n, "state length must be {n}");
         g.measures = None;
         for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
@@ -415,15 +448,16 @@ impl BatchSystem {
     /// coordinates, root first (f32 reconstruction of the current state).
     pub fn boundary_points_world(&self, index: usize) -> Vec<Vec3> {
         let (g, batch, lane) = self.locate(index);
-        let n = g.model.elements();
+        let g = &self.groups[g];
+        let n = g.n;
         let motion = self.head.carry(&g.roots[batch * LANES + lane]);
         let origin = motion.position_m.as_vec3();
         let mut s = FrameState::at_root(&RootMotion::<f32>::gather(&[motion]));
         let pick = |x: &V3<Lanes>| V3::new(x.x.lane(lane), x.y.lane(lane), x.z.lane(lane));
         let mut points = vec![origin];
-        for e in 0..n {
+        for (e, length_m) in g.models[batch].lengths_m.iter().enumerate() {
             let i = batch * n + e;
-            s = advance(&s, g.model.lengths_m[e], pick(&g.q[i]), pick(&g.v[i])).0;
+            s = advance(&s, length_m.lane(lane), pick(&g.q[i]), pick(&g.v[i])).0;
             points.push(origin + Vec3::new(s.point_m.x, s.point_m.y, s.point_m.z));
         }
         points
@@ -447,25 +481,38 @@ impl BatchSystem {
             .groups
             .iter()
             .map(|g| {
+                // Batches filled by one call share their constants.
+                let distinct_models = (0..g.models.len())
+                    .filter(|&b| b == 0 || !Arc::ptr_eq(&g.models[b], &g.models[b - 1]))
+                    .count();
                 (g.q.len() + g.v.len()) * std::mem::size_of::<V3<Lanes>>()
                     + g.roots.len() * std::mem::size_of::<RootPose>()
-                    + g.model.elements() * 4 * 10
+                    + g.strands.len() * std::mem::size_of::<usize>()
+                    + g.models.len() * std::mem::size_of::<Arc<LaneModel>>()
+                    + distinct_models * g.n * 8 * std::mem::size_of::<Lanes>()
             })
-            .sum();
-        let n_max = self
-            .groups
-            .iter()
-            .map(|g| g.model.elements())
-            .max()
-            .unwrap_or(0);
+            .sum::<usize>()
+            + self.slots.len() * std::mem::size_of::<(usize, usize)>();
+        let n_max = self.groups.iter().map(|g| g.n).max().unwrap_or(0);
         MemoryUse {
-            bytes_per_strand: state as f64 / self.strand_count.max(1) as f64,
+            bytes_per_strand: state as f64 / self.slots.len().max(1) as f64,
             scratch_bytes_per_thread: n_max
                 * (std::mem::size_of::<ElementData<Lanes>>()
                     + std::mem::size_of::<Elimination<Lanes>>()
                     + krylov_bytes_per_element(BatchStep::of(&self.settings).iterations())),
         }
     }
+}
+
+/// How full the batches are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LaneUse {
+    /// Batches of [`LANES`] lanes.
+    pub batches: usize,
+    /// Lanes that hold a strand.
+    pub strands: usize,
+    /// Lanes of padding (computed and ignored).
+    pub padding: usize,
 }
 
 /// Bytes of GMRES buffers per element for `iterations` iterations: the
@@ -486,7 +533,7 @@ fn krylov_bytes_per_element(iterations: usize) -> usize {
 )]
 #[inline(always)]
 fn step_batch_with<H: EndPointForce<Lanes>>(
-    model: &BatchModel,
+    model: &LaneModel,
     env: &StepEnv,
     root: &RootMotion<Lanes>,
     step: BatchStep,
@@ -524,27 +571,80 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
 }
 
 impl Group {
+    /// No strands yet, of `n` elements each.
+    fn new(n: usize) -> Self {
+        Self {
+            n,
+            models: Vec::new(),
+            roots: Vec::new(),
+            strands: Vec::new(),
+            q: Vec::new(),
+            v: Vec::new(),
+            measures: None,
+            guard_standing: Vec::new(),
+        }
+    }
+
+    /// Places strand `strand` (constants `model`, `uniform` in every lane)
+    /// in the next free slot, at its natural shape and at rest, and
+    /// returns the slot: lane 0 of a new batch (all of whose lanes copy
+    /// it), or the next lane of the last batch (whose lanes after it, the
+    /// padding, then copy it).
+    fn push(
+        &mut self,
+        model: &BatchModel,
+        uniform: &Arc<LaneModel>,
+        root: RootPose,
+        strand: usize,
+    ) -> usize {
+        let n = self.n;
+        let slot = self.roots.len();
+        let (batch, lane) = (slot / LANES, slot % LANES);
+        if lane == 0 {
+            self.models.push(uniform.clone());
+            self.q.extend_from_slice(&uniform.natural);
+            self.v.extend(std::iter::repeat_n(V3::zero(), n));
+            self.guard_standing.extend([LaneStanding::default(); LANES]);
+        } else {
+            // Batches of one call already hold `model` in every lane.
+            if !Arc::ptr_eq(&self.models[batch], uniform) {
+                Arc::make_mut(&mut self.models[batch]).set_lanes_from(lane, model);
+            }
+            let range = batch * n..(batch + 1) * n;
+            for l in lane..LANES {
+                let (q, v) = (&mut self.q[range.clone()], &mut self.v[range.clone()]);
+                set_natural_at_rest(&self.models[batch], q, v, l);
+                self.guard_standing[batch * LANES + l] = LaneStanding::default();
+            }
+        }
+        self.roots.push(root);
+        self.strands.push(strand);
+        self.measures = None;
+        slot
+    }
+
     /// Per batch, the guard's measures of every lane for the head moving
     /// as `motion` (see [`super::guard`]).
     fn measure(
         &self,
         motion: &RigidMotion,
         env: &StepEnv,
-        contact: Option<&ContactInputs<'_>>,
+        contact: Option<&SkinTest<'_>>,
         parallel: bool,
     ) -> Vec<[StrandMeasure; LANES]> {
-        let n = self.model.elements();
-        let one = |((q, v), roots): BatchView<'_>| {
+        let n = self.n;
+        let one = |(((q, v), roots), model): BatchView<'_>| {
             let motions: [RigidMotion; LANES] =
                 std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
             let root = RootMotion::<Lanes>::gather(&motions);
-            measure_lanes(&self.model, env, &root, &motions, q, v, contact)
+            measure_lanes(&**model, env, &root, &motions, q, v, contact)
         };
         if parallel {
             self.q
                 .par_chunks(n)
                 .zip(self.v.par_chunks(n))
                 .zip(self.roots.par_chunks(LANES))
+                .zip(self.models.par_iter())
                 .map(one)
                 .collect()
         } else {
@@ -552,6 +652,7 @@ impl Group {
                 .chunks(n)
                 .zip(self.v.chunks(n))
                 .zip(self.roots.chunks(LANES))
+                .zip(self.models.iter())
                 .map(one)
                 .collect()
         }
@@ -568,7 +669,7 @@ impl Group {
         start_secs: f64,
         events: &mut Vec<GuardEvent>,
     ) {
-        let n = self.model.elements();
+        let n = self.n;
         for standing in &mut self.guard_standing {
             standing.resets.tick();
         }
@@ -578,7 +679,7 @@ impl Group {
             .zip(self.v.chunks_mut(n))
             .zip(start.iter().zip(end));
         for (batch, ((q, v), (start, end))) in batches.enumerate() {
-            let failed = check_and_reset(guard, &self.model, q, v, start, end, dt_secs);
+            let failed = check_and_reset(guard, &self.models[batch], q, v, start, end, dt_secs);
             for (lane, cause) in failed.into_iter().enumerate() {
                 let standing = &mut self.guard_standing[batch * LANES + lane];
                 // A pinned strand is held, not judged.
@@ -588,9 +689,9 @@ impl Group {
                 standing.pinned = standing.resets.record_reset(guard);
                 let local = batch * LANES + lane;
                 // Padding lanes are reset too, but name no strand.
-                if local < self.roots.len() {
+                if let Some(&strand) = self.strands.get(local) {
                     events.push(GuardEvent {
-                        strand: self.first_strand + local,
+                        strand,
                         time_secs: start_secs,
                         cause,
                         action: if standing.pinned {
@@ -606,7 +707,7 @@ impl Group {
 
     /// Puts every pinned strand back at its natural shape, at rest.
     fn hold_pinned(&mut self) {
-        let n = self.model.elements();
+        let n = self.n;
         for (i, standing) in self.guard_standing.iter().enumerate() {
             if !standing.pinned {
                 continue;
@@ -614,7 +715,7 @@ impl Group {
             let (batch, lane) = (i / LANES, i % LANES);
             let range = batch * n..(batch + 1) * n;
             set_natural_at_rest(
-                &self.model,
+                &self.models[batch],
                 &mut self.q[range.clone()],
                 &mut self.v[range],
                 lane,
@@ -627,22 +728,21 @@ impl Group {
         motion: &RigidMotion,
         env: &StepEnv,
         step_kind: BatchStep,
-        contact: Option<(ContactInputs<'_>, &NearCells)>,
+        contact: Option<SkinTest<'_>>,
         parallel: bool,
     ) {
-        let n = self.model.elements();
-        let model = &self.model;
-        let step_batch = |scratch: &mut Scratch, ((q, v), roots): BatchRef<'_>| {
+        let n = self.n;
+        let step_batch = |scratch: &mut Scratch, (((q, v), roots), model): BatchRef<'_>| {
             let motions: [RigidMotion; LANES] =
                 std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
             let root = RootMotion::<Lanes>::gather(&motions);
             // One branch per batch: without a collider, the sweep has no
             // contact stage at all.
             match contact {
-                Some((inputs, near)) => {
+                Some(test) => {
                     let positions = std::array::from_fn(|i| motions[i].position_m);
                     let implicit = step_kind != BatchStep::BlockDiagonal;
-                    let mut end_force = LaneContact::new(inputs, near, model, positions, implicit);
+                    let mut end_force = LaneContact::new(test, model, positions, implicit);
                     step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
                 }
                 None => {
@@ -655,6 +755,7 @@ impl Group {
                 .par_chunks_mut(n)
                 .zip(self.v.par_chunks_mut(n))
                 .zip(self.roots.par_chunks(LANES))
+                .zip(self.models.par_iter())
                 .for_each_init(|| Scratch::new(n, step_kind.iterations()), step_batch);
         } else {
             let mut scratch = Scratch::new(n, step_kind.iterations());
@@ -662,22 +763,26 @@ impl Group {
                 .chunks_mut(n)
                 .zip(self.v.chunks_mut(n))
                 .zip(self.roots.chunks(LANES))
+                .zip(self.models.iter())
                 .for_each(|batch| step_batch(&mut scratch, batch));
         }
     }
 }
 
-/// The contact inputs for the head moving as `motion`, if a collider is set.
-fn contact_inputs<'a>(
+/// The contact test for the head moving as `motion`, if a collider is set.
+fn contact_test<'a>(
     collider: &'a Option<(Arc<SignedDistanceField>, NearCells)>,
     settings: ContactSettings,
     motion: &'a RigidMotion,
     h_secs: f64,
-) -> Option<ContactInputs<'a>> {
-    collider.as_ref().map(|(collider, _)| ContactInputs {
-        collider,
-        head: motion,
-        settings,
-        h_secs,
+) -> Option<SkinTest<'a>> {
+    collider.as_ref().map(|(collider, near)| {
+        let inputs = ContactInputs {
+            collider,
+            head: motion,
+            settings,
+            h_secs,
+        };
+        SkinTest::new(inputs, near)
     })
 }

@@ -38,8 +38,9 @@
 
 use super::forward::{FrameState, advance_local};
 use super::geometry::local_point;
+use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{BatchModel, ElementData, RootMotion};
+use super::layout::{ElementData, RootMotion};
 use super::vec::V3;
 
 /// One element's share of G z before the suffix sums: its own projection
@@ -84,7 +85,7 @@ pub fn largest_abs<T: Real>(x: &[V3<T>]) -> T {
 )]
 #[inline(always)]
 pub fn velocity_product<T: Real>(
-    model: &BatchModel,
+    model: &impl Constants<T>,
     root: &RootMotion<T>,
     q: &[V3<T>],
     v: &[V3<T>],
@@ -98,7 +99,7 @@ pub fn velocity_product<T: Real>(
     // A lane with z = 0 gets c = 1 and an exact zero; a non-finite z stays so.
     let z_size = z_size.select_below(f32::MIN_POSITIVE, one, z_size);
     let reach = largest_abs(v).max(one) / z_size;
-    let rho_s = T::splat(model.mass_per_length);
+    let rho_s = model.mass_per_length();
     // Σ wρS δr̈ with δr̈ = (plus − minus)/2 in units of z: the factor 1/(2c).
     let factor = rho_s / (reach + reach);
     let still = RootMotion {
@@ -113,7 +114,7 @@ pub fn velocity_product<T: Real>(
         let k = q[e];
         let shift = z[e].scale(reach);
         let (k_plus, k_minus) = (v[e] + shift, v[e] - shift);
-        let length_m = model.lengths_m[e];
+        let length_m = model.length_m(e);
         // Moments about the element's start point.
         let origin_plus = FrameState {
             point_m: V3::zero(),
@@ -125,13 +126,13 @@ pub fn velocity_product<T: Real>(
         };
         let mut result = OwnProduct::zero();
         let mut local = V3::zero();
-        for (node, weight) in model.nodes.iter().zip(&model.weights) {
-            let sigma = node * length_m;
+        for (node, weight) in model.nodes().iter().zip(model.weights()) {
+            let sigma = T::splat(*node) * length_m;
             let lp = local_point(sigma, k, k_plus);
             let lm = local_point(sigma, k, k_minus);
             let [r, _, acc_plus] = origin_plus.carry(lp.h, lp.h_dot, lp.h_ddot);
             let [_, _, acc_minus] = origin_minus.carry(lm.h, lm.h_dot, lm.h_ddot);
-            let f = (acc_plus - acc_minus).scale(factor * T::splat(weight * length_m));
+            let f = (acc_plus - acc_minus).scale(factor * (T::splat(*weight) * length_m));
             local += lp.jacobian.t_mul_vec(plus.frame.t_mul_vec(f));
             result.force += f;
             result.torque += r.cross(f);

@@ -99,6 +99,21 @@ pub fn forces_under_gravity(
     out
 }
 
+/// A random state for the f64 reference and the f32 batch alike: strains
+/// ±5 m⁻¹ off `natural`, rates ±20 m⁻¹/s, rounded to f32 first so both
+/// start from the same numbers.
+pub fn f32_random_state(rng: &mut Rng, natural: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+    let q = natural
+        .iter()
+        .map(|k| (*k + rng.vec3(5.0)).as_vec3().as_dvec3())
+        .collect();
+    let v = natural
+        .iter()
+        .map(|_| rng.vec3(20.0).as_vec3().as_dvec3())
+        .collect();
+    (q, v)
+}
+
 pub fn random_strains(rng: &mut Rng, n: usize, scale_per_m: f64) -> Vec<DVec3> {
     (0..n).map(|_| rng.vec3(scale_per_m)).collect()
 }
