@@ -221,17 +221,20 @@ pub fn run(ctx: &mut BenchContext<'_>, input: &GroomInput) -> anyhow::Result<()>
             let mut system = base.clone();
             system.set_parallel(t > 1);
             let (row, trace) = time_frames(&mut system, &still, variant.name, t, frames);
+            // Thread times are read on one thread only (NaN otherwise).
+            let cpu = if row.cpu_ms.is_finite() {
+                format!(
+                    "; CPU {:.1} ms, waiting {:.1} ms per frame",
+                    row.cpu_ms, row.waiting_ms
+                )
+            } else {
+                String::new()
+            };
             writeln!(
                 ctx.log,
-                "   {}, {t} thread(s): median {:.1} ms, p90 {:.1} ms per frame (load {:.2}); \
-                 CPU {:.1} ms, waiting {:.1} ms per frame; {} guard losses",
-                variant.name,
-                row.median_ms,
-                row.p90_ms,
-                row.load_1min,
-                row.cpu_ms,
-                row.waiting_ms,
-                row.guard_losses
+                "   {}, {t} thread(s): median {:.1} ms, p90 {:.1} ms per frame (load {:.2}){cpu}; \
+                 {} guard losses",
+                variant.name, row.median_ms, row.p90_ms, row.load_1min, row.guard_losses
             )?;
             if variant.name == FULL.name {
                 traces.push((t, trace));
