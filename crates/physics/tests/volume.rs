@@ -13,10 +13,7 @@ use common::shake_scene::ShakeThenStill;
 use glam::{DMat3, DVec3};
 use helixhair_physics::volume::friction::implicit_velocity;
 use helixhair_physics::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
-use helixhair_physics::{
-    HairSystem, Method, NaturalShape, RigidMotion, RootPose, SimSettings, Strand, StrandModel,
-    StrandParams,
-};
+use helixhair_physics::{HairSystem, Method, RigidMotion, SimSettings, Strand, StrandModel};
 
 /// Points on a regular lattice filling a cube of edge `edge_m` about the
 /// origin, `per_axis` to a side, each of `mass_kg`, all at `velocity`.
@@ -197,35 +194,8 @@ fn a_block_compressed_above_rest_density_expands() {
     );
 }
 
-/// Roots on the upper half of a 10 cm head, curly strands of 20 cm.
-fn small_head(count_per_ring: usize, rings: usize) -> (StrandParams, Vec<RootPose>) {
-    let params = StrandParams {
-        length_m: 0.2,
-        elements: 8,
-        natural_shape: NaturalShape::Helix {
-            radius_m: 0.012,
-            step_m: 0.03,
-        },
-        ..StrandParams::default()
-    };
-    let mut roots = Vec::new();
-    for ring in 0..rings {
-        let polar = 0.3 + 1.0 * ring as f64 / rings as f64;
-        for k in 0..count_per_ring {
-            let azimuth = std::f64::consts::TAU * k as f64 / count_per_ring as f64;
-            let n = DVec3::new(
-                polar.sin() * azimuth.cos(),
-                polar.cos(),
-                polar.sin() * azimuth.sin(),
-            );
-            roots.push(RootPose::from_direction(0.1 * n, n, DVec3::Y));
-        }
-    }
-    (params, roots)
-}
-
 fn head_system(interaction: bool, gravity: DVec3) -> HairSystem {
-    let (params, roots) = small_head(12, 4);
+    let (params, roots) = common::volume_scene::small_head(12, 4);
     let mut sim = SimSettings {
         gravity_m_per_s2: gravity,
         ..SimSettings::default()
@@ -246,7 +216,7 @@ fn rest_pose_feels_no_pressure() {
         system.step_frame(&head);
     }
     let volume = system.volume().expect("model on");
-    assert!(volume.field().excess().iter().all(|e| *e == 0.0));
+    assert!(volume.state().field().excess().iter().all(|e| *e == 0.0));
     for s in system.strands() {
         assert!(common::max_diff(s.q(), &s.model().natural) < 1e-12);
         assert!(s.v().iter().all(|v| v.length() < 1e-12));

@@ -208,8 +208,7 @@ fn cost(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
             let mut model = Vec::new();
             for _ in 0..timed {
                 frames.push(sim.step());
-                let volume = sim.engine().reference().and_then(|r| r.volume());
-                model.push(volume.map_or(0.0, |v| v.last_secs()));
+                model.push(sim.engine().volume_secs());
             }
             let row = CostRow {
                 strands: sim.engine().strand_count(),

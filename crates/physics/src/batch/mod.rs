@@ -89,10 +89,12 @@ pub mod guard;
 pub mod implicit;
 pub mod lanes;
 pub mod layout;
+pub mod pull;
 pub mod suffix;
 mod system;
 pub mod vec;
 pub mod velocity_terms;
+pub mod volume;
 
 pub use lanes::{LANES, Lanes, Real};
 pub use system::{BatchSystem, MemoryUse};

@@ -15,7 +15,9 @@ use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
 use super::implicit::{Krylov, step_exact_implicit};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::pull::{SamplePull, WithPull};
 use super::vec::V3;
+use super::volume::{BatchVolume, GroupView};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
 use crate::frame_balance::StrandMeasure;
@@ -24,6 +26,7 @@ use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings, StepScheme};
+use crate::volume::InteractionSettings;
 
 /// Strands sharing one model, in batches of [`LANES`].
 #[derive(Clone, Debug)]
@@ -130,6 +133,8 @@ pub struct BatchSystem {
     last_pins: Vec<usize>,
     last_events: Vec<GuardEvent>,
     reset_count: usize,
+    /// The hair–hair model, when on ([`super::volume`]).
+    volume: Option<BatchVolume>,
 }
 
 impl BatchSystem {
@@ -147,6 +152,7 @@ impl BatchSystem {
                 ),
             ));
         }
+        let interaction = settings.interaction;
         Ok(Self {
             settings,
             groups: Vec::new(),
@@ -161,6 +167,7 @@ impl BatchSystem {
             last_pins: Vec::new(),
             last_events: Vec::new(),
             reset_count: 0,
+            volume: interaction.enabled.then(|| BatchVolume::new(interaction)),
         })
     }
 
@@ -191,12 +198,33 @@ impl BatchSystem {
             model,
         });
         self.strand_count += roots.len();
+        if let Some(volume) = &mut self.volume {
+            volume.state_mut().forget_rest();
+        }
         Ok(start..self.strand_count)
     }
 
     /// The settings.
     pub fn settings(&self) -> &SimSettings {
         &self.settings
+    }
+
+    /// Turns the hair–hair model on, retunes it, or turns it off; fails if
+    /// a setting is out of range. Takes effect at the next frame.
+    pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
+        settings.validate()?;
+        self.settings.interaction = settings;
+        match (&mut self.volume, settings.enabled) {
+            (Some(volume), true) => volume.state_mut().set_settings(settings),
+            (None, true) => self.volume = Some(BatchVolume::new(settings)),
+            (_, false) => self.volume = None,
+        }
+        Ok(())
+    }
+
+    /// The hair–hair model's state (grid, rest density, last field), if on.
+    pub fn volume(&self) -> Option<&BatchVolume> {
+        self.volume.as_ref()
     }
 
     /// Chooses parallel (rayon over batches) or serial stepping; results
@@ -298,6 +326,11 @@ impl BatchSystem {
         };
         let step_kind = BatchStep::of(&self.settings);
         let start_secs = self.time_secs;
+        if let Some(volume) = &mut self.volume {
+            let views: Vec<GroupView<'_>> = self.groups.iter().map(Group::view).collect();
+            volume.prepare(&views, &head.motion_at(start_secs), self.parallel);
+        }
+        let volume = self.volume.as_ref();
         let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
             Some(_) => {
                 let motion = head.motion_at(start_secs);
@@ -305,9 +338,15 @@ impl BatchSystem {
                 let parallel = self.parallel;
                 self.groups
                     .iter_mut()
-                    .map(|g| match g.measures.take() {
-                        Some(m) => m,
-                        None => g.measure(&motion, &env, contact.as_ref(), parallel),
+                    .enumerate()
+                    .map(|(i, g)| match g.measures.take() {
+                        // The model's pull is new each frame: its work at
+                        // the start is measured with it.
+                        Some(m) if volume.is_none() => m,
+                        _ => {
+                            let pulls = volume.map(|v| (v, i));
+                            g.measure(&motion, &env, contact.as_ref(), pulls, parallel)
+                        }
                     })
                     .collect()
             }
@@ -324,8 +363,9 @@ impl BatchSystem {
                 };
                 (inputs, near)
             });
-            for group in &mut self.groups {
-                group.step(&motion, &env, step_kind, contact, self.parallel);
+            for (i, group) in self.groups.iter_mut().enumerate() {
+                let pulls = volume.map(|v| (v, i));
+                group.step(&motion, &env, step_kind, contact, pulls, self.parallel);
             }
             self.time_secs += h;
         }
@@ -339,9 +379,10 @@ impl BatchSystem {
             let dt = self.settings.dt_secs;
             let parallel = self.parallel;
             let events = &mut self.last_events;
-            for (group, start) in self.groups.iter_mut().zip(&start_measures) {
+            for (i, (group, start)) in self.groups.iter_mut().zip(&start_measures).enumerate() {
                 group.hold_pinned();
-                let end = group.measure(&motion, &env, contact.as_ref(), parallel);
+                let pulls = volume.map(|v| (v, i));
+                let end = group.measure(&motion, &env, contact.as_ref(), pulls, parallel);
                 let before = events.len();
                 group.guard(guard, start, &end, dt, start_secs, events);
                 group.measures = (events.len() == before).then_some(end);
@@ -518,6 +559,36 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
     }
 }
 
+/// [`step_batch_with`] with the hair–hair model's `pull` added to
+/// `end_force` when it is on ([`super::pull`]).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's inputs and buffers, passed through"
+)]
+#[inline(always)]
+fn step_pulled<H: EndPointForce<Lanes>>(
+    model: &BatchModel,
+    env: &StepEnv,
+    root: &RootMotion<Lanes>,
+    step: BatchStep,
+    q: &mut [V3<Lanes>],
+    v: &mut [V3<Lanes>],
+    scratch: &mut Scratch,
+    mut end_force: H,
+    pull: Option<SamplePull<'_>>,
+) {
+    match pull {
+        Some(pull) => {
+            let mut hook = WithPull {
+                inner: end_force,
+                pull,
+            };
+            step_batch_with(model, env, root, step, q, v, scratch, &mut hook);
+        }
+        None => step_batch_with(model, env, root, step, q, v, scratch, &mut end_force),
+    }
+}
+
 impl Group {
     /// Per batch, the guard's measures of every lane for the head moving
     /// as `motion` (see [`super::guard`]).
@@ -526,20 +597,32 @@ impl Group {
         motion: &RigidMotion,
         env: &StepEnv,
         contact: Option<&ContactInputs<'_>>,
+        pulls: Option<(&BatchVolume, usize)>,
         parallel: bool,
     ) -> Vec<[StrandMeasure; LANES]> {
         let n = self.model.elements();
-        let one = |((q, v), roots): BatchView<'_>| {
+        let one = |(b, ((q, v), roots)): (usize, BatchView<'_>)| {
             let motions: [RigidMotion; LANES] =
                 std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
             let root = RootMotion::<Lanes>::gather(&motions);
-            measure_lanes(&self.model, env, &root, &motions, q, v, contact)
+            let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
+            measure_lanes(
+                &self.model,
+                env,
+                &root,
+                &motions,
+                q,
+                v,
+                contact,
+                pull.as_ref(),
+            )
         };
         if parallel {
             self.q
                 .par_chunks(n)
                 .zip(self.v.par_chunks(n))
                 .zip(self.roots.par_chunks(LANES))
+                .enumerate()
                 .map(one)
                 .collect()
         } else {
@@ -547,8 +630,19 @@ impl Group {
                 .chunks(n)
                 .zip(self.v.chunks(n))
                 .zip(self.roots.chunks(LANES))
+                .enumerate()
                 .map(one)
                 .collect()
+        }
+    }
+
+    /// The group as the hair–hair model's gather reads it.
+    fn view(&self) -> GroupView<'_> {
+        GroupView {
+            model: &self.model,
+            roots: &self.roots,
+            q: &self.q,
+            v: &self.v,
         }
     }
 
@@ -623,26 +717,26 @@ impl Group {
         env: &StepEnv,
         step_kind: BatchStep,
         contact: Option<(ContactInputs<'_>, &NearCells)>,
+        pulls: Option<(&BatchVolume, usize)>,
         parallel: bool,
     ) {
         let n = self.model.elements();
         let model = &self.model;
-        let step_batch = |scratch: &mut Scratch, ((q, v), roots): BatchRef<'_>| {
+        let step_batch = |scratch: &mut Scratch, (b, ((q, v), roots)): (usize, BatchRef<'_>)| {
             let motions: [RigidMotion; LANES] =
                 std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
             let root = RootMotion::<Lanes>::gather(&motions);
+            let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
             // One branch per batch: without a collider, the sweep has no
             // contact stage at all.
             match contact {
                 Some((inputs, near)) => {
                     let positions = std::array::from_fn(|i| motions[i].position_m);
                     let implicit = step_kind != BatchStep::BlockDiagonal;
-                    let mut end_force = LaneContact::new(inputs, near, model, positions, implicit);
-                    step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
+                    let end_force = LaneContact::new(inputs, near, model, positions, implicit);
+                    step_pulled(model, env, &root, step_kind, q, v, scratch, end_force, pull);
                 }
-                None => {
-                    step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut NoContact)
-                }
+                None => step_pulled(model, env, &root, step_kind, q, v, scratch, NoContact, pull),
             }
         };
         if parallel {
@@ -650,6 +744,7 @@ impl Group {
                 .par_chunks_mut(n)
                 .zip(self.v.par_chunks_mut(n))
                 .zip(self.roots.par_chunks(LANES))
+                .enumerate()
                 .for_each_init(|| Scratch::new(n, step_kind.iterations()), step_batch);
         } else {
             let mut scratch = Scratch::new(n, step_kind.iterations());
@@ -657,6 +752,7 @@ impl Group {
                 .chunks_mut(n)
                 .zip(self.v.chunks_mut(n))
                 .zip(self.roots.chunks(LANES))
+                .enumerate()
                 .for_each(|batch| step_batch(&mut scratch, batch));
         }
     }

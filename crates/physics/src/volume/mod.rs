@@ -43,6 +43,7 @@ pub mod reference;
 pub mod rest;
 pub mod settings;
 pub mod splat;
+pub mod state;
 
 pub use field::{SampleReading, VolumeField};
 pub use friction::VolumePull;
@@ -51,3 +52,4 @@ pub use reference::ReferenceVolume;
 pub use rest::RestDensity;
 pub use settings::InteractionSettings;
 pub use splat::SamplePoint;
+pub use state::ModelState;

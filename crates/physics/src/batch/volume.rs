@@ -1,0 +1,276 @@
+//! The hair–hair model ([`crate::volume`]) on the batch engine: once per
+//! frame, before the strands step, gather every lane's quadrature samples,
+//! splat them on the rest grid with the shared f64 arithmetic
+//! ([`crate::volume::field`]), and hand each batch its pull
+//! ([`super::pull::SamplePull`]) for the frame's steps.
+//!
+//! # One arithmetic with the reference
+//!
+//! Only the gather is the batch engine's own: a root-to-tip sweep in f32
+//! lanes, as the guard's measure sweeps ([`super::guard`]), gives each
+//! sample's position relative to its root and its world velocity; they are
+//! widened to f64 and carried into head coordinates exactly as the
+//! reference's [`crate::volume::reference::head_points`] does, with mass
+//! ρS·w·ℓ. The splat, the density excess and what each sample reads back
+//! (grid velocity, pressure push) are the same functions the reference
+//! calls. The reading becomes the sample's known force
+//! c = ρS (μ u + a) (world axes), rounded to f32 once.
+//!
+//! # Rest density
+//!
+//! Built on first use, as on the reference, from the rest pose: every
+//! strand at its natural strains, at rest, the head at the origin, on a
+//! grid fitted to those samples with half the longest strand to spare. It
+//! is gathered by the same f32 sweep the frames use, so a batch at rest in
+//! its natural shape on a still head splats exactly the rest density and
+//! feels no pressure.
+//!
+//! # Padding
+//!
+//! A short last batch pads with copies of its last strand
+//! ([`super::layout`]); their samples splat with zero mass (a strand is
+//! counted once) and read the field like any other, so the padding steps
+//! as its strand does.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::forward::{FrameState, advance};
+use super::geometry::local_point;
+use super::lanes::{LANES, Lanes, Real};
+use super::layout::{BatchModel, RootMotion};
+use super::pull::{SamplePull, friction_rate};
+use super::vec::V3;
+use crate::motion::{RigidMotion, RootPose};
+use crate::volume::{InteractionSettings, ModelState, RestDensity, SamplePoint};
+
+/// One group of strands as the gather reads it: its model, roots and
+/// batch-major state (batch b's element e at b·N + e).
+#[derive(Clone, Copy, Debug)]
+pub struct GroupView<'a> {
+    /// The group's f32 constants.
+    pub model: &'a BatchModel,
+    /// One root per strand.
+    pub roots: &'a [RootPose],
+    /// Strains, batch-major.
+    pub q: &'a [V3<Lanes>],
+    /// Strain rates, batch-major.
+    pub v: &'a [V3<Lanes>],
+}
+
+/// One group's samples and pulls of the current frame.
+#[derive(Clone, Debug, Default)]
+struct GroupPulls {
+    /// Batch b's sample i (element-major), lane l at (b·S + i)·LANES + l.
+    points: Vec<SamplePoint>,
+    /// Batch b's sample i's known force c at b·S + i, N/m.
+    known: Vec<V3<Lanes>>,
+    /// μρS, kg/(m·s).
+    rate: Lanes,
+    /// Samples per strand S = N × nodes.
+    samples: usize,
+    /// Quadrature nodes per element.
+    nodes: usize,
+}
+
+/// The model's state on a batch engine.
+#[derive(Clone, Debug)]
+pub struct BatchVolume {
+    state: ModelState,
+    groups: Vec<GroupPulls>,
+}
+
+impl BatchVolume {
+    /// The model with `settings`; the rest density waits for the first frame.
+    pub fn new(settings: InteractionSettings) -> Self {
+        Self {
+            state: ModelState::new(settings),
+            groups: Vec::new(),
+        }
+    }
+
+    /// Settings, rest density, last field and the last pass's time.
+    pub fn state(&self) -> &ModelState {
+        &self.state
+    }
+
+    /// The state, to retune the model or forget its rest density.
+    pub fn state_mut(&mut self) -> &mut ModelState {
+        &mut self.state
+    }
+
+    /// Batch `batch` of group `group`'s pull for the frame prepared last,
+    /// if [`Self::prepare`] has run on it.
+    pub fn pull(&self, group: usize, batch: usize) -> Option<SamplePull<'_>> {
+        let g = self.groups.get(group)?;
+        let known = g.known.get(batch * g.samples..(batch + 1) * g.samples)?;
+        Some(SamplePull {
+            friction_per_s: self.state.settings().friction_per_s as f32,
+            rate: g.rate,
+            known,
+            nodes: g.nodes,
+        })
+    }
+
+    /// Gathers every group's samples with the head at `head`, splats them
+    /// and sets every batch's pull for the coming frame.
+    pub fn prepare(&mut self, groups: &[GroupView<'_>], head: &RigidMotion, parallel: bool) {
+        let start = Instant::now();
+        if !self
+            .state
+            .ensure_rest(|settings| rest_density(groups, settings))
+        {
+            self.groups.clear();
+            return;
+        }
+        self.groups.resize_with(groups.len(), GroupPulls::default);
+        for (view, pulls) in groups.iter().zip(&mut self.groups) {
+            gather_group(view, head, parallel, pulls);
+        }
+        let points = self.groups.iter().flat_map(|g| g.points.iter());
+        let Some((rest, field, settings)) = self.state.update(points) else {
+            return;
+        };
+        let mu = settings.friction_per_s;
+        for (view, pulls) in groups.iter().zip(&mut self.groups) {
+            let rho_s = f64::from(view.model.mass_per_length);
+            pulls.rate = friction_rate(mu as f32, view.model.mass_per_length);
+            let lanes = pulls.samples * LANES;
+            pulls.known.resize(pulls.points.len() / LANES, V3::zero());
+            let read = |(known, points): (&mut [V3<Lanes>], &[SamplePoint])| {
+                for (c, lanes) in known.iter_mut().zip(points.chunks(LANES)) {
+                    let force: [DVec3; LANES] = std::array::from_fn(|l| {
+                        let reading = field.read(rest, settings, &lanes[l]);
+                        let push = head.world_from_body * reading.push_m_per_s2;
+                        rho_s * (mu * reading.target_m_per_s + push)
+                    });
+                    *c = lanes_of(&force);
+                }
+            };
+            if parallel {
+                let known = pulls.known.par_chunks_mut(pulls.samples);
+                known.zip(pulls.points.par_chunks(lanes)).for_each(read);
+            } else {
+                let known = pulls.known.chunks_mut(pulls.samples);
+                known.zip(pulls.points.chunks(lanes)).for_each(read);
+            }
+        }
+        self.state.set_last_secs(start.elapsed().as_secs_f64());
+    }
+}
+
+/// f32 lanes of per-lane f64 vectors.
+fn lanes_of(values: &[DVec3; LANES]) -> V3<Lanes> {
+    V3::new(
+        Lanes::from_fn(|l| values[l].x as f32),
+        Lanes::from_fn(|l| values[l].y as f32),
+        Lanes::from_fn(|l| values[l].z as f32),
+    )
+}
+
+/// Every batch of `view` gathered into `out.points` (parallel over
+/// batches when `parallel`).
+fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &mut GroupPulls) {
+    let n = view.model.elements();
+    out.nodes = view.model.nodes.len();
+    out.samples = n * out.nodes;
+    let batches = view.roots.len().div_ceil(LANES);
+    out.points
+        .resize(batches * out.samples * LANES, SAMPLE_NONE);
+    let lanes = out.samples * LANES;
+    let one = |((points, (q, v)), roots): ((&mut [SamplePoint], _), _)| {
+        gather_batch(view.model, roots, head, q, v, points);
+    };
+    if parallel {
+        let state = view.q.par_chunks(n).zip(view.v.par_chunks(n));
+        out.points
+            .par_chunks_mut(lanes)
+            .zip(state)
+            .zip(view.roots.par_chunks(LANES))
+            .for_each(one);
+    } else {
+        let state = view.q.chunks(n).zip(view.v.chunks(n));
+        out.points
+            .chunks_mut(lanes)
+            .zip(state)
+            .zip(view.roots.chunks(LANES))
+            .for_each(one);
+    }
+}
+
+const SAMPLE_NONE: SamplePoint = SamplePoint {
+    position_m: DVec3::ZERO,
+    velocity_m_per_s: DVec3::ZERO,
+    mass_kg: 0.0,
+};
+
+/// One batch's samples (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
+/// at `head`) as points in head coordinates, written to `out` (sample i,
+/// lane l at i·LANES + l). Padding lanes get zero mass.
+pub fn gather_batch(
+    model: &BatchModel,
+    roots: &[RootPose],
+    head: &RigidMotion,
+    q: &[V3<Lanes>],
+    v: &[V3<Lanes>],
+    out: &mut [SamplePoint],
+) {
+    let motions: [RigidMotion; LANES] =
+        std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
+    let root = RootMotion::<Lanes>::gather(&motions);
+    let body_from_world = head.world_from_body.transpose();
+    let rho_s = f64::from(model.mass_per_length);
+    let pick = |x: V3<Lanes>, l: usize| {
+        DVec3::new(
+            f64::from(x.x.lane(l)),
+            f64::from(x.y.lane(l)),
+            f64::from(x.z.lane(l)),
+        )
+    };
+    let mut s = FrameState::at_root(&root);
+    let mut i = 0;
+    for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
+        let length_m = model.lengths_m[e];
+        for (node, weight) in model.nodes.iter().zip(&model.weights) {
+            let lp = local_point(node * length_m, *k, *k_dot);
+            let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+            let mass_kg = rho_s * f64::from(*weight) * f64::from(length_m);
+            for (l, motion) in motions.iter().enumerate() {
+                out[i * LANES + l] = SamplePoint {
+                    position_m: body_from_world
+                        * (motion.position_m + pick(r, l) - head.position_m),
+                    velocity_m_per_s: pick(vel, l),
+                    mass_kg: if l < roots.len() { mass_kg } else { 0.0 },
+                };
+            }
+            i += 1;
+        }
+        s = advance(&s, length_m, *k, *k_dot).0;
+    }
+}
+
+/// The rest density of the groups' rest pose (natural strains, at rest,
+/// head at the origin), gathered as the frames are; `None` without strands.
+pub fn rest_density(
+    groups: &[GroupView<'_>],
+    settings: &InteractionSettings,
+) -> Option<RestDensity> {
+    let head = RigidMotion::default();
+    let mut points = Vec::new();
+    let mut longest_m: f64 = 0.0;
+    for view in groups {
+        let model = view.model;
+        let q: Vec<V3<Lanes>> = model.natural.iter().map(|k| V3::splat(*k)).collect();
+        let v = vec![V3::zero(); q.len()];
+        let mut batch = vec![SAMPLE_NONE; q.len() * model.nodes.len() * LANES];
+        for roots in view.roots.chunks(LANES) {
+            gather_batch(model, roots, &head, &q, &v, &mut batch);
+            points.extend(batch.iter().filter(|p| p.mass_kg > 0.0));
+        }
+        let length_m: f32 = model.lengths_m.iter().sum();
+        longest_m = longest_m.max(f64::from(length_m));
+    }
+    RestDensity::new(&points, settings.cell_m, 0.5 * longest_m)
+}
