@@ -107,8 +107,8 @@ pub struct SimArgs {
     #[arg(long, value_name = "TERMS", value_parser = parse_velocity_terms)]
     pub velocity_terms: Option<StepScheme>,
     /// Hair–hair interaction (the volume model, docs/volume.md) on or
-    /// off, instead of the style's `sim.interaction.enabled`; reference
-    /// engine only.
+    /// off, instead of the style's `sim.interaction.enabled`; either
+    /// engine.
     #[arg(long, value_name = "on|off", value_parser = parse_interaction)]
     pub interaction: Option<bool>,
     /// Move the head with one of the window's clips (nod, shake, turn or

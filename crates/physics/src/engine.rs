@@ -202,6 +202,15 @@ impl Engine {
         }
     }
 
+    /// Sets either engine's stability guard (`None`: no checks; a study
+    /// that times the guard's share turns it off).
+    pub fn set_guard(&mut self, guard: Option<crate::guard::Guard>) {
+        match self {
+            Self::Reference(system) => system.set_guard(guard),
+            Self::Batch { system, .. } => system.set_guard(guard),
+        }
+    }
+
     /// Turns the hair–hair model ([`crate::volume`]) on, retunes it or
     /// turns it off, on either engine.
     pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {

@@ -214,6 +214,10 @@ impl BatchSystem {
     pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
         settings.validate()?;
         self.settings.interaction = settings;
+        // The guard's reused measures counted the old model's work.
+        for group in &mut self.groups {
+            group.measures = None;
+        }
         match (&mut self.volume, settings.enabled) {
             (Some(volume), true) => volume.state_mut().set_settings(settings),
             (None, true) => self.volume = Some(BatchVolume::new(settings)),
@@ -340,10 +344,15 @@ impl BatchSystem {
                     .iter_mut()
                     .enumerate()
                     .map(|(i, g)| match g.measures.take() {
-                        // The model's pull is new each frame: its work at
-                        // the start is measured with it.
-                        Some(m) if volume.is_none() => m,
-                        _ => {
+                        // The model's pull is new each frame: the reused
+                        // measure counts its work instead of the old one's.
+                        Some(mut m) => {
+                            if let Some(volume) = volume {
+                                volume.exchange_start_work(i, &mut m);
+                            }
+                            m
+                        }
+                        None => {
                             let pulls = volume.map(|v| (v, i));
                             g.measure(&motion, &env, contact.as_ref(), pulls, parallel)
                         }

@@ -43,7 +43,10 @@ use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, RootMotion};
 use super::pull::{SamplePull, friction_rate};
 use super::vec::V3;
+use super::volume_read::{Exchange, ReadInputs, read_batch};
+use crate::frame_balance::StrandMeasure;
 use crate::motion::{RigidMotion, RootPose};
+use crate::volume::balance::PullWork;
 use crate::volume::{InteractionSettings, ModelState, RestDensity, SamplePoint};
 
 /// One group of strands as the gather reads it: its model, roots and
@@ -60,15 +63,33 @@ pub struct GroupView<'a> {
     pub v: &'a [V3<Lanes>],
 }
 
+/// One batch's inputs and outputs of the read-back.
+type BatchOut<'a> = (&'a mut [SamplePoint], &'a mut [[V3<Lanes>; 2]]);
+
+/// One batch's read-back: its c, points, motion and work exchange.
+type BatchRead<'a> = (
+    (
+        (&'a mut [V3<Lanes>], &'a [SamplePoint]),
+        &'a [[V3<Lanes>; 2]],
+    ),
+    &'a mut [Exchange; LANES],
+);
+
 /// One group's samples and pulls of the current frame.
 #[derive(Clone, Debug, Default)]
 struct GroupPulls {
     /// Batch b's sample i (element-major), lane l at (b·S + i)·LANES + l.
     points: Vec<SamplePoint>,
+    /// Batch b's sample i's position relative to its root and velocity
+    /// (world, f32 lanes) at b·S + i.
+    motion: Vec<[V3<Lanes>; 2]>,
     /// Batch b's sample i's known force c at b·S + i, N/m.
     known: Vec<V3<Lanes>>,
     /// μρS, kg/(m·s).
     rate: Lanes,
+    /// Per batch and lane, the old and the new pull's work at the frame's
+    /// start ([`super::volume_read`]).
+    exchange: Vec<[Exchange; LANES]>,
     /// Samples per strand S = N × nodes.
     samples: usize,
     /// Quadrature nodes per element.
@@ -114,6 +135,21 @@ impl BatchVolume {
         })
     }
 
+    /// Group `group`'s start measures (per batch, per lane), reused from
+    /// the last frame's end, which counted the old pull's work: the new
+    /// pull's counted instead ([`super::volume_read`]). Without an old pull
+    /// (the first frame with the model) the old work is zero, as it was.
+    pub fn exchange_start_work(&self, group: usize, measures: &mut [[StrandMeasure; LANES]]) {
+        let Some(g) = self.groups.get(group) else {
+            return;
+        };
+        for (batch, exchange) in measures.iter_mut().zip(&g.exchange) {
+            for (m, (old, new)) in batch.iter_mut().zip(exchange) {
+                PullWork::exchange(m, old, new);
+            }
+        }
+    }
+
     /// Gathers every group's samples with the head at `head`, splats them
     /// and sets every batch's pull for the coming frame.
     pub fn prepare(&mut self, groups: &[GroupView<'_>], head: &RigidMotion, parallel: bool) {
@@ -129,45 +165,51 @@ impl BatchVolume {
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
             gather_group(view, head, parallel, pulls);
         }
-        let points = self.groups.iter().flat_map(|g| g.points.iter());
-        let Some((rest, field, settings)) = self.state.update(points) else {
+        let parts: Vec<&[SamplePoint]> = self.groups.iter().map(|g| g.points.as_slice()).collect();
+        let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
             return;
         };
-        let mu = settings.friction_per_s;
+        let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
-            let rho_s = f64::from(view.model.mass_per_length);
-            pulls.rate = friction_rate(mu as f32, view.model.mass_per_length);
             let lanes = pulls.samples * LANES;
-            pulls.known.resize(pulls.points.len() / LANES, V3::zero());
-            let read = |(known, points): (&mut [V3<Lanes>], &[SamplePoint])| {
-                for (c, lanes) in known.iter_mut().zip(points.chunks(LANES)) {
-                    let force: [DVec3; LANES] = std::array::from_fn(|l| {
-                        let reading = field.read(rest, settings, &lanes[l]);
-                        let push = head.world_from_body * reading.push_m_per_s2;
-                        rho_s * (mu * reading.target_m_per_s + push)
-                    });
-                    *c = lanes_of(&force);
-                }
+            let batches = pulls.points.len() / lanes;
+            // An old pull exists when the last frame read this very layout.
+            let had_old = pulls.known.len() == batches * pulls.samples;
+            let rate = friction_rate(mu, view.model.mass_per_length);
+            let inputs = ReadInputs {
+                rest,
+                field,
+                settings,
+                head,
+                model: view.model,
+                old_rate: had_old.then_some(pulls.rate),
+                rate,
+            };
+            pulls.rate = rate;
+            pulls.known.resize(batches * pulls.samples, V3::zero());
+            let none = (PullWork::default(), PullWork::default());
+            pulls.exchange.resize(batches, [none; LANES]);
+            let read = |(((known, points), motion), exchange): BatchRead<'_>| {
+                read_batch(&inputs, points, motion, known, exchange);
             };
             if parallel {
                 let known = pulls.known.par_chunks_mut(pulls.samples);
-                known.zip(pulls.points.par_chunks(lanes)).for_each(read);
+                known
+                    .zip(pulls.points.par_chunks(lanes))
+                    .zip(pulls.motion.par_chunks(pulls.samples))
+                    .zip(pulls.exchange.par_iter_mut())
+                    .for_each(read);
             } else {
                 let known = pulls.known.chunks_mut(pulls.samples);
-                known.zip(pulls.points.chunks(lanes)).for_each(read);
+                known
+                    .zip(pulls.points.chunks(lanes))
+                    .zip(pulls.motion.chunks(pulls.samples))
+                    .zip(pulls.exchange.iter_mut())
+                    .for_each(read);
             }
         }
         self.state.set_last_secs(start.elapsed().as_secs_f64());
     }
-}
-
-/// f32 lanes of per-lane f64 vectors.
-fn lanes_of(values: &[DVec3; LANES]) -> V3<Lanes> {
-    V3::new(
-        Lanes::from_fn(|l| values[l].x as f32),
-        Lanes::from_fn(|l| values[l].y as f32),
-        Lanes::from_fn(|l| values[l].z as f32),
-    )
 }
 
 /// Every batch of `view` gathered into `out.points` (parallel over
@@ -179,14 +221,17 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     let batches = view.roots.len().div_ceil(LANES);
     out.points
         .resize(batches * out.samples * LANES, SAMPLE_NONE);
-    let lanes = out.samples * LANES;
-    let one = |((points, (q, v)), roots): ((&mut [SamplePoint], _), _)| {
-        gather_batch(view.model, roots, head, q, v, points);
+    out.motion.resize(batches * out.samples, [V3::zero(); 2]);
+    let (lanes, samples) = (out.samples * LANES, out.samples);
+    let one = |((out, (q, v)), roots): ((BatchOut<'_>, _), _)| {
+        let (points, motion) = out;
+        gather_batch(view.model, roots, head, (q, v), points, motion);
     };
     if parallel {
         let state = view.q.par_chunks(n).zip(view.v.par_chunks(n));
         out.points
             .par_chunks_mut(lanes)
+            .zip(out.motion.par_chunks_mut(samples))
             .zip(state)
             .zip(view.roots.par_chunks(LANES))
             .for_each(one);
@@ -194,6 +239,7 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
         let state = view.q.chunks(n).zip(view.v.chunks(n));
         out.points
             .chunks_mut(lanes)
+            .zip(out.motion.chunks_mut(samples))
             .zip(state)
             .zip(view.roots.chunks(LANES))
             .for_each(one);
@@ -208,14 +254,16 @@ const SAMPLE_NONE: SamplePoint = SamplePoint {
 
 /// One batch's samples (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
 /// at `head`) as points in head coordinates, written to `out` (sample i,
-/// lane l at i·LANES + l). Padding lanes get zero mass.
+/// lane l at i·LANES + l; padding lanes get zero mass), and as f32 lanes
+/// of position relative to the root and velocity, world, to `motion`
+/// (sample i at i).
 pub fn gather_batch(
     model: &BatchModel,
     roots: &[RootPose],
     head: &RigidMotion,
-    q: &[V3<Lanes>],
-    v: &[V3<Lanes>],
+    (q, v): (&[V3<Lanes>], &[V3<Lanes>]),
     out: &mut [SamplePoint],
+    motion: &mut [[V3<Lanes>; 2]],
 ) {
     let motions: [RigidMotion; LANES] =
         std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
@@ -236,11 +284,12 @@ pub fn gather_batch(
         for (node, weight) in model.nodes.iter().zip(&model.weights) {
             let lp = local_point(node * length_m, *k, *k_dot);
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+            motion[i] = [r, vel];
             let mass_kg = rho_s * f64::from(*weight) * f64::from(length_m);
-            for (l, motion) in motions.iter().enumerate() {
+            for (l, root_motion) in motions.iter().enumerate() {
                 out[i * LANES + l] = SamplePoint {
                     position_m: body_from_world
-                        * (motion.position_m + pick(r, l) - head.position_m),
+                        * (root_motion.position_m + pick(r, l) - head.position_m),
                     velocity_m_per_s: pick(vel, l),
                     mass_kg: if l < roots.len() { mass_kg } else { 0.0 },
                 };
@@ -264,9 +313,11 @@ pub fn rest_density(
         let model = view.model;
         let q: Vec<V3<Lanes>> = model.natural.iter().map(|k| V3::splat(*k)).collect();
         let v = vec![V3::zero(); q.len()];
-        let mut batch = vec![SAMPLE_NONE; q.len() * model.nodes.len() * LANES];
+        let samples = q.len() * model.nodes.len();
+        let mut batch = vec![SAMPLE_NONE; samples * LANES];
+        let mut motion = vec![[V3::zero(); 2]; samples];
         for roots in view.roots.chunks(LANES) {
-            gather_batch(model, roots, &head, &q, &v, &mut batch);
+            gather_batch(model, roots, &head, (&q, &v), &mut batch, &mut motion);
             points.extend(batch.iter().filter(|p| p.mass_kg > 0.0));
         }
         let length_m: f32 = model.lengths_m.iter().sum();

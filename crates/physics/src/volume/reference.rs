@@ -67,7 +67,8 @@ impl ReferenceVolume {
         } else {
             strands.iter().zip(&mut self.points).for_each(gather);
         }
-        let Some((rest, field, settings)) = self.state.update(self.points.iter().flatten()) else {
+        let parts: Vec<&[SamplePoint]> = self.points.iter().map(Vec::as_slice).collect();
+        let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
             return;
         };
         let hand_out = |(s, points): (&mut Strand, &Vec<SamplePoint>)| {
@@ -75,7 +76,7 @@ impl ReferenceVolume {
             let (target, push): (Vec<DVec3>, Vec<DVec3>) = readings
                 .map(|r| (r.target_m_per_s, head.world_from_body * r.push_m_per_s2))
                 .unzip();
-            s.set_volume_pull(settings.friction_per_s, target, push);
+            s.exchange_volume_pull((settings.friction_per_s, target, push), points, head);
         };
         if parallel {
             strands.par_iter_mut().zip(&self.points).for_each(hand_out);

@@ -80,14 +80,16 @@ impl ModelState {
         self.rest.is_some()
     }
 
-    /// Splats this frame's `points` (head coordinates) and returns what
-    /// reading the field back needs; `None` before a rest density exists.
-    pub fn update<'a>(
+    /// Splats this frame's points, `parts` (head coordinates), in parallel
+    /// when `parallel`, and returns what reading the field back needs;
+    /// `None` before a rest density exists.
+    pub fn update(
         &mut self,
-        points: impl IntoIterator<Item = &'a SamplePoint>,
+        parts: &[&[SamplePoint]],
+        parallel: bool,
     ) -> Option<(&RestDensity, &VolumeField, &InteractionSettings)> {
         let rest = self.rest.as_ref()?;
-        self.field.update(rest, points);
+        self.field.update(rest, parts, parallel);
         Some((rest, &self.field, &self.settings))
     }
 }

@@ -6,6 +6,8 @@
 use glam::DVec3;
 use helixhair_physics::{NaturalShape, RootPose, StrandParams};
 
+use super::shake_scene::ShakeThenStill;
+
 /// Roots on the upper half of a 10 cm head, curly strands of 20 cm:
 /// `rings` rings of `count_per_ring` roots.
 pub fn small_head(count_per_ring: usize, rings: usize) -> (StrandParams, Vec<RootPose>) {
@@ -32,4 +34,38 @@ pub fn small_head(count_per_ring: usize, rings: usize) -> (StrandParams, Vec<Roo
         }
     }
     (params, roots)
+}
+
+/// Steps `system` through `head` (a shake, then 3 s still) with `step`,
+/// and returns its kinetic energy (`kinetic_j`) at the end of the shake,
+/// after each still second, and at the end.
+pub fn kinetic_after_shake<S>(
+    system: &mut S,
+    head: &ShakeThenStill,
+    step: fn(&mut S, &ShakeThenStill),
+    kinetic_j: fn(&S) -> f64,
+) -> Vec<f64> {
+    let frames_shake = (head.shake_secs * 60.0).ceil() as usize;
+    let mut seconds = Vec::new();
+    for frame in 0..frames_shake + 180 {
+        step(system, head);
+        if frame >= frames_shake && (frame - frames_shake).is_multiple_of(60) {
+            seconds.push(kinetic_j(system));
+        }
+    }
+    seconds.push(kinetic_j(system));
+    seconds
+}
+
+/// The calm-down's known answer: with the model the kinetic energy after
+/// the shake (`with`, from [`kinetic_after_shake`]) falls every second and
+/// ends below the run without it (`without`).
+pub fn assert_calms_down(with: &[f64], without: &[f64]) {
+    for w in with.windows(2) {
+        assert!(w[1] < w[0], "kinetic energy rose after the shake: {with:?}");
+    }
+    assert!(
+        with.last() < without.last(),
+        "with {with:?}, without {without:?}"
+    );
 }
