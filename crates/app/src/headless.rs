@@ -464,19 +464,6 @@ fn check_engine_options(
                 format!("the batch engine runs {allowed} only, not `sim.method` `{method}`"),
             ),
         }
-    } else if settings.interaction.enabled {
-        let option = match (overrides.engine, overrides.interaction) {
-            (Some(_), Some(_)) => "--engine batch --interaction on",
-            (Some(_), None) => "--engine batch",
-            (None, Some(_)) => "--interaction on",
-            (None, None) => "style field `engine: Batch`",
-        };
-        (
-            option.to_owned(),
-            "the batch engine has no hair-hair interaction yet (docs/volume.md); \
-             use --engine reference, or --interaction off"
-                .to_owned(),
-        )
     } else if accuracy_target.is_some() {
         let option = if overrides.engine.is_some() {
             "--engine batch"

@@ -84,7 +84,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "ENGINE", value_parser = crate::engine_arg::parse_engine)]
     pub engine: Option<helixhair_physics::engine::EngineKind>,
     /// Hair–hair interaction (docs/volume.md) on or off, instead of the
-    /// style's `sim.interaction.enabled`; reference engine only.
+    /// style's `sim.interaction.enabled`; either engine.
     #[arg(long, value_name = "on|off", value_parser = crate::engine_arg::parse_interaction)]
     pub interaction: Option<bool>,
 }

@@ -83,16 +83,6 @@ fn check_engine(style: &Style) -> Result<(), StyleIssue> {
             ),
         ));
     }
-    if style.engine == EngineKind::Batch && style.sim.interaction.enabled {
-        return Err(invalid(
-            FieldPath::root()
-                .field("sim")
-                .field("interaction")
-                .field("enabled"),
-            "the batch engine has no hair-hair interaction yet (docs/volume.md); \
-             use `engine: Reference`, or `enabled: false`",
-        ));
-    }
     if style.engine == EngineKind::Batch && style.accuracy_target.is_some() {
         return Err(invalid(
             engine,

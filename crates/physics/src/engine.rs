@@ -9,7 +9,7 @@
 //! | --- | --- | --- |
 //! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`crate::batch::LANES`] strands per SIMD batch, rayon over batches |
 //! | solvers | every [`Method`], per strand | Exact and Block-diagonal, one for all strands |
-//! | extras | stability guard with retries, head collider, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points (implicit on Exact) |
+//! | extras | stability guard with retries, head collider, hair–hair model, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points (implicit on Exact), hair–hair model (same grid arithmetic, [`crate::batch::volume`]) |
 //! | speed | the baseline | an order of magnitude more element-steps per second per core (measured in `docs/RESULTS.md`, section 8) |
 //!
 //! The reference is what every solver study and the guard were built on,
@@ -52,6 +52,7 @@ use crate::batch::layout::BatchModel;
 use crate::collision::SignedDistanceField;
 use crate::fit::RestContact;
 use crate::reconstruct::{Kinematics, reconstruct};
+use crate::volume::{ModelState, RestDensity, VolumeField};
 use crate::{
     Energies, HairSystem, HeadTrajectory, InteractionSettings, Method, ParamError, RigidMotion,
     RootPose, SimSettings, Strand, StrandModel, StrandParams,
@@ -118,12 +119,8 @@ pub enum Engine {
 
 impl Engine {
     /// An empty system on `kind`. Fails if a setting is out of range, or
-    /// (field `method`) if the batch engine cannot run the solver, or
-    /// (field `interaction.enabled`) if it is asked for the hair–hair model.
+    /// (field `method`) if the batch engine cannot run the solver.
     pub fn new(kind: EngineKind, settings: SimSettings) -> Result<Self, ParamError> {
-        if kind == EngineKind::Batch {
-            check_batch_interaction(&settings.interaction)?;
-        }
         Ok(match kind {
             EngineKind::Reference => Self::Reference(HairSystem::new(settings)?),
             EngineKind::Batch => Self::Batch {
@@ -233,13 +230,41 @@ impl Engine {
         ))
     }
 
+    /// Sets either engine's stability guard (`None`: no checks; a study
+    /// that times the guard's share turns it off).
+    pub fn set_guard(&mut self, guard: Option<crate::guard::Guard>) {
+        match self {
+            Self::Reference(system) => system.set_guard(guard),
+            Self::Batch { system, .. } => system.set_guard(guard),
+        }
+    }
+
     /// Turns the hair–hair model ([`crate::volume`]) on, retunes it or
-    /// turns it off. Only the reference engine runs it: the batch engine
-    /// refuses `enabled` with an error naming `interaction.enabled`.
+    /// turns it off, on either engine.
     pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
         match self {
             Self::Reference(system) => system.set_interaction(settings),
-            Self::Batch { .. } => check_batch_interaction(&settings),
+            Self::Batch { system, .. } => system.set_interaction(settings),
+        }
+    }
+
+    /// The hair–hair model's rest density and the field of the last frame,
+    /// once a frame has run with the model on.
+    pub fn volume_field(&self) -> Option<(&RestDensity, &VolumeField)> {
+        let state = self.volume_state()?;
+        state.rest().map(|rest| (rest, state.field()))
+    }
+
+    /// Wall time of the hair–hair model's pass in the last frame, seconds
+    /// (zero when it is off).
+    pub fn volume_secs(&self) -> f64 {
+        self.volume_state().map_or(0.0, ModelState::last_secs)
+    }
+
+    fn volume_state(&self) -> Option<&ModelState> {
+        match self {
+            Self::Reference(system) => system.volume().map(|v| v.state()),
+            Self::Batch { system, .. } => system.volume().map(|v| v.state()),
         }
     }
 
@@ -382,18 +407,6 @@ impl Engine {
             }
         }
     }
-}
-
-/// The batch engine has no hair–hair model yet (docs/volume.md).
-fn check_batch_interaction(settings: &InteractionSettings) -> Result<(), ParamError> {
-    if settings.enabled {
-        return Err(ParamError::new(
-            "interaction.enabled",
-            1.0,
-            "the batch engine has no hair-hair interaction yet; use engine `Reference`",
-        ));
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -81,7 +81,7 @@ impl HairSystem {
             strand
         }));
         if let Some(volume) = &mut self.volume {
-            volume.forget_rest();
+            volume.state_mut().forget_rest();
         }
         Ok(start..self.strands.len())
     }
@@ -97,7 +97,7 @@ impl HairSystem {
         settings.validate()?;
         self.settings.interaction = settings;
         match (&mut self.volume, settings.enabled) {
-            (Some(volume), true) => volume.set_settings(settings),
+            (Some(volume), true) => volume.state_mut().set_settings(settings),
             (None, true) => self.volume = Some(ReferenceVolume::new(settings)),
             (_, false) => {
                 self.volume = None;

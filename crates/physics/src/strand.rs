@@ -14,8 +14,9 @@ use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::settings::{Method, StepScheme};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
+use crate::volume::SamplePoint;
 use crate::volume::VolumePull;
-use crate::volume::balance::add_pull;
+use crate::volume::balance::{PullWork, add_pull, pull_work};
 
 /// A Super-Helix strand clamped to a root on the head.
 #[derive(Clone, Debug)]
@@ -131,6 +132,41 @@ impl Strand {
             target,
             push,
         };
+    }
+
+    /// [`Self::set_volume_pull`] that keeps the guard's cached measure:
+    /// `points` are the strand's samples at its current state, gathered
+    /// with the head at `head` ([`crate::volume::reference`]); the old
+    /// pull's work there is exchanged for the new one's in the cached
+    /// measure ([`crate::volume::balance::PullWork`]) instead of dropping
+    /// it.
+    pub fn exchange_volume_pull(
+        &mut self,
+        pull: (f64, Vec<DVec3>, Vec<DVec3>),
+        points: &[SamplePoint],
+        head: &RigidMotion,
+    ) {
+        let cached = self.cached_measure.take();
+        let root_m = head.carry(&self.root).position_m;
+        let rho_s = self.model.mass_per_length;
+        let work = |state: &VolumeState| {
+            state.pull().map_or_else(PullWork::default, |p| {
+                pull_work(points, head, root_m, &p, rho_s)
+            })
+        };
+        let old = work(&self.volume);
+        let (friction_per_s, target, push) = pull;
+        self.volume = VolumeState {
+            on: true,
+            friction_per_s,
+            target,
+            push,
+        };
+        let new = work(&self.volume);
+        self.cached_measure = cached.map(|mut m| {
+            PullWork::exchange(&mut m, &old, &new);
+            m
+        });
     }
 
     /// Removes the hair–hair model's pull.

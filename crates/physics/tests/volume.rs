@@ -10,13 +10,11 @@ mod common;
 use std::sync::Arc;
 
 use common::shake_scene::ShakeThenStill;
+use common::volume_scene::{assert_calms_down, kinetic_after_shake};
 use glam::{DMat3, DVec3};
 use helixhair_physics::volume::friction::implicit_velocity;
 use helixhair_physics::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
-use helixhair_physics::{
-    HairSystem, Method, NaturalShape, RigidMotion, RootPose, SimSettings, Strand, StrandModel,
-    StrandParams,
-};
+use helixhair_physics::{HairSystem, Method, RigidMotion, SimSettings, Strand, StrandModel};
 
 /// Points on a regular lattice filling a cube of edge `edge_m` about the
 /// origin, `per_axis` to a side, each of `mass_kg`, all at `velocity`.
@@ -67,7 +65,7 @@ fn friction_damps_relative_motion_with_time_constant_one_over_mu() {
     let mut field = VolumeField::default();
     let steps = (1.0 / (mu * h)).round() as i32; // t = 1/μ
     for _ in 0..steps {
-        field.update(&rest, &points);
+        field.update(&rest, &[&points], false);
         let targets: Vec<DVec3> = points
             .iter()
             .map(|p| field.read(&rest, &s, p).target_m_per_s)
@@ -150,7 +148,7 @@ fn a_block_compressed_above_rest_density_expands() {
         (p.iter().map(|x| x.position_m.length_squared()).sum::<f64>() / p.len() as f64).sqrt()
     };
     let mut field = VolumeField::default();
-    field.update(&rest, &points);
+    field.update(&rest, &[&points], false);
     let start_excess = field.excess().iter().cloned().fold(0.0, f64::max);
     assert!(start_excess > 1.0, "squeezed: excess {start_excess}");
     let mut outward = 0.0;
@@ -171,7 +169,7 @@ fn a_block_compressed_above_rest_density_expands() {
     let start_rms = rms(&points);
     let h = 1.0 / 60.0;
     for _ in 0..120 {
-        field.update(&rest, &points);
+        field.update(&rest, &[&points], false);
         for p in &mut points {
             let r = field.read(&rest, &s, p);
             let v = implicit_velocity(
@@ -184,7 +182,7 @@ fn a_block_compressed_above_rest_density_expands() {
             p.position_m += h * v;
         }
     }
-    field.update(&rest, &points);
+    field.update(&rest, &[&points], false);
     let end_excess = field.excess().iter().cloned().fold(0.0, f64::max);
     assert!(
         rms(&points) > 1.2 * start_rms,
@@ -197,35 +195,8 @@ fn a_block_compressed_above_rest_density_expands() {
     );
 }
 
-/// Roots on the upper half of a 10 cm head, curly strands of 20 cm.
-fn small_head(count_per_ring: usize, rings: usize) -> (StrandParams, Vec<RootPose>) {
-    let params = StrandParams {
-        length_m: 0.2,
-        elements: 8,
-        natural_shape: NaturalShape::Helix {
-            radius_m: 0.012,
-            step_m: 0.03,
-        },
-        ..StrandParams::default()
-    };
-    let mut roots = Vec::new();
-    for ring in 0..rings {
-        let polar = 0.3 + 1.0 * ring as f64 / rings as f64;
-        for k in 0..count_per_ring {
-            let azimuth = std::f64::consts::TAU * k as f64 / count_per_ring as f64;
-            let n = DVec3::new(
-                polar.sin() * azimuth.cos(),
-                polar.cos(),
-                polar.sin() * azimuth.sin(),
-            );
-            roots.push(RootPose::from_direction(0.1 * n, n, DVec3::Y));
-        }
-    }
-    (params, roots)
-}
-
 fn head_system(interaction: bool, gravity: DVec3) -> HairSystem {
-    let (params, roots) = small_head(12, 4);
+    let (params, roots) = common::volume_scene::small_head(12, 4);
     let mut sim = SimSettings {
         gravity_m_per_s2: gravity,
         ..SimSettings::default()
@@ -246,7 +217,7 @@ fn rest_pose_feels_no_pressure() {
         system.step_frame(&head);
     }
     let volume = system.volume().expect("model on");
-    assert!(volume.field().excess().iter().all(|e| *e == 0.0));
+    assert!(volume.state().field().excess().iter().all(|e| *e == 0.0));
     for s in system.strands() {
         assert!(common::max_diff(s.q(), &s.model().natural) < 1e-12);
         assert!(s.v().iter().all(|v| v.length() < 1e-12));
@@ -263,25 +234,64 @@ fn energy_after_a_shake_decays_with_the_model_and_no_guard_events() {
     let head = ShakeThenStill::ordinary();
     let kinetic_after = |interaction: bool| {
         let mut system = head_system(interaction, gravity);
-        let frames_shake = (head.shake_secs * 60.0).ceil() as usize;
-        let mut seconds = Vec::new();
-        for frame in 0..frames_shake + 180 {
-            system.step_frame(&head);
-            if frame >= frames_shake && (frame - frames_shake).is_multiple_of(60) {
-                seconds.push(system.energies().kinetic_j);
-            }
-        }
-        seconds.push(system.energies().kinetic_j);
+        let seconds = kinetic_after_shake(
+            &mut system,
+            &head,
+            |s, head| s.step_frame(head),
+            |s| s.energies().kinetic_j,
+        );
         (seconds, system.guard_event_count())
     };
     let (with, events) = kinetic_after(true);
     let (without, _) = kinetic_after(false);
     assert_eq!(events, 0, "guard events with the model");
-    for w in with.windows(2) {
-        assert!(w[1] < w[0], "kinetic energy rose after the shake: {with:?}");
-    }
-    assert!(
-        with.last() < without.last(),
-        "with {with:?}, without {without:?}"
-    );
+    assert_calms_down(&with, &without);
+}
+
+/// The guard's start measure is the last frame's end measure, reused; the
+/// model's new pull is exchanged into it (`volume::balance::PullWork`)
+/// instead of measuring again. Known answer: the exchanged measure is the
+/// measure taken afresh with the new pull, to round-off.
+#[test]
+fn exchanging_the_pull_in_a_cached_measure_equals_measuring_again() {
+    use helixhair_physics::HeadTrajectory;
+    use helixhair_physics::frame_balance::MeasureInputs;
+    use helixhair_physics::volume::reference::head_points;
+    let params = common::curl(8);
+    let model = Arc::new(StrandModel::new(&params, 4).unwrap());
+    let root = common::horizontal_root();
+    let mut strand = Strand::new(model.clone(), root, Method::Exact);
+    let mut rng = common::Rng::new(9);
+    let q: Vec<DVec3> = model.natural.iter().map(|k| *k + rng.vec3(4.0)).collect();
+    let v: Vec<DVec3> = (0..q.len()).map(|_| rng.vec3(10.0)).collect();
+    strand.set_state(&q, &v);
+    let head = common::shake().motion_at(0.3);
+    let carried = head.carry(&root);
+    let inputs = MeasureInputs {
+        gravity_m_per_s2: DVec3::new(0.0, -9.81, 0.0),
+        air_velocity_m_per_s: DVec3::ZERO,
+        contact: None,
+    };
+    let samples = model.samples();
+    let pull = |rng: &mut common::Rng| {
+        let target = (0..samples).map(|_| rng.vec3(0.5)).collect();
+        let push = (0..samples).map(|_| rng.vec3(5.0)).collect();
+        (5.0 + 10.0 * rng.next(), target, push)
+    };
+    let (mu, target, push) = pull(&mut rng);
+    strand.set_volume_pull(mu, target, push);
+    let end = strand.measure(&carried, &inputs);
+    strand.set_cached_measure(Some(end));
+    let mut points = Vec::new();
+    head_points(&strand, &strand.kinematics(&carried), &head, &mut points);
+    strand.exchange_volume_pull(pull(&mut rng), &points, &head);
+    let exchanged = strand.cached_measure().expect("kept");
+    let fresh = strand.measure(&carried, &inputs);
+    let size = fresh.external_force_n.length() + fresh.external_power_w.abs();
+    assert!(size > 0.0);
+    assert!((exchanged.external_force_n - fresh.external_force_n).length() < 1e-12 * size);
+    assert!((exchanged.external_torque_n_m - fresh.external_torque_n_m).length() < 1e-12 * size);
+    assert!((exchanged.external_power_w - fresh.external_power_w).abs() < 1e-12 * size);
+    assert_ne!(exchanged.external_power_w, end.external_power_w);
+    assert_eq!(exchanged.energy_j, fresh.energy_j);
 }

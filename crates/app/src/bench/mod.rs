@@ -13,7 +13,7 @@
 //! | `stability` | stable, damped-out or blown-up over dt × stiffness × root speed | `stability.csv`, `stability.svg`, `curly_dt.csv` |
 //! | `modes` | first-mode frequency and damping against N and the analytic value | `modes.csv`, `modes_*.svg` |
 //! | `throughput` | element-steps per second and memory per strand, CPU (1 and all threads) and GPU, against strand count and N | `throughput.csv`, `throughput.svg` |
-//! | `volume`, `volume-shake`, `volume-cost` (only when named) | the hair–hair model on a full head: volume kept; interpenetration and energy during a shake; cost share | `volume.csv`; `volume_shake.csv`, `volume_shake.svg`, `volume_energy.svg`; `volume_cost.csv` |
+//! | `volume`, `volume-shake`, `volume-cost` (only when named) | the hair–hair model on a full head: volume kept; interpenetration and energy during a shake; cost share on both engines | `volume.csv`; `volume_shake.csv`, `volume_shake.svg`, `volume_energy.svg`; `volume_cost.csv`, `volume_cost.svg` |
 //! | `groom` (only when named, with `--style`) | physics ms per 60 Hz frame of a whole groom (an imported one: every strand simulated) on the batch engine, 1 and all threads, and where a frame goes; lanes used and padded | `groom.csv`, `groom.svg` |
 //! | `soak` (only when named) | a full head for a million frames of random head motion per engine: NaN, guard loops, memory | `soak.csv`, `soak_memory.svg`, `soak_guard.svg` |
 
@@ -33,6 +33,7 @@ pub mod table;
 pub mod throughput;
 pub mod timing;
 pub mod volume;
+pub mod volume_cost;
 pub mod volume_measures;
 
 use std::io::Write;
@@ -160,7 +161,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             Study::Throughput => throughput::run(&mut ctx),
             Study::Volume => volume::run(&mut ctx, volume::Part::Settle),
             Study::VolumeShake => volume::run(&mut ctx, volume::Part::Shake),
-            Study::VolumeCost => volume::run(&mut ctx, volume::Part::Cost),
+            Study::VolumeCost => volume_cost::cost(&mut ctx),
             Study::Soak => {
                 let engines = if args.soak_engines.is_empty() {
                     &EngineKind::ALL[..]

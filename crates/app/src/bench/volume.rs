@@ -3,8 +3,8 @@
 //!
 //! The scene is `assets/styles/groomed/full_head.ron` (3,000 guides of
 //! 25 and 15 cm curls) on the default head with its collider, stepped by
-//! the reference engine (the only one that runs the model), once with the
-//! model and once without:
+//! the reference engine (volume and shake; the cost runs both engines),
+//! once with the model and once without:
 //!
 //! - **volume**: settled 5 s on a still head; mean distance of the hair's
 //!   element points from the nearest root (the scalp) and the volume of
@@ -14,15 +14,14 @@
 //!   the strand radius (35 µm) and closer than 1 mm;
 //! - **stability**: the kinetic energy per frame of the same run, and the
 //!   guard's events;
-//! - **cost**: median frame time with and without the model at 3,000 and
-//!   10,000 strands, and the model's own share (its per-frame pass over
-//!   the strands, timed inside the engine).
+//! - **cost** ([`super::volume_cost`]): the model's share of a frame at
+//!   3,000 and 10,000 strands, on both engines.
 //!
 //! Each part is its own `--study` (`volume`, `volume-shake`,
 //! `volume-cost`), so a small machine can run them one at a time. Files:
 //! `volume.csv`, `volume_shake.csv`, `volume_cost.csv`,
-//! `volume_shake.svg`, `volume_energy.svg`. Quick mode: 70 strands, a few
-//! frames.
+//! `volume_shake.svg`, `volume_energy.svg`, `volume_cost.svg`. Quick
+//! mode: 70 strands, a few frames.
 
 use std::sync::Arc;
 
@@ -39,7 +38,6 @@ use super::volume_measures::{close_pairs, mean_scalp_distance_m, occupied_volume
 use crate::groom::Groom;
 use crate::head_clip::Clip;
 use crate::headless::{HeadlessSim, SimOverrides};
-use crate::stats::median;
 use crate::style::Style;
 
 const FULL_HEAD_RON: &str = include_str!("../../../../assets/styles/groomed/full_head.ron");
@@ -83,19 +81,6 @@ pub struct ShakeRow {
     pub guard_events: usize,
 }
 
-/// One line of `volume_cost.csv`.
-#[derive(Clone, Debug, Serialize)]
-pub struct CostRow {
-    /// Simulated strands.
-    pub strands: usize,
-    /// Whether the model was on.
-    pub interaction: bool,
-    /// Median wall time of a frame, seconds.
-    pub median_frame_secs: f64,
-    /// Median wall time of the model's own pass in a frame, seconds.
-    pub median_volume_secs: f64,
-}
-
 /// Which part of the study to run: each is its own `--study` name, so a
 /// small machine can run them one at a time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -105,14 +90,12 @@ pub enum Part {
     /// Interpenetration and energy during and after a shake
     /// (`volume_shake.csv`, `volume_shake.svg`, `volume_energy.svg`).
     Shake,
-    /// Cost share at 3,000 and 10,000 strands (`volume_cost.csv`).
-    Cost,
 }
 
-/// The head with the model on or off, reference engine, colliding.
-fn build(groom: &Groom, on: bool) -> anyhow::Result<HeadlessSim> {
+/// The head with the model on or off on `engine`, colliding.
+pub(super) fn build(groom: &Groom, engine: EngineKind, on: bool) -> anyhow::Result<HeadlessSim> {
     let overrides = SimOverrides {
-        engine: Some(EngineKind::Reference),
+        engine: Some(engine),
         interaction: Some(on),
         ..SimOverrides::default()
     };
@@ -128,7 +111,6 @@ pub fn run(ctx: &mut BenchContext<'_>, part: Part) -> anyhow::Result<()> {
     match part {
         Part::Settle => settle(ctx, &scaled_groom(strands)?),
         Part::Shake => shake(ctx, &scaled_groom(strands)?),
-        Part::Cost => cost(ctx),
     }
 }
 
@@ -136,7 +118,7 @@ fn settle(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
     let settle = if ctx.quick { 10 } else { 300 };
     let mut rows = Vec::new();
     for on in [false, true] {
-        let mut sim = build(base, on)?;
+        let mut sim = build(base, EngineKind::Reference, on)?;
         if !on {
             rows.push(volume_row("rest", sim.engine()));
         }
@@ -163,7 +145,7 @@ fn shake(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
     let shake_frames = (Clip::Shake.duration_secs() * 60.0).ceil() as usize + still;
     let mut shake = Vec::new();
     for on in [false, true] {
-        let mut sim = build(base, on)?;
+        let mut sim = build(base, EngineKind::Reference, on)?;
         sim.play(Clip::Shake);
         for _ in 0..shake_frames {
             sim.run(1).context("shaking the head")?;
@@ -195,45 +177,8 @@ fn shake(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
     draw_shake(ctx, &shake)
 }
 
-fn cost(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
-    let timed = if ctx.quick { 2 } else { 5 };
-    let mut cost = Vec::new();
-    let counts: &[usize] = if ctx.quick { &[70] } else { &[3000, 10000] };
-    for &count in counts {
-        let groom = scaled_groom(count)?;
-        for on in [false, true] {
-            let mut sim = build(&groom, on)?;
-            sim.run(1).context("warming up")?;
-            let mut frames = Vec::new();
-            let mut model = Vec::new();
-            for _ in 0..timed {
-                frames.push(sim.step());
-                let volume = sim.engine().reference().and_then(|r| r.volume());
-                model.push(volume.map_or(0.0, |v| v.last_secs()));
-            }
-            let row = CostRow {
-                strands: sim.engine().strand_count(),
-                interaction: on,
-                median_frame_secs: median(&frames),
-                median_volume_secs: median(&model),
-            };
-            writeln!(
-                ctx.log,
-                "   {} strands, model {}: {:.3} s a frame, model's pass {:.3} s ({:.0}%)",
-                row.strands,
-                if on { "on" } else { "off" },
-                row.median_frame_secs,
-                row.median_volume_secs,
-                100.0 * row.median_volume_secs / row.median_frame_secs
-            )?;
-            cost.push(row);
-        }
-    }
-    write_csv(&ctx.file("volume_cost.csv"), &cost)
-}
-
 /// The full head with its guides scaled to about `count` strands.
-fn scaled_groom(count: usize) -> anyhow::Result<Groom> {
+pub(super) fn scaled_groom(count: usize) -> anyhow::Result<Groom> {
     let mut style = Style::from_ron(FULL_HEAD_RON, "full_head.ron".as_ref())
         .context("the built-in full-head style")?;
     let total: u32 = style

@@ -5,8 +5,8 @@
 //! red where the density is above its rest threshold (where the pressure
 //! pushes).
 //!
-//! It reads the last frame's field from the reference engine; with the
-//! model off (or on the batch engine, which has no model) it says so. The
+//! It reads the last frame's field from either engine
+//! (`Engine::volume_field`); with the model off it says so. The
 //! window's open state lives in egui's memory, so the view needs no field
 //! of its own in the app's state.
 
@@ -45,13 +45,12 @@ pub fn show(ctx: &egui::Context, app: &AppState) {
 }
 
 fn slice(ui: &mut Ui, app: &AppState) {
-    let volume = app.sim.engine().reference().and_then(|r| r.volume());
-    let Some((volume, rest)) = volume.and_then(|v| v.rest().map(|r| (v, r))) else {
+    let Some((rest, field)) = app.sim.engine().volume_field() else {
         ui.label("the hair–hair interaction is off (or not yet stepped)");
         return;
     };
-    let density = volume.field().density_kg_per_m3();
-    let excess = volume.field().excess();
+    let density = field.density_kg_per_m3();
+    let excess = field.excess();
     let grid = &rest.grid;
     if density.len() != grid.node_count() {
         ui.label("no frame stepped with the model yet");

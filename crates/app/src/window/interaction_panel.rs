@@ -4,12 +4,9 @@
 //!
 //! The tracks are the ranges the style format accepts
 //! (`InteractionSettings::validate`), so a dragged value is always valid.
-//! Only the reference engine runs the model: on the batch engine the
-//! switch is greyed out with the reason beside it, so the panel never
-//! makes the style invalid.
+//! Both engines run the model, so the switch is live on either.
 
 use egui::Ui;
-use helixhair_physics::engine::EngineKind;
 
 use crate::style::Style;
 
@@ -26,21 +23,9 @@ pub const CELL_TRACK: (f64, f64) = (0.002, 0.2);
 /// Draws the controls; typed text that is not a number is reported in
 /// `notes`.
 pub fn interaction_settings(ui: &mut Ui, style: &mut Style, notes: &mut Vec<String>) {
-    let batch = style.engine == EngineKind::Batch;
     let settings = &mut style.sim.interaction;
-    if batch && settings.enabled {
-        // A style cannot ask the batch engine for the model (validation
-        // refuses it), so switching engines turns it off.
-        settings.enabled = false;
-    }
-    ui.add_enabled_ui(!batch, |ui| {
-        ui.checkbox(&mut settings.enabled, "hair–hair interaction")
-            .on_hover_text("strands feel each other through a density grid (reference engine)");
-    });
-    if batch {
-        ui.label("hair–hair interaction: reference engine only");
-        return;
-    }
+    ui.checkbox(&mut settings.enabled, "hair–hair interaction")
+        .on_hover_text("strands feel each other through a density grid (either engine)");
     if !settings.enabled {
         return;
     }

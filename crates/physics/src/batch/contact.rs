@@ -97,6 +97,29 @@ pub trait EndPointForce<T> {
     /// `LOCAL`: `el` holds local moments (see
     /// [`super::forward::forward_with`]).
     fn at_end<const LOCAL: bool>(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>);
+
+    /// Whether [`Self::sample_force`] adds anything: a compile-time
+    /// switch, so that without the hair–hair model ([`super::pull`]) the
+    /// sample loop is exactly as before.
+    const SAMPLE_FORCES: bool = false;
+
+    /// An extra drag rate, 1/s, taken implicitly through the mass scale
+    /// (the hair–hair friction μ, [`super::pull`]).
+    #[inline(always)]
+    fn drag_rate_per_s(&self) -> f32 {
+        0.0
+    }
+
+    /// An extra force per unit length on quadrature node `j` of element
+    /// `e` moving at `velocity` (world, m/s), N/m; read only when
+    /// [`Self::SAMPLE_FORCES`].
+    #[inline(always)]
+    fn sample_force(&self, _e: usize, _j: usize, _velocity: V3<T>) -> V3<T>
+    where
+        T: Real,
+    {
+        V3::zero()
+    }
 }
 
 /// No collider: nothing happens at the end points.

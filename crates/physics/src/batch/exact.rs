@@ -131,7 +131,7 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     end_force: &mut H,
 ) -> T {
     forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force);
-    let s = mass_scale(model, env);
+    let s = mass_scale(model, env) + T::splat(env.h_secs * end_force.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     let mut h = [M3::zero(); 4];
     let mut carried = [V3::zero(); 2];

@@ -145,17 +145,23 @@ pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
     k_dot: V3<T>,
 ) -> ElementData<T> {
     let mut el = ElementData::zero();
-    own_sums_into::<T, OFF_DIAGONAL>(model, env, e, s, k, k_dot, &mut el);
+    own_sums_into::<T, OFF_DIAGONAL, _>(model, env, e, s, k, k_dot, &mut el, &NoContact);
     el
 }
 
-/// [`own_sums`] written into `el` in place: every field but `a` and `b`
-/// (and `u`, `v` without `OFF_DIAGONAL`) is overwritten. The sweep uses
-/// this form: an 8-lane [`ElementData`] is about 1.9 KB, and returning it by
+/// [`own_sums`] written into `el` in place, with `hook`'s force at each
+/// quadrature sample (the hair–hair model's pull, [`super::pull`];
+/// nothing unless `H::SAMPLE_FORCES`): every field but `a` and `b` (and
+/// `u`, `v` without `OFF_DIAGONAL`) is overwritten. The sweep uses this
+/// form: an 8-lane [`ElementData`] is about 1.9 KB, and returning it by
 /// value cost a copy and a zero fill per element (measured: 15% of a
 /// Block-diagonal step).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the element's inputs, its output and the hook"
+)]
 #[inline(always)]
-pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
+pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     e: usize,
@@ -163,6 +169,7 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
     k: V3<T>,
     k_dot: V3<T>,
     el: &mut ElementData<T>,
+    hook: &H,
 ) {
     let length_m = model.length_m(e);
     let rho_s = model.mass_per_length();
@@ -178,12 +185,16 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool>(
     let mut local_force = V3::zero();
     let mut u_local = M3::zero();
     let mut v_local = M3::zero();
-    for (node, weight) in model.nodes().iter().zip(model.weights()) {
+    for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
         let lp = local_point(T::splat(*node) * length_m, k, k_dot);
         let [r, vel, acc] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
         let w_len = T::splat(*weight) * length_m;
         let w_mass = w_len * rho_s;
-        let force = ((g - acc).scale(rho_s) - (vel - air).scale(nu)).scale(w_len);
+        let mut per_length = (g - acc).scale(rho_s) - (vel - air).scale(nu);
+        if H::SAMPLE_FORCES {
+            per_length += hook.sample_force(e, j, vel);
+        }
+        let force = per_length.scale(w_len);
         let jac = &lp.jacobian;
         local_force += jac.t_mul_vec(s.frame.t_mul_vec(force));
         let (c0, c1, c2) = (jac.c0, jac.c1, jac.c2);
@@ -274,7 +285,16 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
         } else {
             s
         };
-        own_sums_into::<T, OFF_DIAGONAL>(model, env, e, &moments_origin, q[e], v[e], el);
+        own_sums_into::<T, OFF_DIAGONAL, H>(
+            model,
+            env,
+            e,
+            &moments_origin,
+            q[e],
+            v[e],
+            el,
+            end_force,
+        );
         let (next, a_local, b, span) = advance_local(&s, model.length_m(e), q[e], v[e]);
         el.a = if LOCAL {
             a_local

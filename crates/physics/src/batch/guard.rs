@@ -8,8 +8,9 @@
 //! [`measure_lanes`] sweeps the batch root to tip in f32 lanes, summing
 //! over the quadrature samples each lane's kinetic, elastic and
 //! gravitational energy, momentum, angular momentum about the root, the
-//! external forces with their torque and power (drag, and the head's
-//! contact at the element end points, as the step applies it), and the
+//! external forces with their torque and power (drag, the head's
+//! contact at the element end points, as the step applies it, and the
+//! hair–hair model's pull, [`super::pull`]), and the
 //! fastest point relative to the root's rigid motion. Each lane's sums go
 //! into a [`StrandMeasure`], and [`Guard::check`] judges the frame from
 //! the measures at its start and end: finite, true speed under the limit,
@@ -40,6 +41,7 @@ use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
 use super::near_cells::SkinTest;
+use super::pull::{SamplePull, add_pull_work};
 use super::vec::V3;
 use crate::frame_balance::StrandMeasure;
 use crate::guard::{Guard, GuardCause};
@@ -75,7 +77,12 @@ pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
 
 /// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
 /// moving as `root` (lanes) with root points at `root_positions_m`
-/// (world), under `env`'s gravity and air, with the head's `contact` if any.
+/// (world), under `env`'s gravity and air, with the head's `contact` if any
+/// and the hair–hair model's `pull` if on ([`super::pull`]).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the batch's state and every force the balance counts"
+)]
 pub fn measure_lanes(
     model: &impl Constants<Lanes>,
     env: &StepEnv,
@@ -84,6 +91,7 @@ pub fn measure_lanes(
     q: &[V3<Lanes>],
     v: &[V3<Lanes>],
     contact: Option<&SkinTest<'_>>,
+    pull: Option<&SamplePull<'_>>,
 ) -> [StrandMeasure; LANES] {
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
@@ -99,7 +107,7 @@ pub fn measure_lanes(
     let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
     for e in 0..n {
         let length_m = model.length_m(e);
-        for (node, weight) in model.nodes().iter().zip(model.weights()) {
+        for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
             let lp = local_point(Lanes::splat(*node) * length_m, q[e], v[e]);
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
             let w_len = Lanes::splat(*weight) * length_m;
@@ -115,6 +123,10 @@ pub fn measure_lanes(
             let f = (g.scale(rho_s) - drag).scale(w_len);
             force += f;
             torque += r.cross(f);
+            if let Some(pull) = pull {
+                let sums = (&mut force, &mut torque, &mut power);
+                add_pull_work(pull, e, j, r, vel, w_len, sums);
+            }
             let carried = s_root_velocity(root, r);
             let rel = vel - carried;
             fastest = fastest.max(rel.dot(rel).sqrt());

@@ -67,6 +67,18 @@
 //!   implicit, as in the reference: its stiffness and damping enter the
 //!   elimination as a point inertia at the end point. Without a collider
 //!   the sweep has no such stage at all.
+//! - **Hair–hair model** ([`volume`], [`pull`], when
+//!   `SimSettings::interaction` is on): once per frame, before the
+//!   steps, an f32 sweep per batch gathers every lane's quadrature samples
+//!   (position, velocity, mass), the shared f64 code of
+//!   [`crate::volume::field`] splats them on the head-fixed grid and reads
+//!   back each sample's grid velocity and pressure push, and each batch
+//!   gets per sample the known force c = ρS(μu + a). The step takes the
+//!   friction as it takes air drag: the force c − μρS ṙ at each sample
+//!   and hμ in the mass scale, through the step hook
+//!   ([`contact::EndPointForce::sample_force`]); without the model the
+//!   sample loop compiles as before. The guard counts the pull's work
+//!   ([`volume_read`]).
 //! - **Guard** ([`guard`], on by default): after each frame, each strand is
 //!   measured and checked as [`crate::guard`] checks (finite, true speed,
 //!   energy against the root's work), and one that fails is reset to its
@@ -89,7 +101,9 @@
 //! `tests/batch_parity.rs` (velocity-explicit) and
 //! `tests/batch_stable_step.rs` (velocity-implicit) with named tolerances; contact by
 //! `tests/batch_contact.rs` (a drape over a sphere within 1 mm of the f64
-//! drape) and the guard by `tests/batch_guard.rs`.
+//! drape), the guard by `tests/batch_guard.rs` and the hair–hair model by
+//! `tests/batch_volume.rs` (its known answers, and agreement with the
+//! reference running it).
 
 pub mod block_diagonal;
 pub mod contact;
@@ -103,10 +117,13 @@ pub mod lane_model;
 pub mod lanes;
 pub mod layout;
 pub mod near_cells;
+pub mod pull;
 pub mod suffix;
 mod system;
 pub mod vec;
 pub mod velocity_terms;
+pub mod volume;
+pub mod volume_read;
 
 pub use lane_model::{Constants, LaneModel};
 pub use lanes::{LANES, Lanes, Real};

@@ -31,7 +31,9 @@ use super::implicit::{Krylov, step_exact_implicit};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::pull::{SamplePull, WithPull};
 use super::vec::V3;
+use super::volume::{BatchVolume, GroupView};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
 use crate::frame_balance::StrandMeasure;
@@ -40,6 +42,7 @@ use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings, StepScheme};
+use crate::volume::InteractionSettings;
 
 /// Strands of one element count, in batches of [`LANES`] (see the module
 /// docs' "Packing").
@@ -161,6 +164,8 @@ pub struct BatchSystem {
     last_pins: Vec<usize>,
     last_events: Vec<GuardEvent>,
     reset_count: usize,
+    /// The hair–hair model, when on ([`super::volume`]).
+    volume: Option<BatchVolume>,
 }
 
 impl BatchSystem {
@@ -178,6 +183,7 @@ impl BatchSystem {
                 ),
             ));
         }
+        let interaction = settings.interaction;
         Ok(Self {
             settings,
             groups: Vec::new(),
@@ -192,6 +198,7 @@ impl BatchSystem {
             last_pins: Vec::new(),
             last_events: Vec::new(),
             reset_count: 0,
+            volume: interaction.enabled.then(|| BatchVolume::new(interaction)),
         })
     }
 
@@ -226,6 +233,9 @@ impl BatchSystem {
             let slot = self.groups[group].push(model, &uniform, *root, start + i);
             self.slots.push((group, slot));
         }
+        if let Some(volume) = &mut self.volume {
+            volume.state_mut().forget_rest();
+        }
         start..self.slots.len()
     }
 
@@ -242,6 +252,28 @@ impl BatchSystem {
     /// The settings.
     pub fn settings(&self) -> &SimSettings {
         &self.settings
+    }
+
+    /// Turns the hair–hair model on, retunes it, or turns it off; fails if
+    /// a setting is out of range. Takes effect at the next frame.
+    pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
+        settings.validate()?;
+        self.settings.interaction = settings;
+        // The guard's reused measures counted the old model's work.
+        for group in &mut self.groups {
+            group.measures = None;
+        }
+        match (&mut self.volume, settings.enabled) {
+            (Some(volume), true) => volume.state_mut().set_settings(settings),
+            (None, true) => self.volume = Some(BatchVolume::new(settings)),
+            (_, false) => self.volume = None,
+        }
+        Ok(())
+    }
+
+    /// The hair–hair model's state (grid, rest density, last field), if on.
+    pub fn volume(&self) -> Option<&BatchVolume> {
+        self.volume.as_ref()
     }
 
     /// Chooses parallel (rayon over batches) or serial stepping; results
@@ -345,6 +377,11 @@ impl BatchSystem {
         };
         let step_kind = BatchStep::of(&self.settings);
         let start_secs = self.time_secs;
+        if let Some(volume) = &mut self.volume {
+            let views: Vec<GroupView<'_>> = self.groups.iter().map(Group::view).collect();
+            volume.prepare(&views, &head.motion_at(start_secs), self.parallel);
+        }
+        let volume = self.volume.as_ref();
         let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
             Some(_) => {
                 let motion = head.motion_at(start_secs);
@@ -352,9 +389,20 @@ impl BatchSystem {
                 let parallel = self.parallel;
                 self.groups
                     .iter_mut()
-                    .map(|g| match g.measures.take() {
-                        Some(m) => m,
-                        None => g.measure(&motion, &env, contact.as_ref(), parallel),
+                    .enumerate()
+                    .map(|(i, g)| match g.measures.take() {
+                        // The model's pull is new each frame: the reused
+                        // measure counts its work instead of the old one's.
+                        Some(mut m) => {
+                            if let Some(volume) = volume {
+                                volume.exchange_start_work(i, &mut m);
+                            }
+                            m
+                        }
+                        None => {
+                            let pulls = volume.map(|v| (v, i));
+                            g.measure(&motion, &env, contact.as_ref(), pulls, parallel)
+                        }
                     })
                     .collect()
             }
@@ -363,8 +411,9 @@ impl BatchSystem {
         for _ in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
             let contact = contact_test(&self.collider, self.contact, &motion, h);
-            for group in &mut self.groups {
-                group.step(&motion, &env, step_kind, contact, self.parallel);
+            for (i, group) in self.groups.iter_mut().enumerate() {
+                let pulls = volume.map(|v| (v, i));
+                group.step(&motion, &env, step_kind, contact, pulls, self.parallel);
             }
             self.time_secs += h;
         }
@@ -378,9 +427,10 @@ impl BatchSystem {
             let dt = self.settings.dt_secs;
             let parallel = self.parallel;
             let events = &mut self.last_events;
-            for (group, start) in self.groups.iter_mut().zip(&start_measures) {
+            for (i, (group, start)) in self.groups.iter_mut().zip(&start_measures).enumerate() {
                 group.hold_pinned();
-                let end = group.measure(&motion, &env, contact.as_ref(), parallel);
+                let pulls = volume.map(|v| (v, i));
+                let end = group.measure(&motion, &env, contact.as_ref(), pulls, parallel);
                 let before = events.len();
                 group.guard(guard, start, &end, dt, start_secs, events);
                 group.measures = (events.len() == before).then_some(end);
@@ -570,6 +620,36 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
     }
 }
 
+/// [`step_batch_with`] with the hair–hair model's `pull` added to
+/// `end_force` when it is on ([`super::pull`]).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's inputs and buffers, passed through"
+)]
+#[inline(always)]
+fn step_pulled<H: EndPointForce<Lanes>>(
+    model: &LaneModel,
+    env: &StepEnv,
+    root: &RootMotion<Lanes>,
+    step: BatchStep,
+    q: &mut [V3<Lanes>],
+    v: &mut [V3<Lanes>],
+    scratch: &mut Scratch,
+    mut end_force: H,
+    pull: Option<SamplePull<'_>>,
+) {
+    match pull {
+        Some(pull) => {
+            let mut hook = WithPull {
+                inner: end_force,
+                pull,
+            };
+            step_batch_with(model, env, root, step, q, v, scratch, &mut hook);
+        }
+        None => step_batch_with(model, env, root, step, q, v, scratch, &mut end_force),
+    }
+}
+
 impl Group {
     /// No strands yet, of `n` elements each.
     fn new(n: usize) -> Self {
@@ -630,14 +710,16 @@ impl Group {
         motion: &RigidMotion,
         env: &StepEnv,
         contact: Option<&SkinTest<'_>>,
+        pulls: Option<(&BatchVolume, usize)>,
         parallel: bool,
     ) -> Vec<[StrandMeasure; LANES]> {
         let n = self.n;
-        let one = |(((q, v), roots), model): BatchView<'_>| {
+        let one = |(b, (((q, v), roots), model)): (usize, BatchView<'_>)| {
             let motions: [RigidMotion; LANES] =
                 std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
             let root = RootMotion::<Lanes>::gather(&motions);
-            measure_lanes(&**model, env, &root, &motions, q, v, contact)
+            let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
+            measure_lanes(&**model, env, &root, &motions, q, v, contact, pull.as_ref())
         };
         if parallel {
             self.q
@@ -645,6 +727,7 @@ impl Group {
                 .zip(self.v.par_chunks(n))
                 .zip(self.roots.par_chunks(LANES))
                 .zip(self.models.par_iter())
+                .enumerate()
                 .map(one)
                 .collect()
         } else {
@@ -653,8 +736,20 @@ impl Group {
                 .zip(self.v.chunks(n))
                 .zip(self.roots.chunks(LANES))
                 .zip(self.models.iter())
+                .enumerate()
                 .map(one)
                 .collect()
+        }
+    }
+
+    /// The group as the hair–hair model's gather reads it.
+    fn view(&self) -> GroupView<'_> {
+        GroupView {
+            n: self.n,
+            models: &self.models,
+            roots: &self.roots,
+            q: &self.q,
+            v: &self.v,
         }
     }
 
@@ -729,33 +824,37 @@ impl Group {
         env: &StepEnv,
         step_kind: BatchStep,
         contact: Option<SkinTest<'_>>,
+        pulls: Option<(&BatchVolume, usize)>,
         parallel: bool,
     ) {
         let n = self.n;
-        let step_batch = |scratch: &mut Scratch, (((q, v), roots), model): BatchRef<'_>| {
-            let motions: [RigidMotion; LANES] =
-                std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
-            let root = RootMotion::<Lanes>::gather(&motions);
-            // One branch per batch: without a collider, the sweep has no
-            // contact stage at all.
-            match contact {
-                Some(test) => {
-                    let positions = std::array::from_fn(|i| motions[i].position_m);
-                    let implicit = step_kind != BatchStep::BlockDiagonal;
-                    let mut end_force = LaneContact::new(test, model, positions, implicit);
-                    step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut end_force);
+        let step_batch =
+            |scratch: &mut Scratch, (b, (((q, v), roots), model)): (usize, BatchRef<'_>)| {
+                let motions: [RigidMotion; LANES] =
+                    std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
+                let root = RootMotion::<Lanes>::gather(&motions);
+                let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
+                // One branch per batch: without a collider, the sweep has no
+                // contact stage at all.
+                match contact {
+                    Some(test) => {
+                        let positions = std::array::from_fn(|i| motions[i].position_m);
+                        let implicit = step_kind != BatchStep::BlockDiagonal;
+                        let end_force = LaneContact::new(test, model, positions, implicit);
+                        step_pulled(model, env, &root, step_kind, q, v, scratch, end_force, pull);
+                    }
+                    None => {
+                        step_pulled(model, env, &root, step_kind, q, v, scratch, NoContact, pull)
+                    }
                 }
-                None => {
-                    step_batch_with(model, env, &root, step_kind, q, v, scratch, &mut NoContact)
-                }
-            }
-        };
+            };
         if parallel {
             self.q
                 .par_chunks_mut(n)
                 .zip(self.v.par_chunks_mut(n))
                 .zip(self.roots.par_chunks(LANES))
                 .zip(self.models.par_iter())
+                .enumerate()
                 .for_each_init(|| Scratch::new(n, step_kind.iterations()), step_batch);
         } else {
             let mut scratch = Scratch::new(n, step_kind.iterations());
@@ -764,6 +863,7 @@ impl Group {
                 .zip(self.v.chunks_mut(n))
                 .zip(self.roots.chunks(LANES))
                 .zip(self.models.iter())
+                .enumerate()
                 .for_each(|batch| step_batch(&mut scratch, batch));
         }
     }

@@ -11,11 +11,15 @@
 //! its sum, its torque about the root point and its power ∫ f · ṙ ds, with
 //! the frame's frozen grid velocity and push.
 
+use glam::DVec3;
+
 use crate::frame_balance::StrandMeasure;
 use crate::model::StrandModel;
+use crate::motion::RigidMotion;
 use crate::reconstruct::Kinematics;
 
 use super::friction::VolumePull;
+use super::splat::SamplePoint;
 
 /// Adds `pull`'s force, torque and power at the state of `kin` to `out`.
 pub fn add_pull(out: &mut StrandMeasure, model: &StrandModel, kin: &Kinematics, pull: &VolumePull) {
@@ -28,4 +32,71 @@ pub fn add_pull(out: &mut StrandMeasure, model: &StrandModel, kin: &Kinematics, 
         out.external_torque_n_m += s.position_m.cross(f);
         out.external_power_w += f.dot(v);
     }
+}
+
+/// A pull's force (N), torque about the root point (N·m) and power (W)
+/// on one strand at one state: its part of the measure's external terms.
+///
+/// # Why apart
+///
+/// The guard's measure at a frame's start is the previous frame's end
+/// measure, reused, unless the state changed since. The pull changes every
+/// frame, so the reused measure counts the old pull's work; rather than
+/// measure the strand again (a reconstruction per strand and frame: the
+/// whole frame was 36% dearer with the model, its own pass 17%), the
+/// model's gather, which reconstructs the same state anyway, gives the old
+/// and the new pull's work there, and [`PullWork::exchange`] swaps one
+/// for the other in the reused measure.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PullWork {
+    /// Σ f w, N.
+    pub force_n: DVec3,
+    /// Σ r × f w about the root point, N·m.
+    pub torque_n_m: DVec3,
+    /// Σ f · ṙ w, W.
+    pub power_w: f64,
+}
+
+impl PullWork {
+    /// Adds a sample at `r_m` (relative to the root point, world) moving at
+    /// `velocity` (m/s) that feels `force_n` (its force per length times
+    /// its quadrature length).
+    pub fn add(&mut self, r_m: DVec3, velocity: DVec3, force_n: DVec3) {
+        self.force_n += force_n;
+        self.torque_n_m += r_m.cross(force_n);
+        self.power_w += force_n.dot(velocity);
+    }
+
+    /// `measure`, which counted the work `old`, as if it had counted `new`.
+    pub fn exchange(measure: &mut StrandMeasure, old: &PullWork, new: &PullWork) {
+        measure.external_force_n += new.force_n - old.force_n;
+        measure.external_torque_n_m += new.torque_n_m - old.torque_n_m;
+        measure.external_power_w += new.power_w - old.power_w;
+    }
+}
+
+/// `pull`'s work on a strand of ρS `mass_per_length` whose samples are
+/// `points` (gathered with the head at `head`, the strand's root point at
+/// `root_m`, world): quadrature lengths from the points' masses.
+pub fn pull_work(
+    points: &[SamplePoint],
+    head: &RigidMotion,
+    root_m: DVec3,
+    pull: &VolumePull,
+    mass_per_length: f64,
+) -> PullWork {
+    let mut work = PullWork::default();
+    for (i, p) in points.iter().enumerate() {
+        let r = root_relative(p, head, root_m);
+        let v = p.velocity_m_per_s;
+        let w = p.mass_kg / mass_per_length;
+        work.add(r, v, pull.force_n_per_m(i, v, mass_per_length) * w);
+    }
+    work
+}
+
+/// A gathered point's position relative to its strand's root point
+/// `root_m` (world), world axes.
+pub fn root_relative(point: &SamplePoint, head: &RigidMotion, root_m: DVec3) -> DVec3 {
+    head.world_from_body * point.position_m + head.position_m - root_m
 }

@@ -10,7 +10,7 @@ use super::friction::grid_velocity;
 use super::pressure::{excess, push_m_per_s2};
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
-use super::splat::{NodeSums, SamplePoint, splat};
+use super::splat::{NodeSums, SamplePoint, splat_pieces};
 
 /// What one sample reads from the field.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,23 +26,29 @@ pub struct SampleReading {
 #[derive(Clone, Debug, Default)]
 pub struct VolumeField {
     sums: NodeSums,
+    /// The splat's per-piece sums, reused.
+    pieces: Vec<NodeSums>,
+    /// Mean velocity u_n per node, m/s (zero at an empty node).
+    velocity: Vec<DVec3>,
     density: Vec<f64>,
     excess: Vec<f64>,
 }
 
 impl VolumeField {
-    /// Splats `points` (head coordinates) onto `rest`'s grid and finds
-    /// each node's density excess over its rest threshold.
-    pub fn update<'a>(
-        &mut self,
-        rest: &RestDensity,
-        points: impl IntoIterator<Item = &'a SamplePoint>,
-    ) {
+    /// Splats the points of `parts` (head coordinates; the parts one after
+    /// the other, as the engine holds them) onto `rest`'s grid, in
+    /// parallel when `parallel` (same numbers either way,
+    /// [`splat_pieces`]), and finds each node's density excess over its
+    /// rest threshold.
+    pub fn update(&mut self, rest: &RestDensity, parts: &[&[SamplePoint]], parallel: bool) {
         let grid = &rest.grid;
-        splat(grid, points, &mut self.sums);
+        splat_pieces(grid, parts, &mut self.sums, &mut self.pieces, parallel);
         self.density.clear();
         self.density
             .extend((0..grid.node_count()).map(|n| self.sums.density_kg_per_m3(grid, n)));
+        self.velocity.clear();
+        self.velocity
+            .extend((0..grid.node_count()).map(|n| self.sums.velocity_m_per_s(n)));
         excess(
             &self.density,
             &rest.threshold_kg_per_m3,
@@ -58,15 +64,24 @@ impl VolumeField {
         settings: &InteractionSettings,
         point: &SamplePoint,
     ) -> SampleReading {
-        match rest.grid.stencil(point.position_m) {
-            Some(stencil) => SampleReading {
-                target_m_per_s: grid_velocity(&stencil, &self.sums),
-                push_m_per_s2: push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2),
-            },
-            None => SampleReading {
+        let Some((nodes, weights)) = rest.grid.weights(point.position_m) else {
+            return SampleReading {
                 target_m_per_s: point.velocity_m_per_s,
                 push_m_per_s2: DVec3::ZERO,
-            },
+            };
+        };
+        // The weights' gradients only where some node is in excess: the
+        // push is exactly zero elsewhere, and that is most of the hair.
+        let in_excess = nodes.iter().any(|n| self.excess[*n] > 0.0);
+        let push = match rest.grid.stencil(point.position_m) {
+            Some(stencil) if in_excess => {
+                push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2)
+            }
+            _ => DVec3::ZERO,
+        };
+        SampleReading {
+            target_m_per_s: grid_velocity(&nodes, &weights, &self.velocity),
+            push_m_per_s2: push,
         }
     }
 

@@ -34,7 +34,7 @@
 
 use glam::DVec3;
 
-use super::grid::Stencil;
+#[cfg(doc)]
 use super::splat::NodeSums;
 
 /// What the model hands one strand's step: the friction rate and, per
@@ -63,13 +63,16 @@ impl VolumePull<'_> {
     }
 }
 
-/// The grid velocity u(x) = Σ w_n u_n at the point of `stencil`, m/s.
-pub fn grid_velocity(stencil: &Stencil, sums: &NodeSums) -> DVec3 {
-    stencil
-        .nodes
+/// The grid velocity u(x) = Σ w_n u_n at a point with stencil `nodes` and
+/// `weights` ([`super::grid::Grid::weights`]), m/s, from the nodes' mean
+/// velocities u_n ([`NodeSums::velocity_m_per_s`], found once per node
+/// and frame).
+#[inline]
+pub fn grid_velocity(nodes: &[usize; 8], weights: &[f64; 8], node_velocity: &[DVec3]) -> DVec3 {
+    nodes
         .iter()
-        .zip(stencil.weights)
-        .map(|(node, w)| w * sums.velocity_m_per_s(*node))
+        .zip(weights)
+        .map(|(node, w)| *w * node_velocity[*node])
         .sum()
 }
 

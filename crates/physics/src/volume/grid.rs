@@ -95,7 +95,54 @@ impl Grid {
     }
 
     /// The stencil of point `p` (head coordinates), or `None` outside the box.
+    #[inline]
     pub fn stencil(&self, p: DVec3) -> Option<Stencil> {
+        let (nodes, frac) = self.cell(p)?;
+        let inv = 1.0 / self.cell_m;
+        let mut stencil = Stencil {
+            nodes,
+            weights: [0.0; 8],
+            gradients: [DVec3::ZERO; 8],
+        };
+        for corner in 0..8 {
+            // Per axis: the 1-D weight and its derivative (1/m).
+            let one_d = |axis: usize| {
+                if (corner >> axis) & 1 == 1 {
+                    (frac[axis], inv)
+                } else {
+                    (1.0 - frac[axis], -inv)
+                }
+            };
+            let ((wx, dx), (wy, dy), (wz, dz)) = (one_d(0), one_d(1), one_d(2));
+            stencil.weights[corner] = wx * wy * wz;
+            stencil.gradients[corner] = DVec3::new(dx * wy * wz, wx * dy * wz, wx * wy * dz);
+        }
+        Some(stencil)
+    }
+
+    /// The eight nodes around `p` and their weights (the stencil without
+    /// gradients, which the splat does not need), or `None` outside.
+    #[inline]
+    pub fn weights(&self, p: DVec3) -> Option<([usize; 8], [f64; 8])> {
+        let (nodes, frac) = self.cell(p)?;
+        let weights = std::array::from_fn(|corner| {
+            let one_d = |axis: usize| {
+                if (corner >> axis) & 1 == 1 {
+                    frac[axis]
+                } else {
+                    1.0 - frac[axis]
+                }
+            };
+            one_d(0) * one_d(1) * one_d(2)
+        });
+        Some((nodes, weights))
+    }
+
+    /// The eight corner nodes of the cell holding `p` (corner c has bit
+    /// a of c set when it is the upper node along axis a) and `p`'s
+    /// position in the cell, 0..=1 per axis; `None` outside the box.
+    #[inline]
+    fn cell(&self, p: DVec3) -> Option<([usize; 8], [f64; 3])> {
         let local = (p - self.origin_m) / self.cell_m;
         let mut base = [0usize; 3];
         let mut frac = [0.0; 3];
@@ -109,28 +156,11 @@ impl Grid {
             base[axis] = cell as usize;
             frac[axis] = x - cell;
         }
-        let inv = 1.0 / self.cell_m;
-        let mut stencil = Stencil {
-            nodes: [0; 8],
-            weights: [0.0; 8],
-            gradients: [DVec3::ZERO; 8],
-        };
-        for corner in 0..8 {
-            let bit = [corner & 1, (corner >> 1) & 1, (corner >> 2) & 1];
-            // Per axis: the 1-D weight and its derivative (1/m).
-            let one_d = |axis: usize| {
-                if bit[axis] == 1 {
-                    (frac[axis], inv)
-                } else {
-                    (1.0 - frac[axis], -inv)
-                }
-            };
-            let ((wx, dx), (wy, dy), (wz, dz)) = (one_d(0), one_d(1), one_d(2));
-            stencil.nodes[corner] =
-                self.index(base[0] + bit[0], base[1] + bit[1], base[2] + bit[2]);
-            stencil.weights[corner] = wx * wy * wz;
-            stencil.gradients[corner] = DVec3::new(dx * wy * wz, wx * dy * wz, wx * wy * dz);
-        }
-        Some(stencil)
+        let first = self.index(base[0], base[1], base[2]);
+        let step = [1, self.dims[0], self.dims[0] * self.dims[1]];
+        let nodes = std::array::from_fn(|corner| {
+            first + (0..3).map(|a| ((corner >> a) & 1) * step[a]).sum::<usize>()
+        });
+        Some((nodes, frac))
     }
 }

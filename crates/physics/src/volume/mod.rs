@@ -22,17 +22,22 @@
 //! 5. [`pressure`]: samples in nodes denser than their threshold are
 //!    pushed down the excess's gradient (an equation of state, no solve).
 //!
-//! [`field`] runs 2–5 on any set of sample points, and [`reference`] is
-//! the f64 `HairSystem`'s use of it: once per frame, before the strands
-//! step, it gathers every strand's samples, splats them and hands each
-//! strand its pull ([`friction::VolumePull`]), which the step adds to its
-//! forces and to its drag rate; [`balance`] counts its work in the
-//! guard's energy balance. [`settings`] holds the knobs.
+//! [`field`] runs 2–5 on any set of sample points, and each engine only
+//! gathers its samples and hands out the answers: [`reference`] is the
+//! f64 `HairSystem`'s use of it (once per frame, before the strands step,
+//! it gathers every strand's samples, splats them and hands each strand
+//! its pull, [`friction::VolumePull`], which the step adds to its forces
+//! and to its drag rate), and `crate::batch::volume` the f32 batch
+//! engine's (an f32 gather per SIMD batch, the same f64 splat and read,
+//! and a per-sample pull in the batch step, `crate::batch::pull`).
+//! [`state`] is what both keep between frames; [`balance`] counts the
+//! model's work in the guard's energy balance, and exchanges the old
+//! pull's work for the new one's in the reused start-of-frame measure.
+//! [`settings`] holds the knobs.
 //!
-//! What is left out: the batch engine and the GPU kernels do not run the
-//! model yet (`docs/volume.md`); the grid is splatted once per frame, so
-//! with several substeps the grid velocity and push are those of the
-//! frame's start.
+//! What is left out: the GPU kernels do not run the model
+//! (`docs/gpu.md`); the grid is splatted once per frame, so with several
+//! substeps the grid velocity and push are those of the frame's start.
 
 pub mod balance;
 pub mod field;
@@ -43,6 +48,7 @@ pub mod reference;
 pub mod rest;
 pub mod settings;
 pub mod splat;
+pub mod state;
 
 pub use field::{SampleReading, VolumeField};
 pub use friction::VolumePull;
@@ -51,3 +57,4 @@ pub use reference::ReferenceVolume;
 pub use rest::RestDensity;
 pub use settings::InteractionSettings;
 pub use splat::SamplePoint;
+pub use state::ModelState;

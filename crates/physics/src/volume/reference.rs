@@ -13,10 +13,10 @@ use std::time::Instant;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::field::VolumeField;
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
 use super::splat::SamplePoint;
+use super::state::ModelState;
 use crate::motion::RigidMotion;
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::strand::Strand;
@@ -24,69 +24,39 @@ use crate::strand::Strand;
 /// The model's state on a reference engine.
 #[derive(Clone, Debug)]
 pub struct ReferenceVolume {
-    settings: InteractionSettings,
-    rest: Option<RestDensity>,
-    field: VolumeField,
+    state: ModelState,
     points: Vec<Vec<SamplePoint>>,
-    last_secs: f64,
 }
 
 impl ReferenceVolume {
     /// The model with `settings`; the rest density waits for the first frame.
     pub fn new(settings: InteractionSettings) -> Self {
         Self {
-            settings,
-            rest: None,
-            field: VolumeField::default(),
+            state: ModelState::new(settings),
             points: Vec::new(),
-            last_secs: 0.0,
         }
     }
 
-    /// The settings.
-    pub fn settings(&self) -> &InteractionSettings {
-        &self.settings
+    /// Settings, rest density, last field and the last pass's time.
+    pub fn state(&self) -> &ModelState {
+        &self.state
     }
 
-    /// New strengths take effect at the next frame; a new cell size
-    /// rebuilds the rest density.
-    pub fn set_settings(&mut self, settings: InteractionSettings) {
-        if settings.cell_m != self.settings.cell_m {
-            self.rest = None;
-        }
-        self.settings = settings;
-    }
-
-    /// Forgets the rest density (strands were added), rebuilt next frame.
-    pub fn forget_rest(&mut self) {
-        self.rest = None;
-    }
-
-    /// The rest density, once a frame has built it.
-    pub fn rest(&self) -> Option<&RestDensity> {
-        self.rest.as_ref()
-    }
-
-    /// The field of the last frame.
-    pub fn field(&self) -> &VolumeField {
-        &self.field
-    }
-
-    /// Wall time of the last [`Self::prepare`], seconds.
-    pub fn last_secs(&self) -> f64 {
-        self.last_secs
+    /// The state, to retune the model or forget its rest density.
+    pub fn state_mut(&mut self) -> &mut ModelState {
+        &mut self.state
     }
 
     /// Gathers the strands' samples with the head at `head`, splats them
     /// and sets every strand's pull for the coming frame.
     pub fn prepare(&mut self, strands: &mut [Strand], head: &RigidMotion, parallel: bool) {
         let start = Instant::now();
-        if self.rest.is_none() {
-            self.rest = rest_density(strands, &self.settings);
-        }
-        let Some(rest) = &self.rest else {
+        if !self
+            .state
+            .ensure_rest(|settings| rest_density(strands, settings))
+        {
             return;
-        };
+        }
         self.points.resize_with(strands.len(), Vec::new);
         let gather = |(s, out): (&Strand, &mut Vec<SamplePoint>)| {
             let kin = s.kinematics(&head.carry(s.root()));
@@ -97,21 +67,23 @@ impl ReferenceVolume {
         } else {
             strands.iter().zip(&mut self.points).for_each(gather);
         }
-        self.field.update(rest, self.points.iter().flatten());
-        let (field, settings) = (&self.field, &self.settings);
+        let parts: Vec<&[SamplePoint]> = self.points.iter().map(Vec::as_slice).collect();
+        let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
+            return;
+        };
         let hand_out = |(s, points): (&mut Strand, &Vec<SamplePoint>)| {
             let readings = points.iter().map(|p| field.read(rest, settings, p));
             let (target, push): (Vec<DVec3>, Vec<DVec3>) = readings
                 .map(|r| (r.target_m_per_s, head.world_from_body * r.push_m_per_s2))
                 .unzip();
-            s.set_volume_pull(settings.friction_per_s, target, push);
+            s.exchange_volume_pull((settings.friction_per_s, target, push), points, head);
         };
         if parallel {
             strands.par_iter_mut().zip(&self.points).for_each(hand_out);
         } else {
             strands.iter_mut().zip(&self.points).for_each(hand_out);
         }
-        self.last_secs = start.elapsed().as_secs_f64();
+        self.state.set_last_secs(start.elapsed().as_secs_f64());
     }
 }
 

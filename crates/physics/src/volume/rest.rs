@@ -19,7 +19,7 @@
 //! first point needs: a groom is far denser at the scalp than at the tips.
 
 use super::grid::Grid;
-use super::splat::{NodeSums, SamplePoint, splat};
+use super::splat::{NodeSums, SamplePoint, splat_pieces};
 
 /// Relative slack on the threshold, so that the round-off of carrying the
 /// rest pose into head coordinates again cannot make a pressure at rest.
@@ -43,7 +43,8 @@ impl RestDensity {
     pub fn new(points: &[SamplePoint], cell_m: f64, margin_m: f64) -> Option<RestDensity> {
         let grid = Grid::fitted(points.iter().map(|p| p.position_m), cell_m, margin_m)?;
         let mut sums = NodeSums::default();
-        splat(&grid, points.iter(), &mut sums);
+        // The frames' splat, so that the rest pose sums exactly alike.
+        splat_pieces(&grid, &[points], &mut sums, &mut Vec::new(), false);
         let density: Vec<f64> = (0..grid.node_count())
             .map(|n| sums.density_kg_per_m3(&grid, n))
             .collect();

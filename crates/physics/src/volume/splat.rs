@@ -11,6 +11,7 @@
 //! is.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::grid::Grid;
 
@@ -64,13 +65,93 @@ pub fn splat<'a>(
     sums.momentum.clear();
     sums.momentum.resize(n, DVec3::ZERO);
     for p in points {
-        let Some(stencil) = grid.stencil(p.position_m) else {
+        let Some((nodes, weights)) = grid.weights(p.position_m) else {
             continue;
         };
-        for (node, w) in stencil.nodes.iter().zip(stencil.weights) {
+        for (node, w) in nodes.iter().zip(weights) {
             let m = w * p.mass_kg;
             sums.mass_kg[*node] += m;
             sums.momentum[*node] += m * p.velocity_m_per_s;
         }
     }
+}
+
+/// Pieces [`splat_pieces`] cuts the points into, whatever the thread
+/// count: each piece splats into sums of its own, and the pieces are
+/// added node by node in order, so a parallel splat gives the serial
+/// one's numbers bit for bit. Four keeps two to eight cores busy at four
+/// copies of the node sums (a 2 cm grid around a head: about 1 MB each).
+pub const SPLAT_PIECES: usize = 4;
+
+/// Nodes one task adds up when the pieces are summed.
+const NODES_PER_TASK: usize = 4096;
+
+/// [`splat`] of the points of `parts` (in order, cut anywhere) in
+/// [`SPLAT_PIECES`] pieces, each into its buffer of `pieces` (reused),
+/// in parallel when `parallel`; the pieces' sums are added into `sums`.
+pub fn splat_pieces(
+    grid: &Grid,
+    parts: &[&[SamplePoint]],
+    sums: &mut NodeSums,
+    pieces: &mut Vec<NodeSums>,
+    parallel: bool,
+) {
+    let total: usize = parts.iter().map(|p| p.len()).sum();
+    let bounds: Vec<usize> = (0..=SPLAT_PIECES)
+        .map(|k| k * total / SPLAT_PIECES)
+        .collect();
+    pieces.resize_with(SPLAT_PIECES, NodeSums::default);
+    let one = |(k, piece): (usize, &mut NodeSums)| {
+        let range = bounds[k]..bounds[k + 1];
+        splat(grid, points_in(parts, range), piece);
+    };
+    if parallel {
+        pieces.par_iter_mut().enumerate().for_each(one);
+    } else {
+        pieces.iter_mut().enumerate().for_each(one);
+    }
+    let n = grid.node_count();
+    sums.mass_kg.resize(n, 0.0);
+    sums.momentum.resize(n, DVec3::ZERO);
+    let pieces = &*pieces;
+    let add = |(task, (mass, momentum)): (usize, (&mut [f64], &mut [DVec3]))| {
+        let start = task * NODES_PER_TASK;
+        for (i, (m, p)) in mass.iter_mut().zip(momentum).enumerate() {
+            let node = start + i;
+            *m = pieces
+                .iter()
+                .map(|s| s.mass_kg[node])
+                .fold(0.0, |a, b| a + b);
+            *p = pieces
+                .iter()
+                .map(|s| s.momentum[node])
+                .fold(DVec3::ZERO, |a, b| a + b);
+        }
+    };
+    let (mass, momentum) = (&mut sums.mass_kg, &mut sums.momentum);
+    if parallel {
+        let chunks = mass.par_chunks_mut(NODES_PER_TASK);
+        let chunks = chunks.zip(momentum.par_chunks_mut(NODES_PER_TASK));
+        chunks.enumerate().for_each(add);
+    } else {
+        let chunks = mass.chunks_mut(NODES_PER_TASK);
+        let chunks = chunks.zip(momentum.chunks_mut(NODES_PER_TASK));
+        chunks.enumerate().for_each(add);
+    }
+}
+
+/// The points of `parts` whose index in the whole (parts one after the
+/// other) lies in `range`.
+fn points_in<'a>(
+    parts: &'a [&'a [SamplePoint]],
+    range: std::ops::Range<usize>,
+) -> impl Iterator<Item = &'a SamplePoint> {
+    let mut start = 0;
+    parts.iter().flat_map(move |part| {
+        let (from, to) = (start, start + part.len());
+        start = to;
+        let lo = range.start.clamp(from, to) - from;
+        let hi = range.end.clamp(from, to) - from;
+        part[lo..hi].iter()
+    })
 }

@@ -5,6 +5,7 @@
 pub mod gpu;
 pub mod shake_scene;
 pub mod sphere;
+pub mod volume_scene;
 
 use std::sync::Arc;
 

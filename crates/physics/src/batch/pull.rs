@@ -1,0 +1,123 @@
+//! The hair–hair model's pull on a batch's samples ([`crate::volume`]):
+//! what the step adds at each quadrature sample, and how it rides the
+//! step's hook.
+//!
+//! # The force, as the batch step takes it
+//!
+//! Per unit length, the model's force on a sample is
+//! F = μρS (u − ṙ) + ρS a ([`crate::volume::friction`]): friction toward
+//! the grid velocity u, a drag exactly like air drag toward the wind, and
+//! the pressure's push a; u and a are frozen over the frame. The batch
+//! step takes air drag on the full velocity, −ν(ṙ − v_air), with its
+//! implicit part (ν/ρS) M in the mass scale s = 1 + hν/ρS
+//! ([`super::forward`], [`super::suffix::mass_scale`]); the friction goes
+//! the same way: s gains hμ ([`EndPointForce::drag_rate_per_s`]) and each
+//! sample's force gains μρS (u − ṙ) + ρS a
+//! ([`EndPointForce::sample_force`]). The f64 reference splits the same
+//! force into a root-carried part and (μ) M q̇ on the right-hand side
+//! ([`crate::step`]); since J q̇ = ṙ − ṙ_carried at every sample, the two
+//! are one arithmetic up to round-off, as for air drag.
+//!
+//! Per sample the pull keeps one vector, the known part
+//! c = ρS (μ u + a) (computed in f64, stored in f32), and per lane the rate
+//! μρS, so the force at velocity ṙ is c − μρS ṙ: one multiply-add per
+//! sample on top of the step's own force.
+//!
+//! # The hook
+//!
+//! The step's per-element hook ([`EndPointForce`], threaded through every
+//! batch step for the head's contact) carries it: [`WithPull`] wraps the
+//! contact (or [`super::contact::NoContact`]) and adds the pull's drag rate
+//! and sample forces. Without the model the hook's
+//! [`EndPointForce::SAMPLE_FORCES`] is false and the sample loop compiles
+//! exactly as before (bit-identical steps).
+
+use super::contact::EndPointForce;
+use super::forward::FrameState;
+use super::lane_model::{Constants, LaneModel};
+use super::lanes::{Lanes, Real};
+use super::layout::ElementData;
+use super::vec::V3;
+
+/// One batch's pull for a frame: what [`super::volume::BatchVolume`]
+/// hands each batch.
+#[derive(Clone, Copy, Debug)]
+pub struct SamplePull<'a> {
+    /// Friction rate μ, 1/s (the same for every lane).
+    pub friction_per_s: f32,
+    /// μρS per lane, kg/(m·s).
+    pub rate: Lanes,
+    /// Per quadrature sample (element by element, the element's nodes in
+    /// order), the known part c = ρS (μ u + a), N/m, world axes.
+    pub known: &'a [V3<Lanes>],
+    /// Quadrature nodes per element.
+    pub nodes: usize,
+}
+
+impl SamplePull<'_> {
+    /// The model's force per unit length on node `j` of element `e` moving
+    /// at `velocity` (world, m/s): c − μρS ṙ, N/m.
+    #[inline(always)]
+    pub fn force(&self, e: usize, j: usize, velocity: V3<Lanes>) -> V3<Lanes> {
+        self.known[e * self.nodes + j] - velocity.scale(self.rate)
+    }
+}
+
+/// The step's hook `H` with the model's pull added.
+#[derive(Debug)]
+pub struct WithPull<'a, H> {
+    /// The hook it wraps (the head's contact, or none).
+    pub inner: H,
+    /// The pull.
+    pub pull: SamplePull<'a>,
+}
+
+impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
+    const SAMPLE_FORCES: bool = true;
+
+    #[inline(always)]
+    fn at_end<const LOCAL: bool>(
+        &mut self,
+        e: usize,
+        end: &FrameState<Lanes>,
+        el: &mut ElementData<Lanes>,
+    ) {
+        self.inner.at_end::<LOCAL>(e, end, el);
+    }
+
+    #[inline(always)]
+    fn drag_rate_per_s(&self) -> f32 {
+        self.pull.friction_per_s
+    }
+
+    #[inline(always)]
+    fn sample_force(&self, e: usize, j: usize, velocity: V3<Lanes>) -> V3<Lanes> {
+        self.pull.force(e, j, velocity)
+    }
+}
+
+/// Per lane, the pull's work terms at a sample of quadrature length
+/// `w_len` (m) at `r` (relative to the root point) moving at `velocity`:
+/// adds its force, torque and power to the guard's sums, as
+/// [`crate::volume::balance`] does on the reference.
+#[inline(always)]
+pub fn add_pull_work(
+    pull: &SamplePull<'_>,
+    e: usize,
+    j: usize,
+    r: V3<Lanes>,
+    velocity: V3<Lanes>,
+    w_len: Lanes,
+    sums: (&mut V3<Lanes>, &mut V3<Lanes>, &mut Lanes),
+) {
+    let f = pull.force(e, j, velocity).scale(w_len);
+    let (force, torque, power) = sums;
+    *force += f;
+    *torque += r.cross(f);
+    *power += f.dot(velocity);
+}
+
+/// μρS lane by lane from the friction rate and a batch's constants.
+pub fn friction_rate(friction_per_s: f32, model: &LaneModel) -> Lanes {
+    Lanes::splat(friction_per_s) * model.mass_per_length()
+}

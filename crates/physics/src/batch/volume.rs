@@ -1,0 +1,340 @@
+//! The hair–hair model ([`crate::volume`]) on the batch engine: once per
+//! frame, before the strands step, gather every lane's quadrature samples,
+//! splat them on the rest grid with the shared f64 arithmetic
+//! ([`crate::volume::field`]), and hand each batch its pull
+//! ([`super::pull::SamplePull`]) for the frame's steps.
+//!
+//! # One arithmetic with the reference
+//!
+//! Only the gather is the batch engine's own: a root-to-tip sweep in f32
+//! lanes, as the guard's measure sweeps ([`super::guard`]), gives each
+//! sample's position relative to its root and its world velocity; they are
+//! widened to f64 and carried into head coordinates exactly as the
+//! reference's [`crate::volume::reference::head_points`] does, with mass
+//! ρS·w·ℓ. The splat, the density excess and what each sample reads back
+//! (grid velocity, pressure push) are the same functions the reference
+//! calls. The reading becomes the sample's known force
+//! c = ρS (μ u + a) (world axes), rounded to f32 once.
+//!
+//! # Rest density
+//!
+//! Built on first use, as on the reference, from the rest pose: every
+//! strand at its natural strains, at rest, the head at the origin, on a
+//! grid fitted to those samples with half the longest strand to spare. It
+//! is gathered by the same f32 sweep the frames use, so a batch at rest in
+//! its natural shape on a still head splats exactly the rest density and
+//! feels no pressure.
+//!
+//! # Padding
+//!
+//! A short last batch pads with copies of its last strand
+//! ([`super::layout`]); their samples splat with zero mass (a strand is
+//! counted once) and read the field like any other, so the padding steps
+//! as its strand does.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::forward::{FrameState, advance};
+use super::geometry::local_point;
+use super::lane_model::{Constants, LaneModel};
+use super::lanes::{LANES, Lanes, Real};
+use super::layout::RootMotion;
+use super::pull::{SamplePull, friction_rate};
+use super::vec::V3;
+use super::volume_read::{BatchRates, Exchange, ReadInputs, read_batch};
+use crate::frame_balance::StrandMeasure;
+use crate::motion::{RigidMotion, RootPose};
+use crate::volume::balance::PullWork;
+use crate::volume::{InteractionSettings, ModelState, RestDensity, SamplePoint};
+
+/// One group of strands as the gather reads it: its batches' constants,
+/// roots and batch-major state (batch b's element e at b·N + e).
+#[derive(Clone, Copy, Debug)]
+pub struct GroupView<'a> {
+    /// Elements per strand N.
+    pub n: usize,
+    /// Each batch's f32 constants, lane by lane.
+    pub models: &'a [Arc<LaneModel>],
+    /// One root per strand.
+    pub roots: &'a [RootPose],
+    /// Strains, batch-major.
+    pub q: &'a [V3<Lanes>],
+    /// Strain rates, batch-major.
+    pub v: &'a [V3<Lanes>],
+}
+
+/// One batch's inputs and outputs of the read-back.
+type BatchOut<'a> = (&'a mut [SamplePoint], &'a mut [[V3<Lanes>; 2]]);
+
+/// One batch's read-back: its c, points, motion and work exchange.
+type BatchRead<'a> = (
+    (
+        (&'a mut [V3<Lanes>], &'a [SamplePoint]),
+        &'a [[V3<Lanes>; 2]],
+    ),
+    &'a mut [Exchange; LANES],
+);
+
+/// One group's samples and pulls of the current frame.
+#[derive(Clone, Debug, Default)]
+struct GroupPulls {
+    /// Batch b's sample i (element-major), lane l at (b·S + i)·LANES + l.
+    points: Vec<SamplePoint>,
+    /// Batch b's sample i's position relative to its root and velocity
+    /// (world, f32 lanes) at b·S + i.
+    motion: Vec<[V3<Lanes>; 2]>,
+    /// Batch b's sample i's known force c at b·S + i, N/m.
+    known: Vec<V3<Lanes>>,
+    /// Per batch, μρS lane by lane, kg/(m·s).
+    rate: Vec<Lanes>,
+    /// Per batch and lane, the old and the new pull's work at the frame's
+    /// start ([`super::volume_read`]).
+    exchange: Vec<[Exchange; LANES]>,
+    /// Samples per strand S = N × nodes.
+    samples: usize,
+    /// Quadrature nodes per element.
+    nodes: usize,
+}
+
+/// The model's state on a batch engine.
+#[derive(Clone, Debug)]
+pub struct BatchVolume {
+    state: ModelState,
+    groups: Vec<GroupPulls>,
+}
+
+impl BatchVolume {
+    /// The model with `settings`; the rest density waits for the first frame.
+    pub fn new(settings: InteractionSettings) -> Self {
+        Self {
+            state: ModelState::new(settings),
+            groups: Vec::new(),
+        }
+    }
+
+    /// Settings, rest density, last field and the last pass's time.
+    pub fn state(&self) -> &ModelState {
+        &self.state
+    }
+
+    /// The state, to retune the model or forget its rest density.
+    pub fn state_mut(&mut self) -> &mut ModelState {
+        &mut self.state
+    }
+
+    /// Batch `batch` of group `group`'s pull for the frame prepared last,
+    /// if [`Self::prepare`] has run on it.
+    pub fn pull(&self, group: usize, batch: usize) -> Option<SamplePull<'_>> {
+        let g = self.groups.get(group)?;
+        let known = g.known.get(batch * g.samples..(batch + 1) * g.samples)?;
+        Some(SamplePull {
+            friction_per_s: self.state.settings().friction_per_s as f32,
+            rate: *g.rate.get(batch)?,
+            known,
+            nodes: g.nodes,
+        })
+    }
+
+    /// Group `group`'s start measures (per batch, per lane), reused from
+    /// the last frame's end, which counted the old pull's work: the new
+    /// pull's counted instead ([`super::volume_read`]). Without an old pull
+    /// (the first frame with the model) the old work is zero, as it was.
+    pub fn exchange_start_work(&self, group: usize, measures: &mut [[StrandMeasure; LANES]]) {
+        let Some(g) = self.groups.get(group) else {
+            return;
+        };
+        for (batch, exchange) in measures.iter_mut().zip(&g.exchange) {
+            for (m, (old, new)) in batch.iter_mut().zip(exchange) {
+                PullWork::exchange(m, old, new);
+            }
+        }
+    }
+
+    /// Gathers every group's samples with the head at `head`, splats them
+    /// and sets every batch's pull for the coming frame.
+    pub fn prepare(&mut self, groups: &[GroupView<'_>], head: &RigidMotion, parallel: bool) {
+        let start = Instant::now();
+        if !self
+            .state
+            .ensure_rest(|settings| rest_density(groups, settings))
+        {
+            self.groups.clear();
+            return;
+        }
+        self.groups.resize_with(groups.len(), GroupPulls::default);
+        for (view, pulls) in groups.iter().zip(&mut self.groups) {
+            gather_group(view, head, parallel, pulls);
+        }
+        let parts: Vec<&[SamplePoint]> = self.groups.iter().map(|g| g.points.as_slice()).collect();
+        let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
+            return;
+        };
+        let mu = settings.friction_per_s as f32;
+        for (view, pulls) in groups.iter().zip(&mut self.groups) {
+            let lanes = pulls.samples * LANES;
+            let batches = pulls.points.len() / lanes;
+            // An old pull exists when the last frame read this very layout.
+            let had_old =
+                pulls.known.len() == batches * pulls.samples && pulls.rate.len() == batches;
+            let rates: Vec<Lanes> = view.models.iter().map(|m| friction_rate(mu, m)).collect();
+            let old_rates = std::mem::replace(&mut pulls.rate, rates);
+            let inputs = ReadInputs {
+                rest,
+                field,
+                settings,
+                head,
+            };
+            pulls.known.resize(batches * pulls.samples, V3::zero());
+            let none = (PullWork::default(), PullWork::default());
+            pulls.exchange.resize(batches, [none; LANES]);
+            let read = |(b, (((known, points), motion), exchange)): (usize, BatchRead<'_>)| {
+                let rates = BatchRates {
+                    model: &view.models[b],
+                    old: had_old.then(|| old_rates[b]),
+                    new: pulls.rate[b],
+                };
+                read_batch(&inputs, &rates, points, motion, known, exchange);
+            };
+            if parallel {
+                let known = pulls.known.par_chunks_mut(pulls.samples);
+                known
+                    .zip(pulls.points.par_chunks(lanes))
+                    .zip(pulls.motion.par_chunks(pulls.samples))
+                    .zip(pulls.exchange.par_iter_mut())
+                    .enumerate()
+                    .for_each(read);
+            } else {
+                let known = pulls.known.chunks_mut(pulls.samples);
+                known
+                    .zip(pulls.points.chunks(lanes))
+                    .zip(pulls.motion.chunks(pulls.samples))
+                    .zip(pulls.exchange.iter_mut())
+                    .enumerate()
+                    .for_each(read);
+            }
+        }
+        self.state.set_last_secs(start.elapsed().as_secs_f64());
+    }
+}
+
+/// Every batch of `view` gathered into `out.points` (parallel over
+/// batches when `parallel`).
+fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &mut GroupPulls) {
+    let n = view.n;
+    out.nodes = view.models.first().map_or(0, |m| m.nodes().len());
+    out.samples = n * out.nodes;
+    let batches = view.models.len();
+    out.points
+        .resize(batches * out.samples * LANES, SAMPLE_NONE);
+    out.motion.resize(batches * out.samples, [V3::zero(); 2]);
+    let (lanes, samples) = (out.samples * LANES, out.samples);
+    let one = |(((out, (q, v)), roots), model): (((BatchOut<'_>, _), _), &Arc<LaneModel>)| {
+        let (points, motion) = out;
+        gather_batch(model, roots, head, (q, v), points, motion);
+    };
+    if parallel {
+        let state = view.q.par_chunks(n).zip(view.v.par_chunks(n));
+        out.points
+            .par_chunks_mut(lanes)
+            .zip(out.motion.par_chunks_mut(samples))
+            .zip(state)
+            .zip(view.roots.par_chunks(LANES))
+            .zip(view.models.par_iter())
+            .for_each(one);
+    } else {
+        let state = view.q.chunks(n).zip(view.v.chunks(n));
+        out.points
+            .chunks_mut(lanes)
+            .zip(out.motion.chunks_mut(samples))
+            .zip(state)
+            .zip(view.roots.chunks(LANES))
+            .zip(view.models.iter())
+            .for_each(one);
+    }
+}
+
+const SAMPLE_NONE: SamplePoint = SamplePoint {
+    position_m: DVec3::ZERO,
+    velocity_m_per_s: DVec3::ZERO,
+    mass_kg: 0.0,
+};
+
+/// One batch's samples (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
+/// at `head`) as points in head coordinates, written to `out` (sample i,
+/// lane l at i·LANES + l; padding lanes get zero mass), and as f32 lanes
+/// of position relative to the root and velocity, world, to `motion`
+/// (sample i at i).
+pub fn gather_batch(
+    model: &LaneModel,
+    roots: &[RootPose],
+    head: &RigidMotion,
+    (q, v): (&[V3<Lanes>], &[V3<Lanes>]),
+    out: &mut [SamplePoint],
+    motion: &mut [[V3<Lanes>; 2]],
+) {
+    let motions: [RigidMotion; LANES] =
+        std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
+    let root = RootMotion::<Lanes>::gather(&motions);
+    let body_from_world = head.world_from_body.transpose();
+    let rho_s = model.mass_per_length();
+    let pick = |x: V3<Lanes>, l: usize| {
+        DVec3::new(
+            f64::from(x.x.lane(l)),
+            f64::from(x.y.lane(l)),
+            f64::from(x.z.lane(l)),
+        )
+    };
+    let mut s = FrameState::at_root(&root);
+    let mut i = 0;
+    for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
+        let length_m = model.length_m(e);
+        for (node, weight) in model.nodes().iter().zip(model.weights()) {
+            let lp = local_point(Lanes::splat(*node) * length_m, *k, *k_dot);
+            let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+            motion[i] = [r, vel];
+            for (l, root_motion) in motions.iter().enumerate() {
+                let mass_kg =
+                    f64::from(rho_s.lane(l)) * f64::from(*weight) * f64::from(length_m.lane(l));
+                out[i * LANES + l] = SamplePoint {
+                    position_m: body_from_world
+                        * (root_motion.position_m + pick(r, l) - head.position_m),
+                    velocity_m_per_s: pick(vel, l),
+                    mass_kg: if l < roots.len() { mass_kg } else { 0.0 },
+                };
+            }
+            i += 1;
+        }
+        s = advance(&s, length_m, *k, *k_dot).0;
+    }
+}
+
+/// The rest density of the groups' rest pose (natural strains, at rest,
+/// head at the origin), gathered as the frames are; `None` without strands.
+pub fn rest_density(
+    groups: &[GroupView<'_>],
+    settings: &InteractionSettings,
+) -> Option<RestDensity> {
+    let head = RigidMotion::default();
+    let mut points = Vec::new();
+    let mut longest_m: f64 = 0.0;
+    for view in groups {
+        for (model, roots) in view.models.iter().zip(view.roots.chunks(LANES)) {
+            let q: Vec<V3<Lanes>> = (0..view.n).map(|e| model.natural(e)).collect();
+            let v = vec![V3::zero(); q.len()];
+            let samples = q.len() * model.nodes().len();
+            let mut batch = vec![SAMPLE_NONE; samples * LANES];
+            let mut motion = vec![[V3::zero(); 2]; samples];
+            gather_batch(model, roots, &head, (&q, &v), &mut batch, &mut motion);
+            points.extend(batch.iter().filter(|p| p.mass_kg > 0.0));
+            let length_m = (0..view.n).fold(Lanes::splat(0.0), |sum, e| sum + model.length_m(e));
+            for l in 0..roots.len() {
+                longest_m = longest_m.max(f64::from(length_m.lane(l)));
+            }
+        }
+    }
+    RestDensity::new(&points, settings.cell_m, 0.5 * longest_m)
+}

@@ -1,0 +1,128 @@
+//! Reading the field back into a batch's pull ([`super::volume`]), and
+//! the pull's work for the guard's reused start measure.
+//!
+//! Each sample of each lane reads the field (grid velocity u, pressure
+//! push a, the reference's [`crate::volume::VolumeField::read`]) and keeps
+//! c = ρS (μ u + a) in f32. While it is at it, it sums, per lane, the old
+//! pull's work and the new one's at the state just gathered
+//! ([`crate::volume::balance::PullWork`]): the guard's start measure is the
+//! last frame's end measure, which counted the old pull, and exchanging
+//! the two is what lets it be reused instead of measured again (a sweep
+//! over every batch). The work is summed in f32 lanes exactly as the
+//! guard's measure sums it ([`super::pull::add_pull_work`]), at the
+//! positions and velocities the gather's sweep found (the same sweep as
+//! the measure's, on the same state).
+
+use glam::DVec3;
+
+use super::lane_model::{Constants, LaneModel};
+use super::lanes::{LANES, Lanes, Real};
+use super::pull::{SamplePull, add_pull_work};
+use super::vec::V3;
+use crate::motion::RigidMotion;
+use crate::volume::balance::PullWork;
+use crate::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
+
+/// What every batch of a group reads with.
+#[derive(Clone, Copy, Debug)]
+pub struct ReadInputs<'a> {
+    /// The rest density (grid, thresholds).
+    pub rest: &'a RestDensity,
+    /// This frame's field.
+    pub field: &'a VolumeField,
+    /// The model's settings.
+    pub settings: &'a InteractionSettings,
+    /// The head at the frame's start.
+    pub head: &'a RigidMotion,
+}
+
+/// One batch's constants and its pull's μρS, old and new, lane by lane.
+#[derive(Clone, Copy, Debug)]
+pub struct BatchRates<'a> {
+    /// The batch's constants.
+    pub model: &'a LaneModel,
+    /// The old pull's μρS, or `None` when there was no old pull.
+    pub old: Option<Lanes>,
+    /// The new pull's μρS.
+    pub new: Lanes,
+}
+
+/// A lane's old and new pull work at the frame's start.
+pub type Exchange = (PullWork, PullWork);
+
+/// Reads batch `points` (sample i, lane l at i·LANES + l) into `known`
+/// (its old c on entry, the new c on return) and sums each lane's old and
+/// new pull work into `exchange`, at the samples' positions relative to
+/// their roots and velocities `motion` (f32 lanes, from the gather: the
+/// numbers the guard's measure sweeps).
+pub fn read_batch(
+    inputs: &ReadInputs<'_>,
+    rates: &BatchRates<'_>,
+    points: &[SamplePoint],
+    motion: &[[V3<Lanes>; 2]],
+    known: &mut [V3<Lanes>],
+    exchange: &mut [Exchange; LANES],
+) {
+    let ReadInputs {
+        rest,
+        field,
+        settings,
+        head,
+    } = *inputs;
+    let model = rates.model;
+    let nodes = model.nodes().len();
+    let work = |known: &[V3<Lanes>], rate: Lanes| {
+        let pull = SamplePull {
+            friction_per_s: settings.friction_per_s as f32,
+            rate,
+            known,
+            nodes,
+        };
+        let (mut force, mut torque, mut power) = (V3::zero(), V3::zero(), Lanes::splat(0.0));
+        for (i, [r, v]) in motion.iter().enumerate() {
+            let (e, j) = (i / nodes, i % nodes);
+            let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
+            add_pull_work(
+                &pull,
+                e,
+                j,
+                *r,
+                *v,
+                w_len,
+                (&mut force, &mut torque, &mut power),
+            );
+        }
+        let x = |t: Lanes, l: usize| f64::from(t.lane(l));
+        let x3 = |t: V3<Lanes>, l: usize| DVec3::new(x(t.x, l), x(t.y, l), x(t.z, l));
+        std::array::from_fn(|l| PullWork {
+            force_n: x3(force, l),
+            torque_n_m: x3(torque, l),
+            power_w: x(power, l),
+        })
+    };
+    let old: [PullWork; LANES] = match rates.old {
+        Some(rate) => work(known, rate),
+        None => [PullWork::default(); LANES],
+    };
+    let mu = settings.friction_per_s;
+    let rho_s = model.mass_per_length();
+    for (c, lanes) in known.iter_mut().zip(points.chunks(LANES)) {
+        let new: [DVec3; LANES] = std::array::from_fn(|l| {
+            let reading = field.read(rest, settings, &lanes[l]);
+            let push = head.world_from_body * reading.push_m_per_s2;
+            f64::from(rho_s.lane(l)) * (mu * reading.target_m_per_s + push)
+        });
+        *c = lanes_of(&new);
+    }
+    let new = work(known, rates.new);
+    *exchange = std::array::from_fn(|l| (old[l], new[l]));
+}
+
+/// f32 lanes of per-lane f64 vectors.
+fn lanes_of(values: &[DVec3; LANES]) -> V3<Lanes> {
+    V3::new(
+        Lanes::from_fn(|l| values[l].x as f32),
+        Lanes::from_fn(|l| values[l].y as f32),
+        Lanes::from_fn(|l| values[l].z as f32),
+    )
+}
