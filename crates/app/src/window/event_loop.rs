@@ -161,7 +161,7 @@ impl Handler {
         }
         self.profile.start();
         self.app.step_frame();
-        self.profile.lap(0);
+        self.profile.lap(1);
         let head = self.app.sim.engine().head();
         let pose = (head.world_from_body, head.position_m);
         let head_mesh = posed_head(&self.app.head_mesh, pose);
@@ -177,7 +177,7 @@ impl Handler {
             ) else {
                 continue;
             };
-            self.profile.lap(1);
+            self.profile.lap(2);
             let scene = Scene {
                 hair: &hair,
                 head: &head_mesh,
@@ -188,12 +188,12 @@ impl Handler {
             if self.args.profile {
                 open.gpu.wait_idle();
             }
-            self.profile.lap(2);
+            self.profile.lap(3);
         }
         let raw = open.egui.take_egui_input(&open.gpu.window);
         let ctx = open.egui.egui_ctx().clone();
         let mut output = ctx.run_ui(raw, |ui| draw(ui, &mut self.app, &mut self.view));
-        self.profile.lap(3);
+        self.profile.lap(4);
         let platform = std::mem::take(&mut output.platform_output);
         open.egui.handle_platform_output(&open.gpu.window, platform);
         self.app.doc.settle(ctx.egui_is_using_pointer());
@@ -244,8 +244,9 @@ impl Handler {
             self.app.sim.engine().element_count()
         );
         println!(
-            "last {n} frames: frame time {:.1} ms, physics {:.1} ms per frame (median {:.1} ms), {:.3e} element-steps/s",
+            "last {n} frames: frame time {:.1} ms (median {:.1} ms), physics {:.1} ms per frame (median {:.1} ms), {:.3e} element-steps/s",
             ms(r.mean_frame_secs(n)),
+            ms(r.median_frame_secs(n)),
             ms(r.mean_physics_secs(n)),
             ms(r.median_physics_secs(n)),
             r.element_steps_per_sec(n).unwrap_or(0.0)

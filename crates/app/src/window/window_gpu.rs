@@ -33,7 +33,7 @@ use winit::window::Window;
 
 use super::egui_paint::{EguiPainter, Picture};
 use super::frame_profile::FrameProfile;
-use super::preview::{Quality, caches_panels};
+use super::preview::{Quality, caches_panels, present_mode};
 use super::screenshot::{in_rgba_order, screenshot_target};
 
 /// Side of the hair's shadow map in the window, texels: half the offline
@@ -100,7 +100,7 @@ impl WindowGpu {
             format,
             width: size.width.max(1),
             height: size.height.max(1),
-            present_mode: wgpu::PresentMode::AutoVsync,
+            present_mode: present_mode(cache, &caps.present_modes),
             desired_maximum_frame_latency: 2,
             alpha_mode: caps
                 .alpha_modes
@@ -204,8 +204,8 @@ impl WindowGpu {
     }
 
     /// Paints egui's output to the window, and, given `screenshot`, also
-    /// returns the frame as a picture. Laps `profile`'s stages 4
-    /// (tessellation), 5 (painting) and 6 (presenting); with `wait` each
+    /// returns the frame as a picture. Laps `profile`'s stages 5
+    /// (tessellation), 6 (painting) and 7 (presenting); with `wait` each
     /// is waited for, so lavapipe's work is counted where it is done.
     pub fn present(
         &mut self,
@@ -223,7 +223,7 @@ impl WindowGpu {
                     .update_texture(&self.device, &self.queue, *id, delta);
             }
         }
-        profile.lap(4);
+        profile.lap(5);
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [self.config.width, self.config.height],
             pixels_per_point: ppp,
@@ -266,7 +266,7 @@ impl WindowGpu {
         if wait {
             self.wait_idle();
         }
-        profile.lap(5);
+        profile.lap(6);
         if let Some(frame) = frame {
             self.window.pre_present_notify();
             self.queue.present(frame);
@@ -282,7 +282,7 @@ impl WindowGpu {
         if wait {
             self.wait_idle();
         }
-        profile.lap(6);
+        profile.lap(7);
         let Some((_, buffer)) = shot else {
             return Ok(None);
         };
