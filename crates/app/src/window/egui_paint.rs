@@ -260,3 +260,7 @@ impl EguiPainter {
             .render(&mut pass.forget_lifetime(), jobs, screen);
     }
 }
+
+#[cfg(test)]
+#[path = "egui_paint_tests.rs"]
+mod tests;

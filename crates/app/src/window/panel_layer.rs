@@ -22,7 +22,12 @@
 //! job are drawn in the same order on the same pixels, so only the pixels
 //! under the triangles in between (old and new) can differ. Everything
 //! else (another job count, clip rectangles, textures, a paint callback)
-//! repaints the whole layer.
+//! repaints the whole layer, and so does a frame in which egui changes its
+//! own textures (a glyph drawn at a new sub-pixel offset enters the font
+//! atlas): those are the first frames, after which the median frame on the
+//! default style repaints about 47,000 of the window's million pixels.
+//! A partly repainted layer gives the same bytes as egui painting the
+//! whole frame (`egui_paint`'s test).
 
 use egui::epaint::{ClippedPrimitive, Mesh, Primitive};
 use egui::{Color32, Pos2, Rect, TextureId};
