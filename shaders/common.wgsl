@@ -126,8 +126,17 @@ fn hair_opacity(world: vec3<f32>) -> f32 {
     return layers.w;
 }
 
+// Whether the hair's self-shadow is read: a pipeline constant, false for
+// quick previews (the renderer's `shadows: false`), whose pipelines then
+// read no shadow texture at all (texture reads are the dearest part of a
+// fragment on a CPU rasteriser).
+override SHADOWS: bool = true;
+
 // Fraction of the light that reaches `world` through the hair.
 fn light_transmittance(world: vec3<f32>) -> f32 {
+    if !SHADOWS {
+        return 1.0;
+    }
     return exp(-hair_opacity(world));
 }
 

@@ -100,12 +100,25 @@ fn is_panel(p: [u8; 4]) -> bool {
 
 #[test]
 fn the_window_shows_hair_and_panels_during_a_head_shake() {
+    shows_hair_and_panels(&[], "full");
+}
+
+/// The interactive preview (one sample per pixel, no shadows, the picture
+/// copied onto the window, the panels kept as a layer repainted where
+/// they change) still shows the hair and the panels.
+#[test]
+fn the_preview_shows_hair_and_panels_during_a_head_shake() {
+    shows_hair_and_panels(&["--preview"], "preview");
+}
+
+fn shows_hair_and_panels(extra: &[&str], name: &str) {
     let Some((display, _xvfb)) = display() else {
         skip_or_fail("no X display and no Xvfb to start");
         return;
     };
-    let out = std::env::temp_dir().join(format!("helixhair-window-{}.png", std::process::id()));
-    let runtime = std::env::temp_dir().join(format!("helixhair-xdg-{}", std::process::id()));
+    let id = format!("{name}-{}", std::process::id());
+    let out = std::env::temp_dir().join(format!("helixhair-window-{id}.png"));
+    let runtime = std::env::temp_dir().join(format!("helixhair-xdg-{id}"));
     std::fs::create_dir_all(&runtime).unwrap();
     let output = Command::new(env!("CARGO_BIN_EXE_helixhair"))
         .args([
@@ -118,6 +131,7 @@ fn the_window_shows_hair_and_panels_during_a_head_shake() {
             "--screenshot",
         ])
         .arg(&out)
+        .args(extra)
         .env("DISPLAY", &display)
         .env_remove("WAYLAND_DISPLAY")
         .env("XDG_RUNTIME_DIR", &runtime)

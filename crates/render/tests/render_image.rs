@@ -37,12 +37,21 @@ fn hanging_hair(head: &HeadMesh) -> HairStrands {
             }
         }));
     }
+    one_colour(strands, Vec3::new(0.35, 0.2, 0.08), [4e-4, 1e-4])
+}
+
+/// `strands` all in `colour`, `[root, tip]` widths in metres.
+fn one_colour(
+    strands: StrandBuffers,
+    colour: Vec3,
+    [root_width_m, tip_width_m]: [f32; 2],
+) -> HairStrands {
     let n = strands.strand_count();
     HairStrands {
         strands,
-        colours: vec![Vec3::new(0.35, 0.2, 0.08); n],
-        root_width_m: 4e-4,
-        tip_width_m: 1e-4,
+        colours: vec![colour; n],
+        root_width_m,
+        tip_width_m,
     }
 }
 
@@ -55,9 +64,17 @@ fn front_camera() -> OrbitCamera {
 }
 
 fn render(hair: &HairStrands, head: &HeadMesh, test: &str) -> Option<RgbaImage> {
+    render_with(RenderSettings::new(SIDE_PX, SIDE_PX), hair, head, test)
+}
+
+fn render_with(
+    settings: RenderSettings,
+    hair: &HairStrands,
+    head: &HeadMesh,
+    test: &str,
+) -> Option<RgbaImage> {
     let gpu = context_or_skip(test)?;
-    let mut renderer =
-        OffscreenRenderer::new(gpu, RenderSettings::new(SIDE_PX, SIDE_PX)).expect("renderer");
+    let mut renderer = OffscreenRenderer::new(gpu, settings).expect("renderer");
     let scene = Scene {
         hair,
         head,
@@ -181,35 +198,92 @@ fn sheet(strands: &mut StrandBuffers, x0_m: f32, x1_m: f32, z_m: f32, shift_m: V
     }
 }
 
+/// Sheet B hangs in front of the face; sheet A is the same sheet moved
+/// 3 cm towards the light. Seen from the front, A does not cover B's
+/// left edge ([`sheet_edge_px`]), but it lies between that edge and the
+/// light.
+fn sheets(with_a: bool) -> HairStrands {
+    let towards_light = Light::default().direction;
+    let mut strands = StrandBuffers::default();
+    sheet(&mut strands, -0.06, 0.0, 0.15, Vec3::ZERO);
+    if with_a {
+        sheet(&mut strands, -0.06, 0.0, 0.15, towards_light * 0.03);
+    }
+    one_colour(strands, Vec3::new(0.6, 0.5, 0.4), [1e-3, 1e-3])
+}
+
+/// A pixel on sheet B's left edge.
+fn sheet_edge_px() -> (u32, u32) {
+    pixel_of(Vec3::new(-0.056, 0.02, 0.15))
+}
+
 #[test]
 fn hair_between_the_light_and_a_strand_shadows_it() {
     let head = default_head();
-    // Sheet B hangs in front of the face; sheet A is the same sheet moved
-    // 3 cm towards the light. Seen from the front, A does not cover B's
-    // left edge, but it lies between that edge and the light.
-    let towards_light = Light::default().direction;
-    let hair = |with_a: bool| {
-        let mut strands = StrandBuffers::default();
-        sheet(&mut strands, -0.06, 0.0, 0.15, Vec3::ZERO);
-        if with_a {
-            sheet(&mut strands, -0.06, 0.0, 0.15, towards_light * 0.03);
-        }
-        let n = strands.strand_count();
-        HairStrands {
-            strands,
-            colours: vec![Vec3::new(0.6, 0.5, 0.4); n],
-            root_width_m: 1e-3,
-            tip_width_m: 1e-3,
-        }
-    };
+    let hair = sheets;
     let Some(lit) = render(&hair(false), &head, "sheet_alone") else {
         return;
     };
     let Some(shadowed) = render(&hair(true), &head, "sheet_shadowed") else {
         return;
     };
-    let (x, y) = pixel_of(Vec3::new(-0.056, 0.02, 0.15));
+    let (x, y) = sheet_edge_px();
     let (l, s) = (luma(lit.pixel(x, y)), luma(shadowed.pixel(x, y)));
     // Threshold: at least 15% darker in the shadow of a dense sheet.
     assert!(s < 0.85 * l, "luma {s} in shadow vs {l} lit");
+}
+
+/// The window's quick preview: without shadows sheet A no longer darkens
+/// B, and at one sample per pixel the sheets are still drawn.
+#[test]
+fn without_shadows_nothing_is_shadowed_and_one_sample_still_draws_the_hair() {
+    let head = default_head();
+    let preview = RenderSettings {
+        shadows: false,
+        msaa_samples: 1,
+        ..RenderSettings::new(SIDE_PX, SIDE_PX)
+    };
+    let Some(alone) = render_with(preview, &sheets(false), &head, "preview_sheet_alone") else {
+        return;
+    };
+    let Some(both) = render_with(preview, &sheets(true), &head, "preview_sheets") else {
+        return;
+    };
+    let Some(bare) = render_with(preview, &hair_free(), &head, "preview_no_hair") else {
+        return;
+    };
+    let (x, y) = sheet_edge_px();
+    let (l, s) = (luma(alone.pixel(x, y)), luma(both.pixel(x, y)));
+    // The same pixel of the same strand, lit the same: equal but for
+    // rounding.
+    assert!((s - l).abs() <= 1.0, "luma {s} behind sheet A vs {l} alone");
+    let hair_px = (0..SIDE_PX * SIDE_PX)
+        .filter(|i| alone.pixel(i % SIDE_PX, i / SIDE_PX) != bare.pixel(i % SIDE_PX, i / SIDE_PX))
+        .count();
+    // The sheet is 6 cm by 15 cm in front of a 128-pixel view of a head
+    // about 30 cm tall: several hundred pixels at least.
+    assert!(hair_px > 500, "{hair_px} pixels of hair");
+}
+
+/// A picture in the window's byte order (BGRA) reads back as the same
+/// RGBA bytes as the default picture: only the order in memory differs.
+#[test]
+fn a_bgra_picture_reads_back_as_the_same_picture() {
+    let head = default_head();
+    let hair = hanging_hair(&head);
+    let bgra = RenderSettings {
+        picture_format: wgpu::TextureFormat::Bgra8UnormSrgb,
+        ..RenderSettings::new(SIDE_PX, SIDE_PX)
+    };
+    let Some(a) = render(&hair, &head, "rgba_picture") else {
+        return;
+    };
+    let Some(b) = render_with(bgra, &hair, &head, "bgra_picture") else {
+        return;
+    };
+    assert!(a.rgba == b.rgba, "the pictures differ");
+}
+
+fn hair_free() -> HairStrands {
+    one_colour(StrandBuffers::default(), Vec3::ONE, [1e-3, 1e-3])
 }

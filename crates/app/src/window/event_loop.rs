@@ -10,7 +10,9 @@
 //!    sized as the view was in the previous frame;
 //! 3. egui lays out the panels around the pictures and handles input;
 //!    a finished drag becomes one undo step;
-//! 4. egui is painted to the surface (and, for `--screenshot`, read back).
+//! 4. egui is painted to the surface (and, for `--screenshot`, read back);
+//!    on a software adapter the panels are repainted only where they
+//!    changed ([`super::panel_layer`]).
 //!
 //! The loop redraws continuously (`about_to_wait` requests the next frame);
 //! the surface's vsync paces it.
@@ -32,10 +34,11 @@ use super::default_style::default_style;
 use super::drawn::DrawnCache;
 use super::frame_profile::FrameProfile;
 use super::preview::{quality, wants_preview};
+use super::screenshot::save_png;
 use super::ui::{ViewState, draw};
 use super::unsaved::Leave;
 use super::viewport::posed_head;
-use super::window_gpu::{WindowGpu, save_png};
+use super::window_gpu::WindowGpu;
 use super::{HEADLESS_HINT, WindowArgs};
 
 /// Frames run before a screenshot when `--frames` is not given.
@@ -129,7 +132,7 @@ impl Handler {
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
                 Box::new(event_loop.owned_display_handle()),
             ));
-        let gpu = WindowGpu::new(&instance, window.clone())?;
+        let gpu = WindowGpu::new(&instance, window.clone(), self.args.preview)?;
         let ctx = egui::Context::default();
         let egui = egui_winit::State::new(
             ctx,
@@ -158,7 +161,7 @@ impl Handler {
         }
         self.profile.start();
         self.app.step_frame();
-        self.profile.lap(0);
+        self.profile.lap(1);
         let head = self.app.sim.engine().head();
         let pose = (head.world_from_body, head.position_m);
         let head_mesh = posed_head(&self.app.head_mesh, pose);
@@ -174,24 +177,23 @@ impl Handler {
             ) else {
                 continue;
             };
-            self.profile.lap(1);
+            self.profile.lap(2);
             let scene = Scene {
                 hair: &hair,
                 head: &head_mesh,
                 camera: self.view.camera,
                 light: Light::default(),
             };
-            self.view.textures[slot] =
-                Some(open.gpu.draw_scene(slot, &scene, quality.picture_px)?);
+            self.view.textures[slot] = Some(open.gpu.draw_scene(slot, &scene, &quality)?);
             if self.args.profile {
                 open.gpu.wait_idle();
             }
-            self.profile.lap(2);
+            self.profile.lap(3);
         }
         let raw = open.egui.take_egui_input(&open.gpu.window);
         let ctx = open.egui.egui_ctx().clone();
         let mut output = ctx.run_ui(raw, |ui| draw(ui, &mut self.app, &mut self.view));
-        self.profile.lap(3);
+        self.profile.lap(4);
         let platform = std::mem::take(&mut output.platform_output);
         open.egui.handle_platform_output(&open.gpu.window, platform);
         self.app.doc.settle(ctx.egui_is_using_pointer());
@@ -207,14 +209,13 @@ impl Handler {
             .frames
             .or(self.args.screenshot.as_ref().map(|_| SCREENSHOT_FRAMES));
         let done = last.is_some_and(|n| self.frames >= n);
-        let shot = open
-            .gpu
-            .present(output, &ctx, done && self.args.screenshot.is_some())?;
-        if self.args.profile {
-            open.gpu.wait_idle();
-        }
-        self.profile.lap(4);
-        self.profile.finish();
+        let shot = open.gpu.present(
+            output,
+            &ctx,
+            done && self.args.screenshot.is_some(),
+            (&mut self.profile, self.args.profile),
+        )?;
+        self.profile.finish(open.gpu.panels_repainted_px());
         if let (Some(image), Some(path)) = (shot, &self.args.screenshot) {
             save_png(&image, path)?;
         }
@@ -243,8 +244,9 @@ impl Handler {
             self.app.sim.engine().element_count()
         );
         println!(
-            "last {n} frames: frame time {:.1} ms, physics {:.1} ms per frame (median {:.1} ms), {:.3e} element-steps/s",
+            "last {n} frames: frame time {:.1} ms (median {:.1} ms), physics {:.1} ms per frame (median {:.1} ms), {:.3e} element-steps/s",
             ms(r.mean_frame_secs(n)),
+            ms(r.median_frame_secs(n)),
             ms(r.mean_physics_secs(n)),
             ms(r.median_physics_secs(n)),
             r.element_steps_per_sec(n).unwrap_or(0.0)

@@ -23,7 +23,9 @@
 //! hair as it is now).
 //!
 //! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
-//! pictures, egui painting, screenshots) and the egui panels ([`ui`], [`tool_bar`],
+//! pictures), [`screenshot`], [`egui_paint`] and [`panel_layer`] (egui
+//! painted, the panels cached where they do not change), [`preview`] (the
+//! interactive preview's choices) and the egui panels ([`ui`], [`tool_bar`],
 //! [`file_menu`], [`style_panel`], [`readout_panel`], [`file_picker`]).
 //!
 //! # Without a display
@@ -39,6 +41,7 @@ pub mod default_style;
 pub mod density_view;
 pub mod document;
 pub mod drawn;
+pub mod egui_paint;
 pub mod event_loop;
 pub mod export_dialog;
 pub mod export_job;
@@ -53,11 +56,13 @@ pub mod interaction_panel;
 pub mod job;
 pub mod live_sim;
 pub mod motion_recorder;
+pub mod panel_layer;
 pub mod presets;
 pub mod preview;
 pub mod readout_panel;
 pub mod readouts;
 pub mod resample;
+pub mod screenshot;
 pub mod set_rest;
 pub mod style_panel;
 pub mod tool_bar;
@@ -112,13 +117,15 @@ pub struct WindowArgs {
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub frames: Option<u32>,
     /// Always draw the interactive preview (fewer strands, half
-    /// resolution), as on a software adapter while the user drags; for
+    /// resolution, no MSAA, no shadows; panels repainted only where they
+    /// change), as on a software adapter while the user drags; for
     /// measuring it with --frames.
     #[arg(long)]
     pub preview: bool,
     /// With --frames: time each stage of a frame (physics, strand
-    /// geometry, the 3D picture, egui, present) and print their medians;
-    /// the picture is waited for, so the GPU's time is counted there.
+    /// geometry, the 3D picture, egui layout, tessellation, painting,
+    /// presenting) and print their medians; the GPU's work is waited for
+    /// at each stage, so it is counted where it is done.
     #[arg(long)]
     pub profile: bool,
     /// Save the window as a PNG after the last frame (--frames, default 120)

@@ -96,6 +96,13 @@ impl Readouts {
         mean(self.frames_secs.iter().rev().take(n).copied())
     }
 
+    /// Median frame time over the last `n` frames, seconds (a frame the
+    /// system stalled moves the mean, not the median).
+    pub fn median_frame_secs(&self, n: usize) -> Option<f64> {
+        let recent: Vec<f64> = self.frames_secs.iter().rev().take(n).copied().collect();
+        (!recent.is_empty()).then(|| crate::stats::median(&recent))
+    }
+
     /// Mean physics wall time per frame over the last `n` frames, seconds.
     pub fn mean_physics_secs(&self, n: usize) -> Option<f64> {
         mean(self.physics.iter().rev().take(n).map(|s| s.wall_secs))

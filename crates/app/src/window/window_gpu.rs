@@ -4,7 +4,8 @@
 //! # Why the 3D view is a texture
 //!
 //! The renderer (`helixhair-render`) draws a scene into its own picture
-//! texture (4× MSAA resolved, with its shadow passes); the window hands that
+//! texture (4× MSAA resolved, with its shadow passes; the interactive
+//! preview's renderer without either, [`super::preview`]); the window hands that
 //! picture to egui as a native texture and egui paints it in the central
 //! panel like any image. So the panels dock around the view with egui's
 //! ordinary layout, the view's size is the panel's size, the compare view
@@ -19,14 +20,21 @@
 //! A screenshot ([`WindowGpu::present`] with a path) paints the same egui
 //! frame a second time into an offscreen texture and reads that back: a
 //! surface texture may not be copyable, and this works on every backend.
+//!
+//! egui is painted by [`EguiPainter`], which on a software adapter keeps
+//! the panels as a layer repainted only where they change.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use anyhow::Context as _;
-use helixhair_render::gpu::readback::{copy_to_buffer, padded_bytes_per_row, read_buffer};
+use helixhair_render::gpu::readback::{copy_to_buffer, read_buffer};
 use helixhair_render::{GpuContext, OffscreenRenderer, RenderSettings, RgbaImage, Scene};
 use winit::window::Window;
+
+use super::egui_paint::{EguiPainter, Picture};
+use super::frame_profile::FrameProfile;
+use super::preview::{Quality, caches_panels, present_mode};
+use super::screenshot::{in_rgba_order, screenshot_target};
 
 /// Side of the hair's shadow map in the window, texels: half the offline
 /// renderer's, which quarters the shadow passes' cost on a software
@@ -41,15 +49,27 @@ pub struct WindowGpu {
     device: wgpu::Device,
     queue: wgpu::Queue,
     config: wgpu::SurfaceConfiguration,
-    egui: egui_wgpu::Renderer,
-    scenes: [Option<(OffscreenRenderer, egui::TextureId)>; 2],
+    egui: EguiPainter,
+    /// The pictures' renderers: view slot (0 main, 1 compare), samples
+    /// per pixel and shadows, and the egui texture showing the picture.
+    scenes: Vec<(usize, u32, bool, OffscreenRenderer, egui::TextureId)>,
+    /// The pictures' format: the surface's byte order when the panels are
+    /// cached (the pictures are then copied onto the window), else the
+    /// renderer's default.
+    picture_format: wgpu::TextureFormat,
     /// The adapter and device, shared with the pictures' renderers.
     gpu: GpuContext,
 }
 
 impl WindowGpu {
-    /// Opens the surface on `window` and makes a device that can draw to it.
-    pub fn new(instance: &wgpu::Instance, window: Arc<Window>) -> anyhow::Result<Self> {
+    /// Opens the surface on `window` and makes a device that can draw to it;
+    /// `forced_preview` (`--preview`) caches the panels as a software
+    /// adapter does ([`caches_panels`]).
+    pub fn new(
+        instance: &wgpu::Instance,
+        window: Arc<Window>,
+        forced_preview: bool,
+    ) -> anyhow::Result<Self> {
         let surface = instance
             .create_surface(window.clone())
             .context("creating the window's drawing surface")?;
@@ -65,12 +85,22 @@ impl WindowGpu {
             .or_else(|| caps.formats.first().map(|f| f.remove_srgb_suffix()))
             .context("the surface offers no texture format")?;
         let size = window.inner_size();
+        let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        // The panels' layer is copied onto the surface: only where the
+        // surface takes copies.
+        let cache = caches_panels(forced_preview, software)
+            && caps.usages.contains(wgpu::TextureUsages::COPY_DST);
+        let usage = if cache {
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_DST
+        } else {
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+        };
         let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            usage,
             format,
             width: size.width.max(1),
             height: size.height.max(1),
-            present_mode: wgpu::PresentMode::AutoVsync,
+            present_mode: present_mode(cache, &caps.present_modes),
             desired_maximum_frame_latency: 2,
             alpha_mode: caps
                 .alpha_modes
@@ -81,7 +111,11 @@ impl WindowGpu {
             color_space: wgpu::SurfaceColorSpace::Auto,
         };
         surface.configure(&device, &config);
-        let egui = egui_wgpu::Renderer::new(&device, format, Default::default());
+        let egui = EguiPainter::new(&device, &queue, format, cache);
+        let picture_format = match format {
+            wgpu::TextureFormat::Bgra8Unorm if cache => wgpu::TextureFormat::Bgra8UnormSrgb,
+            _ => RenderSettings::new(1, 1).picture_format,
+        };
         Ok(Self {
             window,
             surface,
@@ -89,7 +123,8 @@ impl WindowGpu {
             queue,
             config,
             egui,
-            scenes: [None, None],
+            scenes: Vec::new(),
+            picture_format,
             gpu,
         })
     }
@@ -121,35 +156,45 @@ impl WindowGpu {
         }
     }
 
-    /// Draws `scene` into picture `slot` (0 main, 1 compare) at `size_px`
-    /// and returns the egui texture showing it.
+    /// Draws `scene` into picture `slot` (0 main, 1 compare) at
+    /// `quality`'s size, samples and shadows, and returns the egui texture
+    /// showing it. Each slot keeps a renderer per quality (full and
+    /// preview), made when first needed.
     pub fn draw_scene(
         &mut self,
         slot: usize,
         scene: &Scene<'_>,
-        size_px: [u32; 2],
+        quality: &Quality,
     ) -> anyhow::Result<egui::TextureId> {
-        let [w, h] = size_px;
-        if self.scenes[slot].is_none() {
-            let gpu = self.gpu.clone();
-            let settings = RenderSettings {
-                shadow_map_px: WINDOW_SHADOW_MAP_PX,
-                ..RenderSettings::new(w, h)
-            };
-            let renderer = OffscreenRenderer::new(gpu, settings)?;
-            let view = renderer.picture_view_unorm();
-            let id =
-                self.egui
-                    .register_native_texture(&self.device, &view, wgpu::FilterMode::Linear);
-            self.scenes[slot] = Some((renderer, id));
-        }
-        let Some((renderer, id)) = &mut self.scenes[slot] else {
-            anyhow::bail!("no renderer for view {slot}");
+        let [w, h] = quality.picture_px;
+        let key = (slot, quality.msaa_samples, quality.shadows);
+        let found = self.scenes.iter().position(|s| (s.0, s.1, s.2) == key);
+        let index = match found {
+            Some(index) => index,
+            None => {
+                let settings = RenderSettings {
+                    shadow_map_px: WINDOW_SHADOW_MAP_PX,
+                    msaa_samples: quality.msaa_samples,
+                    shadows: quality.shadows,
+                    picture_format: self.picture_format,
+                    ..RenderSettings::new(w, h)
+                };
+                let renderer = OffscreenRenderer::new(self.gpu.clone(), settings)?;
+                let view = renderer.picture_view_unorm();
+                let id = self.egui.renderer.register_native_texture(
+                    &self.device,
+                    &view,
+                    wgpu::FilterMode::Linear,
+                );
+                self.scenes.push((slot, key.1, key.2, renderer, id));
+                self.scenes.len() - 1
+            }
         };
+        let (_, _, _, renderer, id) = &mut self.scenes[index];
         renderer.resize(w, h)?;
         renderer.draw(scene);
         let view = renderer.picture_view_unorm();
-        self.egui.update_egui_texture_from_wgpu_texture(
+        self.egui.renderer.update_egui_texture_from_wgpu_texture(
             &self.device,
             &view,
             wgpu::FilterMode::Linear,
@@ -159,29 +204,30 @@ impl WindowGpu {
     }
 
     /// Paints egui's output to the window, and, given `screenshot`, also
-    /// returns the frame as a picture.
+    /// returns the frame as a picture. Laps `profile`'s stages 5
+    /// (tessellation), 6 (painting) and 7 (presenting); with `wait` each
+    /// is waited for, so lavapipe's work is counted where it is done.
     pub fn present(
         &mut self,
         output: egui::FullOutput,
         ctx: &egui::Context,
         screenshot: bool,
+        (profile, wait): (&mut FrameProfile, bool),
     ) -> anyhow::Result<Option<RgbaImage>> {
         let ppp = output.pixels_per_point;
         let jobs = ctx.tessellate(output.shapes, ppp);
         for (id, deltas) in &output.textures_delta.set {
             for delta in deltas {
                 self.egui
+                    .renderer
                     .update_texture(&self.device, &self.queue, *id, delta);
             }
         }
+        profile.lap(5);
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [self.config.width, self.config.height],
             pixels_per_point: ppp,
         };
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        let extra =
-            self.egui
-                .update_buffers(&self.device, &self.queue, &mut encoder, &jobs, &screen);
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => Some(t),
@@ -191,97 +237,61 @@ impl WindowGpu {
             }
             _ => None,
         };
-        if let Some(frame) = &frame {
-            let view = frame.texture.create_view(&Default::default());
-            self.paint(&mut encoder, &view, &jobs, &screen);
+        let shot = screenshot.then(|| screenshot_target(&self.device, &self.config));
+        let targets: Vec<&wgpu::Texture> = frame
+            .iter()
+            .map(|f| &f.texture)
+            .chain(shot.as_ref().map(|(t, _)| t))
+            .collect();
+        let copyable =
+            self.egui.caches() && self.picture_format.remove_srgb_suffix() == self.config.format;
+        let pictures: Vec<Picture> = self
+            .scenes
+            .iter()
+            .map(|s| Picture {
+                id: s.4,
+                texture: copyable.then(|| s.3.picture().clone()),
+            })
+            .collect();
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let changed = !output.textures_delta.set.is_empty();
+        let extra = self
+            .egui
+            .paint(&mut encoder, &targets, jobs, &screen, &pictures, changed);
+        if let Some((texture, buffer)) = &shot {
+            copy_to_buffer(&mut encoder, texture, buffer);
         }
-        let shot = if screenshot {
-            let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("screenshot"),
-                size: wgpu::Extent3d {
-                    width: self.config.width,
-                    height: self.config.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: self.config.format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
-            let view = texture.create_view(&Default::default());
-            self.paint(&mut encoder, &view, &jobs, &screen);
-            let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("screenshot readback"),
-                size: u64::from(padded_bytes_per_row(self.config.width))
-                    * u64::from(self.config.height),
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            });
-            copy_to_buffer(&mut encoder, &texture, &buffer);
-            Some(buffer)
-        } else {
-            None
-        };
         self.queue
             .submit(extra.into_iter().chain([encoder.finish()]));
+        if wait {
+            self.wait_idle();
+        }
+        profile.lap(6);
         if let Some(frame) = frame {
             self.window.pre_present_notify();
             self.queue.present(frame);
         }
         for id in &output.textures_delta.free {
-            self.egui.free_texture(id);
+            self.egui.renderer.free_texture(id);
         }
         // A lost device (or any failed GPU operation) ends the window with
         // wgpu's reason instead of drawing garbage; see helixhair_gpu.
         self.gpu
             .check()
             .context("the window cannot draw any more")?;
-        let Some(buffer) = shot else {
+        if wait {
+            self.wait_idle();
+        }
+        profile.lap(7);
+        let Some((_, buffer)) = shot else {
             return Ok(None);
         };
-        let mut image = read_buffer(&self.device, &buffer, self.config.width, self.config.height)?;
-        if matches!(
-            self.config.format,
-            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-        ) {
-            for px in image.rgba.chunks_exact_mut(4) {
-                px.swap(0, 2);
-            }
-        }
-        Ok(Some(image))
+        let image = read_buffer(&self.device, &buffer, self.config.width, self.config.height)?;
+        Ok(Some(in_rgba_order(image, self.config.format)))
     }
 
-    fn paint(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        view: &wgpu::TextureView,
-        jobs: &[egui::ClippedPrimitive],
-        screen: &egui_wgpu::ScreenDescriptor,
-    ) {
-        let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("egui"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            ..Default::default()
-        });
-        self.egui.render(&mut pass.forget_lifetime(), jobs, screen);
+    /// Pixels of the panels repainted last frame (`--profile`).
+    pub fn panels_repainted_px(&self) -> u64 {
+        self.egui.repainted_px
     }
-}
-
-/// Writes `image` as a PNG file.
-pub fn save_png(image: &RgbaImage, path: &Path) -> anyhow::Result<()> {
-    let buffer = image::RgbaImage::from_raw(image.width_px, image.height_px, image.rgba.clone())
-        .context("screenshot buffer has the wrong size")?;
-    buffer
-        .save(path)
-        .with_context(|| format!("writing the screenshot {}", path.display()))
 }

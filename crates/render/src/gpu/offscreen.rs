@@ -7,9 +7,10 @@
 //!    ([`crate::ribbons`]), the head becomes mesh vertices; uniforms for
 //!    the camera, the light and the materials.
 //! 2. Shadow depth and shadow opacity passes from the light
-//!    ([`super::shadow`]).
-//! 3. The main pass at 4× MSAA: backdrop, head, hair; resolved into the
-//!    picture.
+//!    ([`super::shadow`]); without [`RenderSettings::shadows`] they only
+//!    clear their targets and the main pass reads no shadow.
+//! 3. The main pass at 4× MSAA (or [`RenderSettings::msaa_samples`]):
+//!    backdrop, head, hair; resolved into the picture.
 //! 4. The picture is copied into a buffer and read back
 //!    ([`super::readback`]).
 
@@ -17,10 +18,10 @@ use helixhair_gpu::upload_buffer;
 
 use super::context::{GpuContext, GpuError};
 use super::frame_data::{FrameUniforms, IndexedGeometry, head_vertices};
-use super::passes::Pipelines;
+use super::passes::{PICTURE_FORMATS, Pipelines};
 use super::readback::{RgbaImage, copy_to_buffer, read_buffer};
 use super::settings::RenderSettings;
-use super::targets::Targets;
+use super::targets::{Targets, begin};
 use crate::ribbons::ribbon_mesh;
 use crate::scene::Scene;
 
@@ -62,7 +63,16 @@ impl OffscreenRenderer {
         // it uses) is an error to report, not a panic.
         let internal = gpu.device.push_error_scope(wgpu::ErrorFilter::Internal);
         let validation = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pipelines = Pipelines::new(&gpu.device, gpu.backend != wgpu::Backend::Gl);
+        if !PICTURE_FORMATS.contains(&settings.picture_format) {
+            return Err(GpuError::Unsupported {
+                adapter: gpu.adapter_label(),
+                error: format!(
+                    "picture format {:?} (the renderer draws {PICTURE_FORMATS:?})",
+                    settings.picture_format
+                ),
+            });
+        }
+        let pipelines = Pipelines::new(&gpu.device, gpu.backend != wgpu::Backend::Gl, &settings);
         let errors = [validation, internal].map(|scope| pollster::block_on(scope.pop()));
         if let Some(error) = errors.into_iter().flatten().next() {
             return Err(GpuError::Unsupported {
@@ -153,7 +163,15 @@ impl OffscreenRenderer {
             &self.targets.readback,
             self.settings.width_px,
             self.settings.height_px,
-        );
+        )
+        .map(|mut image| {
+            if self.settings.picture_format == wgpu::TextureFormat::Bgra8UnormSrgb {
+                for px in image.rgba.chunks_exact_mut(4) {
+                    px.swap(0, 2);
+                }
+            }
+            image
+        });
         // A lost device or a failed operation first: a readback error is
         // then only its consequence, and a picture read back is not trusted.
         self.gpu.check()?;
@@ -170,15 +188,21 @@ impl OffscreenRenderer {
     }
 
     /// A view of the picture that samples its sRGB-encoded bytes as they
-    /// are (`Rgba8Unorm`), which is what UI toolkits that work in gamma
-    /// space (egui) expect of a texture.
+    /// are (`Rgba8Unorm` or `Bgra8Unorm`), which is what UI toolkits that
+    /// work in gamma space (egui) expect of a texture.
     pub fn picture_view_unorm(&self) -> wgpu::TextureView {
         self.targets
             .picture
             .create_view(&wgpu::TextureViewDescriptor {
-                format: Some(wgpu::TextureFormat::Rgba8Unorm),
+                format: Some(self.settings.picture_format.remove_srgb_suffix()),
                 ..Default::default()
             })
+    }
+
+    /// The picture texture itself (`picture_format`, sRGB-encoded bytes),
+    /// to copy into a window's image of the same byte order.
+    pub fn picture(&self) -> &wgpu::Texture {
+        &self.targets.picture
     }
 
     /// Changes the picture size (a window was resized); the shadow map
@@ -217,6 +241,8 @@ impl OffscreenRenderer {
 
         let t = &self.targets;
         let p = &self.pipelines;
+        // Without shadows the light's passes only clear their targets.
+        let shadow_hair = hair.as_ref().filter(|_| self.settings.shadows);
         // Cleared to the far plane: no hair.
         let far = wgpu::Color {
             r: 1.0,
@@ -230,7 +256,7 @@ impl OffscreenRenderer {
             Some((&t.light_depth, None, far)),
             Some(&t.light_depth_buffer),
         );
-        if let Some(hair) = &hair {
+        if let Some(hair) = shadow_hair {
             pass.set_pipeline(&p.shadow_depth);
             pass.set_bind_group(0, &bindings.light, &[]);
             hair.draw(&mut pass);
@@ -242,7 +268,7 @@ impl OffscreenRenderer {
             Some((&t.opacity, None, wgpu::Color::TRANSPARENT)),
             None,
         );
-        if let Some(hair) = &hair {
+        if let Some(hair) = shadow_hair {
             pass.set_pipeline(&p.shadow_opacity);
             pass.set_bind_group(0, &bindings.light, &[]);
             pass.set_bind_group(1, &bindings.lighting, &[]);
@@ -250,12 +276,11 @@ impl OffscreenRenderer {
         }
         drop(pass);
         let picture = t.picture.create_view(&Default::default());
-        let mut pass = begin(
-            encoder,
-            "main",
-            Some((&t.msaa_colour, Some(&picture), wgpu::Color::BLACK)),
-            Some(&t.msaa_depth),
-        );
+        let colour = match &t.msaa_colour {
+            Some(msaa) => (msaa, Some(&picture), wgpu::Color::BLACK),
+            None => (&picture, None, wgpu::Color::BLACK),
+        };
+        let mut pass = begin(encoder, "main", Some(colour), Some(&t.main_depth));
         pass.set_bind_group(0, &bindings.camera, &[]);
         pass.set_bind_group(1, &bindings.lighting, &[]);
         pass.set_bind_group(2, &bindings.opacity, &[]);
@@ -269,51 +294,4 @@ impl OffscreenRenderer {
         }
         drop(pass);
     }
-}
-
-/// A colour target: the view, an optional resolve target (the
-/// multisampled colour is then discarded), and the clear colour.
-type ColourTarget<'a> = (
-    &'a wgpu::TextureView,
-    Option<&'a wgpu::TextureView>,
-    wgpu::Color,
-);
-
-/// Starts a pass that clears its targets: colour and depth (to 1).
-fn begin<'e>(
-    encoder: &'e mut wgpu::CommandEncoder,
-    label: &str,
-    colour: Option<ColourTarget<'_>>,
-    depth: Option<&wgpu::TextureView>,
-) -> wgpu::RenderPass<'e> {
-    let colour = colour.map(
-        |(view, resolve_target, clear)| wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(clear),
-                store: if resolve_target.is_some() {
-                    wgpu::StoreOp::Discard
-                } else {
-                    wgpu::StoreOp::Store
-                },
-            },
-        },
-    );
-    let colours = [colour];
-    let colour_count = usize::from(colours[0].is_some());
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some(label),
-        color_attachments: &colours[..colour_count],
-        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
-            view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }),
-        ..Default::default()
-    })
 }

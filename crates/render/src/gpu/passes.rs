@@ -4,7 +4,7 @@
 //! | --- | --- | --- | --- |
 //! | shadow depth | first-hair depth (`Rgba16Float`) + depth buffer | `shadow_depth`: ribbons writing their depth | view (light) |
 //! | shadow opacity | four layers (`Rgba16Float`, additive) | `shadow_opacity` | view (light), lighting + light depth |
-//! | main (4× MSAA) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (stochastic sample mask) | view (camera), lighting + light depth, opacity layers |
+//! | main (4× MSAA, or 1 sample) | colour (`Rgba8UnormSrgb`) + depth | `backdrop`, `head`, `hair` (stochastic sample mask) | view (camera), lighting + light depth, opacity layers |
 //!
 //! Group 0 is always a [`View`](super::gpu_data::View), group 1 the
 //! [`Lighting`](super::gpu_data::Lighting) with the light's depth texture,
@@ -12,13 +12,18 @@
 //! declares them.
 
 use super::gpu_data::{MeshVertex, StrandVertex, vertex_layout};
+use super::settings::RenderSettings;
 use super::shaders::{self, ShaderFile};
 
 /// Depth format of the light's depth map and of the main pass.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Colour format of the picture (shaders write linear light; the format
-/// encodes sRGB).
+/// Colour format of the picture by default (shaders write linear light;
+/// the format encodes sRGB).
 pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The picture formats the renderer draws: [`COLOUR_FORMAT`], or the same
+/// bytes in a window surface's usual order.
+pub const PICTURE_FORMATS: [wgpu::TextureFormat; 2] =
+    [COLOUR_FORMAT, wgpu::TextureFormat::Bgra8UnormSrgb];
 /// Format of the light's first-hair depth, read back by later passes. Half
 /// floats resolve depth to about 5e-4 of the light's depth range (a few
 /// tenths of a millimetre over a head), well under the first opacity
@@ -26,8 +31,10 @@ pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSr
 pub const FIRST_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of the four opacity layers.
 pub const OPACITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Samples per pixel of the main pass (antialiasing, and partial coverage
-/// of strands thinner than a pixel through the sample mask).
+/// Samples per pixel of the main pass by default (antialiasing, and partial
+/// coverage of strands thinner than a pixel through the sample mask);
+/// [`RenderSettings::msaa_samples`](super::settings::RenderSettings::msaa_samples)
+/// may ask for 1.
 pub const MSAA_SAMPLES: u32 = 4;
 
 /// The bind group layouts of groups 0, 1 and 2.
@@ -129,6 +136,8 @@ struct PipelineSpec<'a> {
     depth: Option<(bool, wgpu::CompareFunction)>,
     samples: u32,
     alpha_to_coverage: bool,
+    /// Pipeline-overridable constants of the shader (`SHADOWS`).
+    constants: &'a [(&'a str, f64)],
 }
 
 fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
@@ -150,7 +159,10 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
         vertex: wgpu::VertexState {
             module: &module,
             entry_point: Some(spec.vertex_entry),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: spec.constants,
+                ..Default::default()
+            },
             buffers: if buffers[0].is_some() { &buffers } else { &[] },
         },
         primitive: wgpu::PrimitiveState::default(),
@@ -169,7 +181,10 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
         fragment: spec.fragment_entry.map(|entry| wgpu::FragmentState {
             module: &module,
             entry_point: Some(entry),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: spec.constants,
+                ..Default::default()
+            },
             targets: if spec.colour.is_some() { &targets } else { &[] },
         }),
         multiview_mask: None,
@@ -178,10 +193,12 @@ fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeli
 }
 
 impl Pipelines {
-    /// Compiles every shader and builds every pipeline. Without
-    /// `sample_mask` (GL cannot write it) hair coverage falls back to alpha
-    /// to coverage.
-    pub fn new(device: &wgpu::Device, sample_mask: bool) -> Self {
+    /// Compiles every shader and builds every pipeline, the main pass's at
+    /// `settings`' samples per pixel and picture format, reading the
+    /// hair's shadow or not. Without `sample_mask` (GL cannot write it)
+    /// hair coverage falls back to alpha to coverage.
+    pub fn new(device: &wgpu::Device, sample_mask: bool, settings: &RenderSettings) -> Self {
+        let shadows = [("SHADOWS", f64::from(u8::from(settings.shadows)))];
         let layouts = Layouts::new(device);
         let view = Some(&layouts.view);
         let lighting = Some(&layouts.lighting);
@@ -200,10 +217,11 @@ impl Pipelines {
                     fragment_entry: Some(fragment_entry),
                     groups: &[view, lighting, opacity],
                     buffer,
-                    colour: Some((COLOUR_FORMAT, None)),
+                    colour: Some((settings.picture_format, None)),
                     depth: Some(depth),
-                    samples: MSAA_SAMPLES,
+                    samples: settings.msaa_samples,
                     alpha_to_coverage,
+                    constants: &shadows,
                 },
             )
         };
@@ -221,6 +239,7 @@ impl Pipelines {
                     depth: Some(less),
                     samples: 1,
                     alpha_to_coverage: false,
+                    constants: &[],
                 },
             ),
             shadow_opacity: pipeline(
@@ -241,6 +260,7 @@ impl Pipelines {
                     depth: None,
                     samples: 1,
                     alpha_to_coverage: false,
+                    constants: &[],
                 },
             ),
             backdrop: main(

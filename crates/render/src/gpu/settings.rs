@@ -1,5 +1,7 @@
 //! Picture size and quality settings of the offscreen renderer.
 
+use super::passes::{COLOUR_FORMAT, MSAA_SAMPLES};
+
 /// Picture size and quality settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -21,6 +23,21 @@ pub struct RenderSettings {
     /// Opacity one strand fragment adds in the opacity map (light through
     /// n strands: exp(−n × this)).
     pub strand_opacity: f32,
+    /// Samples per pixel of the main pass: 4 (antialiased strands, thin
+    /// strands as partial coverage of the samples) or 1 (no MSAA: a thin
+    /// strand covers a pixel or not, at random in proportion to its
+    /// coverage, and the pass rasterises a quarter of the samples). 4 by
+    /// default; 1 is for quick previews on a CPU rasteriser.
+    pub msaa_samples: u32,
+    /// Whether the hair casts its self-shadow (the two passes from the
+    /// light, [`super::shadow`]). Without, the opacity map is only
+    /// cleared, so everything is lit as if unshadowed; for quick previews.
+    pub shadows: bool,
+    /// The picture's format: `Rgba8UnormSrgb` (the default; what
+    /// [`super::readback`] and PNGs hold) or `Bgra8UnormSrgb` (the byte
+    /// order of most window surfaces, so a window can copy the picture
+    /// onto its image instead of drawing it as a texture).
+    pub picture_format: wgpu::TextureFormat,
 }
 
 impl RenderSettings {
@@ -33,6 +50,9 @@ impl RenderSettings {
             min_ribbon_px: 1.0,
             shadow_layer_m: 0.004,
             strand_opacity: 0.6,
+            msaa_samples: MSAA_SAMPLES,
+            shadows: true,
+            picture_format: COLOUR_FORMAT,
         }
     }
 

@@ -1,19 +1,20 @@
-//! The textures a frame draws into, made once per picture size.
+//! The textures a frame draws into, made once per picture size, and
+//! [`begin`], which starts a pass that clears them.
 
-use super::passes::{
-    COLOUR_FORMAT, DEPTH_FORMAT, FIRST_DEPTH_FORMAT, MSAA_SAMPLES, OPACITY_FORMAT,
-};
+use super::passes::{DEPTH_FORMAT, FIRST_DEPTH_FORMAT, OPACITY_FORMAT};
 use super::readback::padded_bytes_per_row;
 use super::settings::RenderSettings;
 
 /// The render targets and the readback buffer.
 #[derive(Debug)]
 pub struct Targets {
-    /// Multisampled colour of the main pass.
-    pub msaa_colour: wgpu::TextureView,
-    /// Multisampled depth of the main pass.
-    pub msaa_depth: wgpu::TextureView,
-    /// The resolved picture (also sampled by windows, as `Rgba8Unorm`).
+    /// Multisampled colour of the main pass, resolved into the picture;
+    /// `None` at one sample per pixel (the pass draws into the picture).
+    pub msaa_colour: Option<wgpu::TextureView>,
+    /// Depth of the main pass, at its samples per pixel.
+    pub main_depth: wgpu::TextureView,
+    /// The resolved picture (also sampled by windows, as `Rgba8Unorm` or
+    /// `Bgra8Unorm`).
     pub picture: wgpu::Texture,
     /// The light's first-hair depth per texel (a colour texture).
     pub light_depth: wgpu::TextureView,
@@ -58,22 +59,25 @@ impl Targets {
         let shadow = (s.shadow_map_px, s.shadow_map_px);
         let view = |t: wgpu::Texture| t.create_view(&Default::default());
         let sampled = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;
+        let samples = s.msaa_samples;
         Self {
-            msaa_colour: view(texture(
+            msaa_colour: (samples > 1).then(|| {
+                view(texture(
+                    device,
+                    "msaa colour",
+                    size,
+                    s.picture_format,
+                    samples,
+                    U::RENDER_ATTACHMENT,
+                    &[],
+                ))
+            }),
+            main_depth: view(texture(
                 device,
-                "msaa colour",
-                size,
-                COLOUR_FORMAT,
-                MSAA_SAMPLES,
-                U::RENDER_ATTACHMENT,
-                &[],
-            )),
-            msaa_depth: view(texture(
-                device,
-                "msaa depth",
+                "main depth",
                 size,
                 DEPTH_FORMAT,
-                MSAA_SAMPLES,
+                samples,
                 U::RENDER_ATTACHMENT,
                 &[],
             )),
@@ -81,10 +85,10 @@ impl Targets {
                 device,
                 "picture",
                 size,
-                COLOUR_FORMAT,
+                s.picture_format,
                 1,
                 U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
-                &[wgpu::TextureFormat::Rgba8Unorm],
+                &[s.picture_format.remove_srgb_suffix()],
             ),
             light_depth: view(texture(
                 device,
@@ -121,4 +125,51 @@ impl Targets {
             }),
         }
     }
+}
+
+/// A colour target: the view, an optional resolve target (the
+/// multisampled colour is then discarded), and the clear colour.
+pub type ColourTarget<'a> = (
+    &'a wgpu::TextureView,
+    Option<&'a wgpu::TextureView>,
+    wgpu::Color,
+);
+
+/// Starts a pass that clears its targets: colour and depth (to 1).
+pub fn begin<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    colour: Option<ColourTarget<'_>>,
+    depth: Option<&wgpu::TextureView>,
+) -> wgpu::RenderPass<'e> {
+    let colour = colour.map(
+        |(view, resolve_target, clear)| wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(clear),
+                store: if resolve_target.is_some() {
+                    wgpu::StoreOp::Discard
+                } else {
+                    wgpu::StoreOp::Store
+                },
+            },
+        },
+    );
+    let colours = [colour];
+    let colour_count = usize::from(colours[0].is_some());
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &colours[..colour_count],
+        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    })
 }
