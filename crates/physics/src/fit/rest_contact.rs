@@ -159,33 +159,24 @@ impl<'a> RestContact<'a> {
         };
         let stiffness = alpha * rho_s / (self.h_secs * self.h_secs);
         let cap = rho_s * self.settings.max_acceleration_m_per_s2;
-        let count = match self.points {
-            ContactPoints::Samples => kin.samples.len(),
-            ContactPoints::ElementEnds => model.elements(),
-        };
-        let mut springs = vec![Spring::default(); count];
-        project(
-            self.points,
-            model,
-            kin,
-            root,
-            |i, world_m| {
+        let springs = contact_points(self.points, model, kin, root)
+            .into_iter()
+            .map(|(world_m, _)| {
                 let push = self.push_n_per_m(world_m, rho_s);
                 let magnitude = push.length();
-                if magnitude > 0.0 {
-                    springs[i] = Spring {
-                        at_m: world_m,
-                        normal: push / magnitude,
-                        push_n_per_m: magnitude,
-                        // Capped, the push does not change with depth.
-                        stiffness_n_per_m2: if magnitude < cap { stiffness } else { 0.0 },
-                        turn_per_m: self.surface_turn(world_m),
-                    };
+                if magnitude == 0.0 {
+                    return Spring::default();
                 }
-                push
-            },
-            &mut vec![DVec3::ZERO; model.elements()],
-        );
+                Spring {
+                    at_m: world_m,
+                    normal: push / magnitude,
+                    push_n_per_m: magnitude,
+                    // Capped, the push does not change with depth.
+                    stiffness_n_per_m2: if magnitude < cap { stiffness } else { 0.0 },
+                    turn_per_m: self.surface_turn(world_m),
+                }
+            })
+            .collect();
         Springs {
             points: self.points,
             springs,
@@ -263,38 +254,53 @@ impl Springs {
     }
 }
 
+/// Where `points` lie in shape `kin` (reconstructed at rest from `root`),
+/// world, metres, and the length of strand each stands for, metres: each
+/// quadrature sample with its weight, or each element's end point with
+/// the half of each element beside it.
+fn contact_points(
+    points: ContactPoints,
+    model: &StrandModel,
+    kin: &Kinematics,
+    root: &RigidMotion,
+) -> Vec<(DVec3, f64)> {
+    match points {
+        ContactPoints::Samples => kin
+            .samples
+            .iter()
+            .map(|s| (root.position_m + s.position_m, s.weight_m))
+            .collect(),
+        ContactPoints::ElementEnds => (0..model.elements())
+            .map(|e| {
+                let beside_m =
+                    0.5 * (model.lengths_m[e] + model.lengths_m.get(e + 1).copied().unwrap_or(0.0));
+                (root.position_m + kin.points_m[e + 1], beside_m)
+            })
+            .collect(),
+    }
+}
+
 /// Adds to `out` the generalized force of `force_n_per_m(point, world_m)`
-/// acting at `points`: per unit length at each quadrature sample (point =
-/// sample index) or, for the half of each element beside it, at each
-/// element's end point (point = element index).
+/// acting at `points` ([`contact_points`]: point = sample index or element
+/// index).
 fn project(
     points: ContactPoints,
     model: &StrandModel,
     kin: &Kinematics,
     root: &RigidMotion,
-    mut force_n_per_m: impl FnMut(usize, DVec3) -> DVec3,
+    force_n_per_m: impl Fn(usize, DVec3) -> DVec3,
     out: &mut [DVec3],
 ) {
+    let forces: Vec<DVec3> = contact_points(points, model, kin, root)
+        .into_iter()
+        .enumerate()
+        .map(|(i, (world_m, length_m))| force_n_per_m(i, world_m) * length_m)
+        .collect();
     let mut load = vec![DVec3::ZERO; out.len()];
     match points {
-        ContactPoints::Samples => {
-            let forces: Vec<DVec3> = (0..kin.samples.len())
-                .map(|i| {
-                    let s = &kin.samples[i];
-                    force_n_per_m(i, root.position_m + s.position_m) * s.weight_m
-                })
-                .collect();
-            project_sample_forces(model, kin, |i| forces[i], &mut load);
-        }
+        ContactPoints::Samples => project_sample_forces(model, kin, |i| forces[i], &mut load),
         ContactPoints::ElementEnds => {
-            let forces: Vec<DVec3> = (0..model.elements())
-                .map(|e| {
-                    let beside_m = 0.5
-                        * (model.lengths_m[e] + model.lengths_m.get(e + 1).copied().unwrap_or(0.0));
-                    force_n_per_m(e, root.position_m + kin.points_m[e + 1]) * beside_m
-                })
-                .collect();
-            project_end_point_forces(model, kin, |e| forces[e], &mut load);
+            project_end_point_forces(model, kin, |e| forces[e], &mut load)
         }
     }
     for (o, l) in out.iter_mut().zip(load) {
