@@ -18,14 +18,13 @@ use std::time::Instant;
 use helixhair_physics::Method;
 use helixhair_physics::engine::EngineKind;
 use helixhair_render::HeadMesh;
-use helixhair_render::head_generate::default_head;
 
 use crate::style::Style;
 
-use super::collision::HeadCollider;
 use super::document::StyleDoc;
 use super::guard_status::GuardStatus;
 use super::head_motion::{Clip, HeadDriver};
+use super::head_of_style::{StyleHead, simulate_on, style_head};
 use super::live_sim::{LiveSim, tip_difference_m};
 use super::presets::{
     Preset, apply_preset, built_in_presets, load_user_presets, save_user_presets, user_presets_path,
@@ -92,30 +91,40 @@ pub struct AppState {
 impl AppState {
     /// Starts on `style` (valid), from file `path` if it came from one.
     pub fn new(style: Style, path: Option<&Path>) -> Result<Self, String> {
-        let head_mesh = Arc::new(default_head());
-        let mut sim = LiveSim::new(&style, head_mesh.clone(), None, None)?;
-        let mut message = None;
-        match HeadCollider::from_head(&head_mesh) {
-            Ok(c) => sim.set_collider(Some(c)),
-            Err(e) => message = Some(e),
-        }
         let mut doc = StyleDoc::new(style);
         if let Some(path) = path {
             // Reloading gives the document its file and a clean state.
             doc.load(path).map_err(|e| e.to_string())?;
         }
+        // The head the style names (an imported groom's), else the default
+        // one; the simulation is built once, on it.
+        let mut message = None;
+        let head = style_head(&doc).unwrap_or_else(|e| {
+            message = Some(format!("the style's head is not used: {e}"));
+            StyleHead::default_head()
+        });
+        let mut driver = HeadDriver::default();
+        driver.pivot_m = head.pivot_m;
+        let sim = match simulate_on(&doc, &head) {
+            Ok(sim) => sim,
+            Err(e) => {
+                // No collider (or none from this mesh): simulate without.
+                message = Some(e);
+                LiveSim::new(doc.style(), head.mesh.clone(), None, None)?
+            }
+        };
         let user_presets_path = user_presets_path();
         let user_presets = load_user_presets(&user_presets_path).unwrap_or_else(|e| {
             message = Some(format!("{e:#}"));
             Vec::new()
         });
-        let mut app = Self {
+        Ok(Self {
             doc,
             sim,
             compare: None,
-            head: HeadDriver::default(),
-            head_mesh,
-            head_path: None,
+            head: driver,
+            head_mesh: head.mesh,
+            head_path: head.path,
             readouts: Readouts::default(),
             paused: false,
             invalid: None,
@@ -126,9 +135,7 @@ impl AppState {
             leaving: None,
             quit: false,
             guard: GuardStatus::default(),
-        };
-        app.adopt_head();
-        Ok(app)
+        })
     }
 
     /// Simulated time, seconds.
@@ -228,9 +235,9 @@ impl AppState {
     pub fn step_frame(&mut self) {
         self.invalid = self.doc.validity().err();
         if self.invalid.is_none() {
-            let style = self.doc.style().clone();
+            let style = self.doc.style();
             for sim in std::iter::once(&mut self.sim).chain(self.compare.as_mut().map(|(s, _)| s)) {
-                if let Err(e) = sim.sync(&style) {
+                if let Err(e) = sim.sync(style) {
                     self.invalid = Some(e);
                 }
             }

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::DVec3;
+use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
 use helixhair_render::obj::load_mesh_obj;
 
@@ -16,52 +17,78 @@ use crate::style_head::{head_pivot_m, style_head_path};
 
 use super::app_state::AppState;
 use super::collision::HeadCollider;
+use super::document::StyleDoc;
 use super::live_sim::LiveSim;
 
-impl AppState {
-    /// The head mesh the open style names, if it names one it can use.
-    fn wanted_head(&self) -> Option<PathBuf> {
-        let style = self.doc.style();
-        let path = self.doc.path()?;
-        style_head_path(style, path).filter(|_| !needs_head(style))
-    }
+/// A head for the window: its mesh, the file it came from (`None`: the
+/// default head) and the point it turns about.
+pub struct StyleHead {
+    /// The mesh, drawn and collided with.
+    pub mesh: Arc<HeadMesh>,
+    /// Its file.
+    pub path: Option<PathBuf>,
+    /// Its pivot, world, metres.
+    pub pivot_m: DVec3,
+}
 
+impl StyleHead {
+    /// The default head, turning about the origin.
+    pub fn default_head() -> Self {
+        Self {
+            mesh: Arc::new(default_head()),
+            path: None,
+            pivot_m: DVec3::ZERO,
+        }
+    }
+}
+
+/// The head mesh `doc`'s style names, if it names one it can use.
+fn wanted_head(doc: &StyleDoc) -> Option<PathBuf> {
+    let style = doc.style();
+    let path = doc.path()?;
+    style_head_path(style, path).filter(|_| !needs_head(style))
+}
+
+/// The head `doc`'s style names, read, or the default head; an error
+/// (naming file and line) when the named mesh cannot be read.
+pub fn style_head(doc: &StyleDoc) -> Result<StyleHead, String> {
+    let Some(path) = wanted_head(doc) else {
+        return Ok(StyleHead::default_head());
+    };
+    let mesh = load_mesh_obj(&path).map_err(|e| e.to_string())?;
+    Ok(StyleHead {
+        mesh: Arc::new(mesh),
+        path: Some(path),
+        pivot_m: head_pivot_m(doc.style()),
+    })
+}
+
+/// A simulation of `doc`'s style colliding with `head`.
+pub fn simulate_on(doc: &StyleDoc, head: &StyleHead) -> Result<LiveSim, String> {
+    let collider = HeadCollider::from_head(&head.mesh)?;
+    let mut sim = LiveSim::new(doc.style(), head.mesh.clone(), None, None)?;
+    sim.set_collider(Some(collider));
+    Ok(sim)
+}
+
+impl AppState {
     /// Switches to the head the open style names (or back to the default
     /// head) when it is not the one in use: a new simulation colliding with
     /// it, the head turning about its pivot. On error (an unreadable mesh)
     /// the head in use stays and the message says why.
     pub fn adopt_head(&mut self) {
-        let wanted = self.wanted_head();
-        if wanted == self.head_path {
+        if wanted_head(&self.doc) == self.head_path {
             return;
         }
-        let mesh = match &wanted {
-            Some(path) => match load_mesh_obj(path) {
-                Ok(mesh) => mesh,
-                Err(e) => {
-                    self.message = Some(format!("the style's head is not used: {e}"));
-                    return;
-                }
-            },
-            None => default_head(),
-        };
-        let mesh = Arc::new(mesh);
-        let style = self.doc.style().clone();
-        let built = HeadCollider::from_head(&mesh).and_then(|collider| {
-            let mut sim = LiveSim::new(&style, mesh.clone(), None, None)?;
-            sim.set_collider(Some(collider));
-            Ok(sim)
-        });
+        let built =
+            style_head(&self.doc).and_then(|head| Ok((simulate_on(&self.doc, &head)?, head)));
         match built {
-            Ok(sim) => {
+            Ok((sim, head)) => {
                 self.sim = sim;
                 self.compare = None;
-                self.head_mesh = mesh;
-                self.head.pivot_m = match &wanted {
-                    Some(_) => head_pivot_m(&style),
-                    None => DVec3::ZERO,
-                };
-                self.head_path = wanted;
+                self.head_mesh = head.mesh;
+                self.head.pivot_m = head.pivot_m;
+                self.head_path = head.path;
             }
             Err(e) => self.message = Some(format!("the style's head is not used: {e}")),
         }
