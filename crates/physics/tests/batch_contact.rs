@@ -103,6 +103,7 @@ fn an_end_point_force_gives_its_jacobian_transpose_times_the_force() {
             &v32,
             &mut data,
             &mut hook,
+            None,
         );
         let mut beyond = Beyond::zero();
         let mut sweep = vec![DVec3::ZERO; n];

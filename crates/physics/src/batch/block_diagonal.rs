@@ -28,7 +28,7 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>
     scratch: &mut [ElementData<T>],
     end_force: &mut H,
 ) {
-    forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, end_force);
+    forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, end_force, None);
     let s = mass_scale(model, env) + T::splat(env.h_secs * end_force.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     for e in (0..q.len()).rev() {

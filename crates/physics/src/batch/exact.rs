@@ -20,6 +20,7 @@
 
 use super::contact::{EndPointForce, NoContact};
 use super::forward::forward_with;
+use super::geometry::Coefficients;
 use super::lane_model::Constants;
 use super::lanes::Real;
 use super::layout::{ElementData, RootMotion, StepEnv};
@@ -105,7 +106,17 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     elimination: &mut [Elimination<T>],
     end_force: &mut H,
 ) {
-    eliminate::<T, LOCAL, H>(model, env, root, q, v, scratch, elimination, end_force);
+    eliminate::<T, LOCAL, H>(
+        model,
+        env,
+        root,
+        q,
+        v,
+        scratch,
+        elimination,
+        end_force,
+        None,
+    );
     back_substitute::<T, LOCAL>(scratch, elimination, |e, delta_v| {
         integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
     });
@@ -114,7 +125,8 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
 /// Sweeps 1 and 2 of [`step_exact_with`]: element data into `scratch`,
 /// the elimination and the folded right-hand side into `elimination`.
 /// Returns Σ|rhs|² per lane (the right-hand side before folding), for the
-/// velocity-implicit step's stopping test.
+/// velocity-implicit step's stopping test. `coefficients`: the helix
+/// coefficients of `q` if already evaluated ([`super::forward::forward_with`]).
 #[expect(
     clippy::too_many_arguments,
     reason = "the step's buffers, as in `step_exact_with`"
@@ -129,8 +141,9 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
     end_force: &mut H,
+    coefficients: Option<&[Coefficients<T>]>,
 ) -> T {
-    forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force);
+    forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force, coefficients);
     let s = mass_scale(model, env) + T::splat(env.h_secs * end_force.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     let mut h = [M3::zero(); 4];

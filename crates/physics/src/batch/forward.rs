@@ -18,7 +18,7 @@
 //! matrix-free product M q̇ (one sweep fewer).
 
 use super::contact::{EndPointForce, NoContact};
-use super::geometry::{local_end, local_point};
+use super::geometry::{Coefficients, coefficients_at, local_end_with, local_point_with};
 use super::lane_model::Constants;
 use super::lanes::Real;
 use super::layout::{ElementData, RootMotion, StepEnv};
@@ -107,7 +107,20 @@ pub fn advance_local<T: Real>(
     k: V3<T>,
     k_dot: V3<T>,
 ) -> (FrameState<T>, M3<T>, M3<T>, V3<T>) {
-    let (end, turn) = local_end(length_m, k, k_dot);
+    advance_local_with(s, length_m, k, k_dot, coefficients_at(length_m, k, true))
+}
+
+/// [`advance_local`] with the end's coefficients `co` already evaluated
+/// ([`coefficients_at`] at σ = ℓ, with A): the same bits.
+#[inline(always)]
+pub fn advance_local_with<T: Real>(
+    s: &FrameState<T>,
+    length_m: T,
+    k: V3<T>,
+    k_dot: V3<T>,
+    co: Coefficients<T>,
+) -> (FrameState<T>, M3<T>, M3<T>, V3<T>) {
+    let (end, turn) = local_end_with(length_m, k, k_dot, co);
     let [p, pv, pa] = s.carry(end.h, end.h_dot, end.h_ddot);
     let b = s.frame.mul_mat(&turn.left_jacobian).scale(length_m);
     let a = s.frame.mul_mat(&end.jacobian);
@@ -145,7 +158,7 @@ pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
     k_dot: V3<T>,
 ) -> ElementData<T> {
     let mut el = ElementData::zero();
-    own_sums_into::<T, OFF_DIAGONAL, _>(model, env, e, s, k, k_dot, &mut el, &NoContact);
+    own_sums_into::<T, OFF_DIAGONAL, _>(model, env, e, s, k, k_dot, &mut el, &NoContact, None);
     el
 }
 
@@ -170,6 +183,7 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     k_dot: V3<T>,
     el: &mut ElementData<T>,
     hook: &H,
+    coefficients: Option<&[Coefficients<T>]>,
 ) {
     let length_m = model.length_m(e);
     let rho_s = model.mass_per_length();
@@ -186,7 +200,12 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     let mut u_local = M3::zero();
     let mut v_local = M3::zero();
     for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
-        let lp = local_point(T::splat(*node) * length_m, k, k_dot);
+        let sigma = T::splat(*node) * length_m;
+        let co = match coefficients {
+            Some(known) => known[j],
+            None => coefficients_at(sigma, k, false),
+        };
+        let lp = local_point_with(sigma, k, k_dot, co);
         let [r, vel, acc] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
         let w_len = T::splat(*weight) * length_m;
         let w_mass = w_len * rho_s;
@@ -244,7 +263,7 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
     v: &[V3<T>],
     out: &mut [ElementData<T>],
 ) {
-    forward_with::<T, OFF_DIAGONAL, false, _>(model, env, root, q, v, out, &mut NoContact);
+    forward_with::<T, OFF_DIAGONAL, false, _>(model, env, root, q, v, out, &mut NoContact, None);
 }
 
 /// [`forward`] with a force at each element's end point (stage "collide",
@@ -264,6 +283,14 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
 /// tip-to-root sweeps shift the sums by −span from one element to the next
 /// ([`super::suffix::Beyond::shift`]), so every product involves only
 /// distances of the size of what it describes.
+///
+/// `coefficients`, when given, are the helix coefficients of `q` as
+/// [`super::velocity_terms::coefficients_of`] lays them out (a step that
+/// needs them again evaluates them once); the same bits either way.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the sweep's inputs, its output, the hook and the known coefficients"
+)]
 #[inline(always)]
 pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: EndPointForce<T>>(
     model: &impl Constants<T>,
@@ -273,9 +300,13 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
     v: &[V3<T>],
     out: &mut [ElementData<T>],
     end_force: &mut H,
+    coefficients: Option<&[Coefficients<T>]>,
 ) {
+    let per_element = model.nodes().len() + 1;
     let mut s = FrameState::at_root(root);
     for (e, el) in out.iter_mut().enumerate() {
+        let co = coefficients
+            .map(|c| c[e * per_element..(e + 1) * per_element].split_at(per_element - 1));
         // Own moments about the element's start (LOCAL) or the root.
         let moments_origin = if LOCAL {
             FrameState {
@@ -294,8 +325,14 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
             v[e],
             el,
             end_force,
+            co.map(|(nodes, _)| nodes),
         );
-        let (next, a_local, b, span) = advance_local(&s, model.length_m(e), q[e], v[e]);
+        let length_m = model.length_m(e);
+        let end_co = match co {
+            Some((_, end)) => end[0],
+            None => coefficients_at(length_m, q[e], true),
+        };
+        let (next, a_local, b, span) = advance_local_with(&s, length_m, q[e], v[e], end_co);
         el.a = if LOCAL {
             a_local
         } else {

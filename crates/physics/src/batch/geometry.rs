@@ -169,21 +169,38 @@ struct PhiJet<T> {
     co: Coefficients<T>,
 }
 
+/// y = |σk|² at arc length `sigma` of an element with strains `k`: the
+/// argument of the coefficients there.
 #[inline(always)]
-fn phi_jet<T: Real>(sigma: T, k: V3<T>, k_dot: V3<T>, with_a: bool) -> PhiJet<T> {
+fn y_at<T: Real>(sigma: T, k: V3<T>) -> T {
+    let phi = k.scale(sigma);
+    phi.dot(phi)
+}
+
+/// The coefficients at arc length `sigma` of an element with strains `k`
+/// (with A where `with_a`), exactly as [`local_point`] and [`local_end`]
+/// compute them: a step that visits the same points several times at the
+/// same q (GMRES, [`super::implicit`]) evaluates them once and passes
+/// them to [`local_point_with`] and [`local_end_with`].
+#[inline(always)]
+pub fn coefficients_at<T: Real>(sigma: T, k: V3<T>, with_a: bool) -> Coefficients<T> {
+    coefficients(y_at(sigma, k), with_a)
+}
+
+#[inline(always)]
+fn phi_jet<T: Real>(sigma: T, k: V3<T>, k_dot: V3<T>, co: Coefficients<T>) -> PhiJet<T> {
     let s = sigma;
     let phi = k.scale(s);
     let phi_dot = k_dot.scale(s);
-    let y = phi.dot(phi);
     let pd = phi.dot(phi_dot);
     let dd = phi_dot.dot(phi_dot);
     PhiJet {
         phi,
         phi_dot,
-        y,
+        y: y_at(sigma, k),
         y_dot: pd + pd,
         y_ddot: dd + dd,
-        co: coefficients(y, with_a),
+        co,
     }
 }
 
@@ -235,14 +252,38 @@ fn point_from_jet<T: Real>(sigma: T, j: &PhiJet<T>) -> LocalPoint<T> {
 /// (metres, per lane).
 #[inline(always)]
 pub fn local_point<T: Real>(sigma: T, k: V3<T>, k_dot: V3<T>) -> LocalPoint<T> {
-    point_from_jet(sigma, &phi_jet(sigma, k, k_dot, false))
+    local_point_with(sigma, k, k_dot, coefficients_at(sigma, k, false))
+}
+
+/// [`local_point`] with its coefficients `co` already evaluated
+/// ([`coefficients_at`] at the same σ and k): the same bits.
+#[inline(always)]
+pub fn local_point_with<T: Real>(
+    sigma: T,
+    k: V3<T>,
+    k_dot: V3<T>,
+    co: Coefficients<T>,
+) -> LocalPoint<T> {
+    point_from_jet(sigma, &phi_jet(sigma, k, k_dot, co))
 }
 
 /// The element's end point and turn, for an element of length `length_m`
 /// (per lane).
 #[inline(always)]
 pub fn local_end<T: Real>(length_m: T, k: V3<T>, k_dot: V3<T>) -> (LocalPoint<T>, LocalTurn<T>) {
-    let j = phi_jet(length_m, k, k_dot, true);
+    local_end_with(length_m, k, k_dot, coefficients_at(length_m, k, true))
+}
+
+/// [`local_end`] with its coefficients `co` already evaluated
+/// ([`coefficients_at`] at σ = ℓ, with A): the same bits.
+#[inline(always)]
+pub fn local_end_with<T: Real>(
+    length_m: T,
+    k: V3<T>,
+    k_dot: V3<T>,
+    co: Coefficients<T>,
+) -> (LocalPoint<T>, LocalTurn<T>) {
+    let j = phi_jet(length_m, k, k_dot, co);
     let point = point_from_jet(length_m, &j);
     let (phi, pd) = (j.phi, j.phi_dot);
     let one = T::splat(1.0);

@@ -34,12 +34,13 @@
 
 use super::contact::EndPointForce;
 use super::exact::{Elimination, back_substitute, eliminate, solve_again};
+use super::geometry::Coefficients;
 use super::lane_model::Constants;
 use super::lanes::Real;
 use super::layout::{ElementData, RootMotion, StepEnv};
 use super::suffix::integrate;
 use super::vec::V3;
-use super::velocity_terms::{OwnProduct, velocity_product};
+use super::velocity_terms::{OwnProduct, coefficients_of, velocity_product};
 use crate::settings::MAX_VELOCITY_CORRECTIONS;
 use crate::step::GMRES_TOLERANCE;
 
@@ -56,6 +57,8 @@ pub struct Krylov<T> {
     delta_v: Vec<V3<T>>,
     product: Vec<V3<T>>,
     own: Vec<OwnProduct<T>>,
+    /// The helix coefficients of the step's q ([`coefficients_of`]).
+    coefficients: Vec<Coefficients<T>>,
 }
 
 impl<T: Real> Krylov<T> {
@@ -68,6 +71,7 @@ impl<T: Real> Krylov<T> {
             delta_v: vec![V3::zero(); n],
             product: vec![V3::zero(); n],
             own: vec![OwnProduct::zero(); n],
+            coefficients: Vec::new(),
         }
     }
 
@@ -98,8 +102,21 @@ pub fn step_exact_implicit<T: Real, H: EndPointForce<T>>(
     krylov: &mut Krylov<T>,
     end_force: &mut H,
 ) -> usize {
-    let rhs_squared =
-        eliminate::<T, true, H>(model, env, root, q, v, scratch, elimination, end_force);
+    // The coefficients depend on q alone: evaluated once, they serve
+    // sweep 1 and both sweeps of every product GMRES takes.
+    coefficients_of(model, q, &mut krylov.coefficients);
+    let known = Some(krylov.coefficients.as_slice());
+    let rhs_squared = eliminate::<T, true, H>(
+        model,
+        env,
+        root,
+        q,
+        v,
+        scratch,
+        elimination,
+        end_force,
+        known,
+    );
     let delta_v = &mut krylov.delta_v;
     back_substitute::<T, true>(scratch, elimination, |e, dv| delta_v[e] = dv);
     let iterations = gmres(
@@ -164,8 +181,19 @@ fn gmres<T: Real>(
         delta_v,
         product,
         own,
+        coefficients,
     } = krylov;
-    velocity_product(model, root, q, v, scratch, delta_v, own, product);
+    velocity_product(
+        model,
+        root,
+        q,
+        v,
+        scratch,
+        coefficients,
+        delta_v,
+        own,
+        product,
+    );
     // r₀ = −h G Δv₀; a lane whose residual is already small (or NaN) is done.
     let beta = h * dot(product, product).sqrt();
     let mut active = beta.select_greater(tol, one, zero);
@@ -184,7 +212,17 @@ fn gmres<T: Real>(
     for j in 0..k_max {
         // z = P⁻¹ v_j; w = A z = v_j + h G z.
         solve_again::<T, true>(scratch, elimination, &basis[j], &mut directions[j]);
-        velocity_product(model, root, q, v, scratch, &directions[j], own, product);
+        velocity_product(
+            model,
+            root,
+            q,
+            v,
+            scratch,
+            coefficients,
+            &directions[j],
+            own,
+            product,
+        );
         let (done, rest) = basis.split_at_mut(j + 1);
         let w = &mut rest[0];
         for ((x, b), gz) in w.iter_mut().zip(&done[j]).zip(product.iter()) {

@@ -36,8 +36,8 @@
 //! Air drag is not in G: its derivative (ν/ρS) M is already in the step
 //! matrix through the mass scale s ([`super::suffix::mass_scale`]).
 
-use super::forward::{FrameState, advance_local};
-use super::geometry::local_point;
+use super::forward::{FrameState, advance_local_with};
+use super::geometry::{Coefficients, coefficients_at, local_point_with};
 use super::lane_model::Constants;
 use super::lanes::Real;
 use super::layout::{ElementData, RootMotion};
@@ -66,6 +66,28 @@ impl<T: Real> OwnProduct<T> {
     }
 }
 
+/// The helix coefficients [`velocity_product`] needs for strains `q`, into
+/// `out` (cleared first): per element, one per quadrature node, then the
+/// end's (with A). They depend on q alone, not on the rates, so the two
+/// sweeps of every product of a step share one evaluation (they were a
+/// sixth of an imported groom's frame, with their sines and cosines
+/// another tenth, when each product evaluated its own).
+#[inline(always)]
+pub fn coefficients_of<T: Real>(
+    model: &impl Constants<T>,
+    q: &[V3<T>],
+    out: &mut Vec<Coefficients<T>>,
+) {
+    out.clear();
+    for (e, k) in q.iter().enumerate() {
+        let length_m = model.length_m(e);
+        for node in model.nodes() {
+            out.push(coefficients_at(T::splat(*node) * length_m, *k, false));
+        }
+        out.push(coefficients_at(length_m, *k, true));
+    }
+}
+
 /// Per lane, the largest |x_i| over every component of `x`.
 #[inline(always)]
 pub fn largest_abs<T: Real>(x: &[V3<T>]) -> T {
@@ -78,7 +100,8 @@ pub fn largest_abs<T: Real>(x: &[V3<T>]) -> T {
 /// out = G z per element (N·m²·s per unit of z) for the strands in state
 /// (`q`, `v`) with roots moving as `root`; `scratch` holds sweep 1's data
 /// for this state (A_Q about each element's end point, B_Q, span: the
-/// step's `LOCAL` moments), `own` is a buffer of N entries.
+/// step's `LOCAL` moments), `coefficients` the helix coefficients of `q`
+/// ([`coefficients_of`]), `own` is a buffer of N entries.
 #[expect(
     clippy::too_many_arguments,
     reason = "the step's state and buffers, named as the step names them"
@@ -90,6 +113,7 @@ pub fn velocity_product<T: Real>(
     q: &[V3<T>],
     v: &[V3<T>],
     scratch: &[ElementData<T>],
+    coefficients: &[Coefficients<T>],
     z: &[V3<T>],
     own: &mut [OwnProduct<T>],
     out: &mut [V3<T>],
@@ -110,7 +134,13 @@ pub fn velocity_product<T: Real>(
     };
     let mut plus = FrameState::at_root(&still);
     let mut minus = plus;
-    for (e, sums) in own.iter_mut().enumerate() {
+    let per_element = model.nodes().len() + 1;
+    for ((e, sums), co) in own
+        .iter_mut()
+        .enumerate()
+        .zip(coefficients.chunks_exact(per_element))
+    {
+        let (co_nodes, co_end) = co.split_at(per_element - 1);
         let k = q[e];
         let shift = z[e].scale(reach);
         let (k_plus, k_minus) = (v[e] + shift, v[e] - shift);
@@ -126,10 +156,10 @@ pub fn velocity_product<T: Real>(
         };
         let mut result = OwnProduct::zero();
         let mut local = V3::zero();
-        for (node, weight) in model.nodes().iter().zip(model.weights()) {
+        for ((node, weight), co) in model.nodes().iter().zip(model.weights()).zip(co_nodes) {
             let sigma = T::splat(*node) * length_m;
-            let lp = local_point(sigma, k, k_plus);
-            let lm = local_point(sigma, k, k_minus);
+            let lp = local_point_with(sigma, k, k_plus, *co);
+            let lm = local_point_with(sigma, k, k_minus, *co);
             let [r, _, acc_plus] = origin_plus.carry(lp.h, lp.h_dot, lp.h_ddot);
             let [_, _, acc_minus] = origin_minus.carry(lm.h, lm.h_dot, lm.h_ddot);
             let f = (acc_plus - acc_minus).scale(factor * (T::splat(*weight) * length_m));
@@ -139,8 +169,8 @@ pub fn velocity_product<T: Real>(
         }
         result.own = local;
         *sums = result;
-        plus = advance_local(&plus, length_m, k, k_plus).0;
-        minus = advance_local(&minus, length_m, k, k_minus).0;
+        plus = advance_local_with(&plus, length_m, k, k_plus, co_end[0]).0;
+        minus = advance_local_with(&minus, length_m, k, k_minus, co_end[0]).0;
     }
     // Tip to root: Q_e = own + a_eᵀ F_b + b_eᵀ τ_b, sums about e's end point.
     let (mut force, mut torque) = (V3::zero(), V3::zero());
