@@ -85,6 +85,7 @@ use glam::{DVec3, Vec3};
 
 use super::forward::FrameState;
 use super::lane_model::LaneModel;
+use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Real};
 use super::layout::ElementData;
 pub use super::near_cells::{NearCells, SkinTest};
@@ -167,6 +168,8 @@ pub fn add_end_point_force<T: Real, const LOCAL: bool>(
 #[derive(Clone, Copy, Debug)]
 pub struct LaneContact<'a> {
     test: SkinTest<'a>,
+    /// The batch's screen ahead of `test` ([`super::lane_screen`]).
+    screen: LaneScreen,
     root_positions_m: [DVec3; LANES],
     model: &'a LaneModel,
     /// Whether the contact is implicit (Exact) or the explicit penalty.
@@ -187,6 +190,7 @@ impl<'a> LaneContact<'a> {
     ) -> Self {
         Self {
             test,
+            screen: LaneScreen::new(&test, &root_positions_m),
             root_positions_m,
             model,
             implicit,
@@ -218,12 +222,21 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
         let mut touching = false;
         let inputs = &self.test.inputs;
         let h = inputs.h_secs;
+        let screened =
+            self.screen
+                .may_feel(self.test.near, end.point_m, end.point_velocity, implicit);
+        if screened == 0 {
+            return;
+        }
         for (i, (force, axis)) in forces_n
             .iter_mut()
             .zip(&mut axes)
             .enumerate()
             .take(T::WIDTH)
         {
+            if screened & (1 << i) == 0 {
+                continue;
+            }
             let point_m = self.root_positions_m[i] + lane_vec(&end.point_m, i).as_dvec3();
             let velocity = lane_vec(&end.point_velocity, i).as_dvec3();
             if !self.test.may_feel(point_m, velocity, implicit) {

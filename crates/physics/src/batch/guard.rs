@@ -38,6 +38,7 @@ use glam::DVec3;
 use super::forward::{FrameState, advance};
 use super::geometry::local_point;
 use super::lane_model::{Constants, LaneModel};
+use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
 use super::near_cells::SkinTest;
@@ -104,7 +105,10 @@ pub fn measure_lanes(
     let (mut mass, mut second_moment) = (zero, zero);
     let mut s = FrameState::at_root(root);
     let n = q.len();
-    let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
+    // Element end points (relative to the root) and their velocities, for
+    // the contact's terms after the sweep: kept out of the SIMD loop, whose
+    // state would otherwise be spilled for the per-lane lookups.
+    let mut ends = Vec::with_capacity(if contact.is_some() { n } else { 0 });
     for e in 0..n {
         let length_m = model.length_m(e);
         for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
@@ -135,45 +139,14 @@ pub fn measure_lanes(
         let k = model.stiffness(e);
         elastic += (d.x * d.x * k.x + d.y * d.y * k.y + d.z * d.z * k.z) * Lanes::splat(0.5);
         s = advance(&s, length_m, q[e], v[e]).0;
-        if let Some(contact) = contact {
-            // The step's contact: f at each end point, carrying half of
-            // each element beside it (super::contact).
-            let next_m = if e + 1 < n {
-                model.length_m(e + 1)
-            } else {
-                Lanes::splat(0.0)
-            };
-            let share = length_m + next_m;
-            for (lane, list) in contact_force.iter_mut().enumerate() {
-                let pick = |x: V3<Lanes>| {
-                    DVec3::new(
-                        f64::from(x.x.lane(lane)),
-                        f64::from(x.y.lane(lane)),
-                        f64::from(x.z.lane(lane)),
-                    )
-                };
-                let point = pick(s.point_m);
-                let velocity = pick(s.point_velocity);
-                let world = motions[lane].position_m + point;
-                // Screened as the step screens (exact: a rejected point
-                // has no force), then the implicit push: where it acts is
-                // where the Exact steps' contact acts, and a superset of
-                // where the explicit penalty does (only "is there contact"
-                // and the balance's external terms use it).
-                if !contact.may_feel(world, velocity, true) {
-                    continue;
-                }
-                let f = contact
-                    .inputs
-                    .implicit_force(world, velocity, f64::from(rho_s.lane(lane)))
-                    .map_or(DVec3::ZERO, |c| c.force_n_per_m)
-                    * f64::from(0.5 * share.lane(lane));
-                if f != DVec3::ZERO {
-                    list.push((point, velocity, f));
-                }
-            }
+        if contact.is_some() {
+            ends.push((s.point_m, s.point_velocity));
         }
     }
+    let contact_force = match contact {
+        Some(contact) => end_point_contact(model, contact, motions, &ends),
+        None => Default::default(),
+    };
     std::array::from_fn(|lane| {
         let x = |t: Lanes| f64::from(t.lane(lane));
         let x3 = |t: V3<Lanes>| DVec3::new(x(t.x), x(t.y), x(t.z));
@@ -209,6 +182,66 @@ pub fn measure_lanes(
         }
         out
     })
+}
+
+/// Per lane, the head contact's force at each element end point of a
+/// batch whose end points (relative to each lane's root) and velocities
+/// are `ends`: (point, velocity, force in N), for the points with a force.
+/// The step's contact: f at each end point, carrying half of each element
+/// beside it ([`super::contact`]), screened in lanes first
+/// ([`super::lane_screen`]), then as the step screens (exact: a rejected
+/// point has no force), then the implicit push: where it acts is where the
+/// Exact steps' contact acts, and a superset of where the explicit penalty
+/// does (only "is there contact" and the balance's external terms use it).
+fn end_point_contact(
+    model: &impl Constants<Lanes>,
+    contact: &SkinTest<'_>,
+    motions: &[RigidMotion; LANES],
+    ends: &[(V3<Lanes>, V3<Lanes>)],
+) -> [Vec<(DVec3, DVec3, DVec3)>; LANES] {
+    let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
+    let screen = LaneScreen::new(contact, &motions.map(|m| m.position_m));
+    let rho_s = model.mass_per_length();
+    let n = ends.len();
+    for (e, (point_m, velocity_m_per_s)) in ends.iter().enumerate() {
+        let screened = screen.may_feel(contact.near, *point_m, *velocity_m_per_s, true);
+        if screened == 0 {
+            continue;
+        }
+        let next_m = if e + 1 < n {
+            model.length_m(e + 1)
+        } else {
+            Lanes::splat(0.0)
+        };
+        let share = model.length_m(e) + next_m;
+        for (lane, list) in contact_force.iter_mut().enumerate() {
+            if screened & (1 << lane) == 0 {
+                continue;
+            }
+            let pick = |x: V3<Lanes>| {
+                DVec3::new(
+                    f64::from(x.x.lane(lane)),
+                    f64::from(x.y.lane(lane)),
+                    f64::from(x.z.lane(lane)),
+                )
+            };
+            let point = pick(*point_m);
+            let velocity = pick(*velocity_m_per_s);
+            let world = motions[lane].position_m + point;
+            if !contact.may_feel(world, velocity, true) {
+                continue;
+            }
+            let f = contact
+                .inputs
+                .implicit_force(world, velocity, f64::from(rho_s.lane(lane)))
+                .map_or(DVec3::ZERO, |c| c.force_n_per_m)
+                * f64::from(0.5 * share.lane(lane));
+            if f != DVec3::ZERO {
+                list.push((point, velocity, f));
+            }
+        }
+    }
+    contact_force
 }
 
 /// The velocity the root's rigid motion gives a point `r` (relative to the

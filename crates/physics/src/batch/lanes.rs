@@ -45,6 +45,8 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self);
     /// Lane-wise maximum.
     fn max(self, o: Self) -> Self;
+    /// Lane-wise floor (largest integer not above).
+    fn floor(self) -> Self;
     /// Whether every lane is below `limit`.
     fn all_below(self, limit: f32) -> bool;
     /// Per lane: `if_below` where `self < limit`, else `otherwise`.
@@ -79,6 +81,10 @@ impl Real for f32 {
     #[inline(always)]
     fn max(self, o: Self) -> Self {
         f32::max(self, o)
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        f32::floor(self)
     }
     #[inline(always)]
     fn all_below(self, limit: f32) -> bool {
@@ -122,6 +128,10 @@ impl Real for f64 {
     #[inline(always)]
     fn max(self, o: Self) -> Self {
         f64::max(self, o)
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        f64::floor(self)
     }
     #[inline(always)]
     fn all_below(self, limit: f32) -> bool {
@@ -256,6 +266,10 @@ impl Real for Lanes {
     #[inline(always)]
     fn max(self, o: Self) -> Self {
         Lanes(self.0.max(o.0))
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        Lanes(self.0.floor())
     }
     #[inline(always)]
     fn all_below(self, limit: f32) -> bool {

@@ -114,6 +114,7 @@ pub mod geometry;
 pub mod guard;
 pub mod implicit;
 pub mod lane_model;
+pub mod lane_screen;
 pub mod lanes;
 pub mod layout;
 pub mod near_cells;

@@ -40,6 +40,11 @@ const CORNER_MARGIN_M: f64 = 1e-12;
 #[derive(Clone, Debug, PartialEq)]
 pub struct NearCells {
     bits: Vec<u64>,
+    /// The same set grown by one cell along every axis (a cell is set
+    /// where it or one of its 26 neighbours is near): the f32 lane screen
+    /// ([`super::lane_screen`]) reads this, so that its rounding, far
+    /// below a cell, can never move a point out of a near cell's reach.
+    grown: Vec<u64>,
     cells: [usize; 3],
 }
 
@@ -65,17 +70,60 @@ impl NearCells {
                 }
             }
         }
-        Self { bits, cells }
+        let grown = grow_by_one_cell(&bits, cells);
+        Self { bits, grown, cells }
+    }
+
+    /// Cells along x, y and z.
+    pub fn cells(&self) -> [usize; 3] {
+        self.cells
     }
 
     /// Whether cell (x, y, z) may be within the skin.
     #[inline(always)]
     pub fn contains(&self, x: usize, y: usize, z: usize) -> bool {
-        let i = x + self.cells[0] * (y + self.cells[1] * z);
-        self.bits
-            .get(i / 64)
-            .is_some_and(|word| word & (1 << (i % 64)) != 0)
+        bit(&self.bits, x + self.cells[0] * (y + self.cells[1] * z))
     }
+
+    /// Whether the cell at `index` (x + cells_x (y + cells_y z)) or one of
+    /// its neighbours may be within the skin.
+    #[inline(always)]
+    pub fn grown_contains_index(&self, index: usize) -> bool {
+        bit(&self.grown, index)
+    }
+}
+
+/// Bit `i` of `bits` (false past the end).
+#[inline(always)]
+fn bit(bits: &[u64], i: usize) -> bool {
+    bits.get(i / 64)
+        .is_some_and(|word| word & (1 << (i % 64)) != 0)
+}
+
+/// `bits` (one per cell of a `cells` grid, x fastest) with every set
+/// cell's 26 neighbours set too.
+fn grow_by_one_cell(bits: &[u64], cells: [usize; 3]) -> Vec<u64> {
+    let mut grown = vec![0u64; bits.len()];
+    let index = |x: usize, y: usize, z: usize| x + cells[0] * (y + cells[1] * z);
+    let around = |c: usize, n: usize| c.saturating_sub(1)..(c + 2).min(n);
+    for z in 0..cells[2] {
+        for y in 0..cells[1] {
+            for x in 0..cells[0] {
+                if !bit(bits, index(x, y, z)) {
+                    continue;
+                }
+                for nz in around(z, cells[2]) {
+                    for ny in around(y, cells[1]) {
+                        for nx in around(x, cells[0]) {
+                            let i = index(nx, ny, nz);
+                            grown[i / 64] |= 1 << (i % 64);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    grown
 }
 
 /// The head's collider for one step, with its [`NearCells`]: whether a
@@ -84,7 +132,8 @@ impl NearCells {
 pub struct SkinTest<'a> {
     /// The contact inputs the lookups use.
     pub inputs: ContactInputs<'a>,
-    near: &'a NearCells,
+    /// The cells that may be within the skin.
+    pub near: &'a NearCells,
     /// The head's frame transposed: world offsets to head coordinates.
     body_from_world: DMat3,
 }
