@@ -16,21 +16,27 @@
 //! Per batch and step, each lane's root is taken into grid coordinates
 //! once, in f64 ([`LaneScreen::new`]). A point relative to its root is then
 //! mapped by the head's rotation scaled to cells, in lanes: eight points
-//! for nine multiply-adds. Each lane's cell is read from
-//! [`NearCells::grown_contains_index`], the near set grown by one cell, and a lane
-//! whose cell there is clear is skipped; the others go on to the exact
-//! test, so results are bit for bit those of the exact test alone.
+//! for nine multiply-adds; the cell, whether the point is near a cell face,
+//! and the bit's place in the bitmap are found in lanes too, and only the
+//! bit is read lane by lane ([`NearCells::screen_contains`]). A lane whose
+//! bit is clear is skipped; the others go on to the exact test, so results
+//! are bit for bit those of the exact test alone.
 //!
-//! **Why this never skips a point the exact test keeps.** The f32 grid
-//! coordinate differs from the f64 one by a few ulps of the larger of the
-//! root's and the point's coordinates, far below a cell for any point
-//! within 10⁵ cells of the grid, and a point farther out than that is
-//! outside the grid either way. Floors of two numbers less than a cell
-//! apart differ by at most one, and clamping to the grid keeps that, so the
-//! exact test's cell is the screened cell or one of its 26 neighbours, all
-//! covered by the grown set. A coordinate outside [−1, cells + 1) is
-//! outside [0, cells] exactly, where the exact test rejects too. A
-//! non-finite coordinate is passed on to the exact test.
+//! **Why this never skips a point the exact test keeps.** While every term
+//! summed into a grid coordinate is below [`LARGEST_CELLS`] (2¹² cells),
+//! the f32 coordinate is within 10⁻² cells of the f64 one (a few ulps of
+//! 2¹², plus the rotation rounded to f32). So:
+//!
+//! - a coordinate more than [`FACE_MARGIN`] (1/32 cell) from every face of
+//!   a cell of the grid has the exact test's cell, and reads that cell's
+//!   own bit: the screen is then exactly the exact test;
+//! - a coordinate nearer a face, or in the one-cell band just outside the
+//!   grid, may belong to the next cell: it reads the near set grown by one
+//!   cell, which holds every cell within one of it;
+//! - a coordinate below −1 or at or above cells + 1 is outside [0, cells]
+//!   exactly, where the exact test rejects too;
+//! - a lane with a larger term, or a non-finite one, is left to the exact
+//!   test.
 
 use glam::{DMat3, DVec3};
 
@@ -100,15 +106,19 @@ impl LaneScreen {
                 T::from_fn(|i| a[i][2]),
             )
         };
-        let grid = lanes3(&self.root_cells) + self.in_cells(point_m);
-        let mut mask = near_mask(near, grid);
+        let root = lanes3(&self.root_cells);
+        let offset = self.in_cells(point_m);
+        let grid = root + offset;
+        let size = largest_abs(root).max(largest_abs(offset));
+        let mut mask = near_mask(near, grid, size);
         if implicit {
             // Where the exact test's predicted point goes: p + h (v − v_surface(p)).
             let from_head = lanes3(&self.root_from_head_m) + point_m;
             let w = V3::splat(self.head_angular_velocity_rad_per_s);
             let surface = V3::splat(self.head_velocity_m_per_s) + w.cross(from_head);
-            let moved = (velocity_m_per_s - surface).scale(T::splat(self.h_secs));
-            mask |= near_mask(near, grid + self.in_cells(moved));
+            let moved = self.in_cells((velocity_m_per_s - surface).scale(T::splat(self.h_secs)));
+            let size = size.max(largest_abs(grid)).max(largest_abs(moved));
+            mask |= near_mask(near, grid + moved, size);
         }
         mask
     }
@@ -122,23 +132,45 @@ impl LaneScreen {
     }
 }
 
-/// Per lane, whether grid point `grid` (cells) lies in a cell of `near`'s
-/// grown set (see the module docs for why that covers the exact test).
-/// The cell and its place in the grid are found in lanes; only the bit is
-/// read lane by lane.
+/// Largest grid coordinate, in cells, that the screen's f32 arithmetic
+/// handles itself: at 2¹² its rounding stays below [`FACE_MARGIN`] / 3.
+/// A lane with a larger term (a root or a step far from the head) is passed
+/// on to the exact test.
+const LARGEST_CELLS: f32 = 4096.0;
+
+/// How close to a cell face, in cells, a screened coordinate reads the
+/// grown set instead of its own cell's bit: more than three times the
+/// screen's rounding (module docs).
+const FACE_MARGIN: f32 = 1.0 / 32.0;
+
+/// Per lane, whether grid point `grid` (cells) may lie in a near cell of
+/// `near` (see the module docs for why this covers the exact test); `size`
+/// is the largest magnitude of the terms summed into `grid`, which marks
+/// the lanes the screen leaves to the exact test. The cell and its place in
+/// the bitmap are found in lanes; only the bit is read lane by lane.
 #[inline(always)]
-fn near_mask<T: Real>(near: &NearCells, grid: V3<T>) -> u32 {
+fn near_mask<T: Real>(near: &NearCells, grid: V3<T>, size: T) -> u32 {
     let cells = near.cells();
     let (zero, one) = (T::splat(0.0), T::splat(1.0));
-    // NaN in every lane with a non-finite coordinate (∞ · 0 is NaN).
-    let finite_or_nan = grid.x * zero + grid.y * zero + grid.z * zero;
-    let mut outside = zero;
+    // NaN in every lane with a non-finite coordinate (∞ · 0 is NaN), and in
+    // every lane whose terms are too large to screen.
+    let unscreened = grid.x * zero
+        + grid.y * zero
+        + grid.z * zero
+        + size.select_greater(T::splat(LARGEST_CELLS), T::splat(f32::NAN), zero);
+    let (mut outside, mut at_face) = (zero, zero);
     let mut axis_cell = |g: T, count: usize| {
         let floor = g.floor();
         let last = T::splat(count.saturating_sub(1) as f32);
-        // Outside [−1, cells]: outside [0, cells] exactly, rejected there.
+        // Outside [−1, cells + 1): outside [0, cells] exactly, rejected there.
         outside += floor.select_below(-1.0, one, zero)
             + floor.select_greater(T::splat(count as f32), one, zero);
+        // Off the grid's cells or within the margin of a face: the grown set.
+        let fraction = g - floor;
+        at_face += fraction.select_below(FACE_MARGIN, one, zero)
+            + fraction.select_greater(T::splat(1.0 - FACE_MARGIN), one, zero)
+            + floor.select_below(0.0, one, zero)
+            + floor.select_greater(last, one, zero);
         let clamped = floor.max(zero);
         clamped.select_greater(last, last, clamped)
     };
@@ -147,18 +179,27 @@ fn near_mask<T: Real>(near: &NearCells, grid: V3<T>) -> u32 {
     let z = axis_cell(grid.z, cells[2]);
     let row = T::splat(cells[0] as f32);
     let plane = T::splat((cells[0] * cells[1]) as f32);
-    // Exact in f32: a field has at most 2²⁴ cells (MAX_CELLS).
-    let index = x + row * y + plane * z;
-    let index = outside.select_greater(T::splat(0.5), T::splat(-1.0), index) + finite_or_nan;
+    // Exact in f32: a field has at most 2²¹ cells (MAX_CELLS), and the
+    // grown half of the bitmap doubles that.
+    let own = x + row * y + plane * z;
+    let index = own + at_face.select_greater(zero, T::splat(near.cell_count() as f32), zero);
+    let index = outside.select_greater(T::splat(0.5), T::splat(-1.0), index) + unscreened;
     let mut mask = 0;
     for lane in 0..T::WIDTH {
         let i = index.lane(lane);
         let may = if i.is_nan() {
             true
         } else {
-            i >= 0.0 && near.grown_contains_index(i as usize)
+            i >= 0.0 && near.screen_contains(i as usize)
         };
         mask |= u32::from(may) << lane;
     }
     mask
+}
+
+/// Per lane, the largest |component| of `v`.
+#[inline(always)]
+fn largest_abs<T: Real>(v: V3<T>) -> T {
+    let abs = |a: T| a.max(-a);
+    abs(v.x).max(abs(v.y)).max(abs(v.z))
 }

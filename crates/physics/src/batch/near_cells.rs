@@ -40,12 +40,15 @@ const CORNER_MARGIN_M: f64 = 1e-12;
 #[derive(Clone, Debug, PartialEq)]
 pub struct NearCells {
     bits: Vec<u64>,
-    /// The same set grown by one cell along every axis (a cell is set
-    /// where it or one of its 26 neighbours is near): the f32 lane screen
-    /// ([`super::lane_screen`]) reads this, so that its rounding, far
-    /// below a cell, can never move a point out of a near cell's reach.
-    grown: Vec<u64>,
+    /// What the f32 lane screen ([`super::lane_screen`]) reads: the cells'
+    /// bits (index i < `count`) followed by the same set grown by one cell
+    /// along every axis (index `count` + i: set where cell i or one of its
+    /// 26 neighbours is near). A point well inside a cell reads its cell's
+    /// own bit; one within rounding of a face reads the grown set, so that
+    /// rounding can never move it out of a near cell's reach.
+    screen: Vec<u64>,
     cells: [usize; 3],
+    count: usize,
 }
 
 impl NearCells {
@@ -71,7 +74,25 @@ impl NearCells {
             }
         }
         let grown = grow_by_one_cell(&bits, cells);
-        Self { bits, grown, cells }
+        let mut screen = vec![0u64; (2 * count).div_ceil(64)];
+        for i in 0..count {
+            for (set, at) in [(bit(&bits, i), i), (bit(&grown, i), count + i)] {
+                if set {
+                    screen[at / 64] |= 1 << (at % 64);
+                }
+            }
+        }
+        Self {
+            bits,
+            screen,
+            cells,
+            count,
+        }
+    }
+
+    /// Cells in the grid.
+    pub fn cell_count(&self) -> usize {
+        self.count
     }
 
     /// Cells along x, y and z.
@@ -85,11 +106,12 @@ impl NearCells {
         bit(&self.bits, x + self.cells[0] * (y + self.cells[1] * z))
     }
 
-    /// Whether the cell at `index` (x + cells_x (y + cells_y z)) or one of
-    /// its neighbours may be within the skin.
+    /// For `index` = x + cells_x (y + cells_y z) below [`Self::cell_count`],
+    /// whether that cell may be within the skin; for `count` + that index,
+    /// whether it or one of its neighbours may be.
     #[inline(always)]
-    pub fn grown_contains_index(&self, index: usize) -> bool {
-        bit(&self.grown, index)
+    pub fn screen_contains(&self, index: usize) -> bool {
+        bit(&self.screen, index)
     }
 }
 
