@@ -122,11 +122,6 @@ pub fn measure_lanes(
             first_moment += r.scale(w_mass);
             mass += w_mass;
             second_moment += r.dot(r) * w_mass;
-            let drag = (vel - air).scale(nu);
-            power -= drag.dot(vel) * w_len;
-            let f = (g.scale(rho_s) - drag).scale(w_len);
-            force += f;
-            torque += r.cross(f);
             if let Some(pull) = pull {
                 let sums = (&mut force, &mut torque, &mut power);
                 add_pull_work(pull, e, j, r, vel, w_len, sums);
@@ -143,6 +138,15 @@ pub fn measure_lanes(
             ends.push((s.point_m, s.point_velocity));
         }
     }
+    // Gravity and drag, summed from the sums above: the drag per unit
+    // length is ν (ṙ − v_air) = (ν/ρS) ρS (ṙ − v_air), so its force,
+    // torque and power over the samples are (ν/ρS) times those of the
+    // momentum sums (exact; in f32 the same up to round-off, which the
+    // balance allows, [`F32_ENERGY_ROUND_OFF`]).
+    let drag_per_mass = nu / rho_s;
+    force += g.scale(mass) - (momentum - air.scale(mass)).scale(drag_per_mass);
+    torque += first_moment.cross(g) - (angular - first_moment.cross(air)).scale(drag_per_mass);
+    power -= (kinetic + kinetic - air.dot(momentum)) * drag_per_mass;
     let contact_force = match contact {
         Some(contact) => end_point_contact(model, contact, motions, &ends),
         None => Default::default(),

@@ -37,7 +37,7 @@ use super::volume::{BatchVolume, GroupView};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
 use crate::frame_balance::StrandMeasure;
-use crate::guard::{Guard, GuardAction, GuardEvent, ResetMemory};
+use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -86,6 +86,13 @@ type BatchView<'a> = (
 type BatchRef<'a> = (
     ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]),
     &'a Arc<LaneModel>,
+);
+
+/// One batch's state and constants with its lanes' measures at the start
+/// and end of a frame, as the guard's check takes them.
+type BatchCheck<'a> = (
+    ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a Arc<LaneModel>),
+    (&'a [StrandMeasure; LANES], &'a [StrandMeasure; LANES]),
 );
 
 /// Per-thread step buffers.
@@ -432,7 +439,7 @@ impl BatchSystem {
                 let pulls = volume.map(|v| (v, i));
                 let end = group.measure(&motion, &env, contact.as_ref(), pulls, parallel);
                 let before = events.len();
-                group.guard(guard, start, &end, dt, start_secs, events);
+                group.guard(guard, start, &end, dt, start_secs, events, parallel);
                 group.measures = (events.len() == before).then_some(end);
             }
             // Groups are by element count, not by index: events in index order.
@@ -755,6 +762,10 @@ impl Group {
 
     /// The guard's end-of-frame check of the frame that started at
     /// `start_secs`; appends an event per reset or pinned strand.
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the frame's measures and times, where events go, and how to run"
+    )]
     fn guard(
         &mut self,
         guard: &Guard,
@@ -763,18 +774,34 @@ impl Group {
         dt_secs: f64,
         start_secs: f64,
         events: &mut Vec<GuardEvent>,
+        parallel: bool,
     ) {
         let n = self.n;
         for standing in &mut self.guard_standing {
             standing.resets.tick();
         }
-        let batches = self
-            .q
-            .chunks_mut(n)
-            .zip(self.v.chunks_mut(n))
-            .zip(start.iter().zip(end));
-        for (batch, ((q, v), (start, end))) in batches.enumerate() {
-            let failed = check_and_reset(guard, &self.models[batch], q, v, start, end, dt_secs);
+        // Each batch's f64 checks (and resets) are its own: in parallel.
+        let check = |(((q, v), model), (start, end)): BatchCheck<'_>| {
+            check_and_reset(guard, model, q, v, start, end, dt_secs)
+        };
+        let failures: Vec<[Option<GuardCause>; LANES]> = if parallel {
+            self.q
+                .par_chunks_mut(n)
+                .zip(self.v.par_chunks_mut(n))
+                .zip(self.models.par_iter())
+                .zip(start.par_iter().zip(end))
+                .map(check)
+                .collect()
+        } else {
+            self.q
+                .chunks_mut(n)
+                .zip(self.v.chunks_mut(n))
+                .zip(self.models.iter())
+                .zip(start.iter().zip(end))
+                .map(check)
+                .collect()
+        };
+        for (batch, failed) in failures.into_iter().enumerate() {
             for (lane, cause) in failed.into_iter().enumerate() {
                 let standing = &mut self.guard_standing[batch * LANES + lane];
                 // A pinned strand is held, not judged.
