@@ -13,7 +13,7 @@
 
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-use wide::f32x8;
+use wide::{f32x8, f64x4};
 
 /// Strands per batch: one [`wide::f32x8`]. The width is the same on every
 /// build, so the data layout is too; results do not depend on the
@@ -245,23 +245,27 @@ impl Real for Lanes {
     }
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
-        // Lane by lane with the standard library, as the f64 path does:
-        // wide's polynomial sin/cos would differ from the reference by more
-        // than f32 round-off. Only batches with a tight coil (y ≥ 4 in some
-        // lane) get here, and the other lanes then hold the clamp's one
-        // value (x = 2) or a padding lane's copy: a lane equal to an
-        // earlier one reuses its results (the same bits; sin and cos were
-        // 8% of an imported groom's frame, measured by perf).
+        // In f64 lanes, rounded to f32 once: wide's f64x4 sin/cos (Agner
+        // Fog's vector class library: a three-part reduction by π/2 and
+        // degree-13 polynomials) is within about an ulp of f64, far below
+        // half an f32 ulp, so each result is the f32 nearest the true value
+        // but in the rarest ties, as the standard library's f32 functions
+        // give (wide's f32x8 sin/cos, a few f32 ulps off, would differ
+        // from the f64 reference by more than f32 round-off). Only batches
+        // with a tight coil (y ≥ 4 in some lane) get here; lane by lane
+        // with the standard library, sin and cos were 6% of an imported
+        // groom's frame (perf).
         let a = self.to_array();
-        let (mut sin, mut cos) = ([0.0; LANES], [0.0; LANES]);
-        for i in 0..LANES {
-            let bits = a[i].to_bits();
-            (sin[i], cos[i]) = match (0..i).find(|&j| a[j].to_bits() == bits) {
-                Some(j) => (sin[j], cos[j]),
-                None => (a[i].sin(), a[i].cos()),
-            };
-        }
-        (Self::from_array(sin), Self::from_array(cos))
+        let half = |i: usize| f64x4::from([0, 1, 2, 3].map(|j| f64::from(a[i + j])));
+        let (sin_low, cos_low) = half(0).sin_cos();
+        let (sin_high, cos_high) = half(4).sin_cos();
+        let join = |low: f64x4, high: f64x4| {
+            let (low, high) = (low.to_array(), high.to_array());
+            Self::from_array(std::array::from_fn(|i| {
+                (if i < 4 { low[i] } else { high[i - 4] }) as f32
+            }))
+        };
+        (join(sin_low, sin_high), join(cos_low, cos_high))
     }
     #[inline(always)]
     fn max(self, o: Self) -> Self {

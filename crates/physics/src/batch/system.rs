@@ -91,7 +91,10 @@ type BatchRef<'a> = (
 /// One batch's state and constants with its lanes' measures at the start
 /// and end of a frame, as the guard's check takes them.
 type BatchCheck<'a> = (
-    ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a Arc<LaneModel>),
+    (
+        (&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]),
+        &'a Arc<LaneModel>,
+    ),
     (&'a [StrandMeasure; LANES], &'a [StrandMeasure; LANES]),
 );
 
