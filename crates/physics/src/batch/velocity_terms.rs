@@ -171,6 +171,11 @@ pub fn velocity_product<T: Real>(
         *sums = result;
         plus = advance_local_with(&plus, length_m, k, k_plus, co_end[0]).0;
         minus = advance_local_with(&minus, length_m, k, k_minus, co_end[0]).0;
+        // The frame and the point depend on q alone, so the two sweeps'
+        // are the same bits; sharing them lets the compiler compute each
+        // product with them once for both sweeps.
+        minus.frame = plus.frame;
+        minus.point_m = plus.point_m;
     }
     // Tip to root: Q_e = own + a_eᵀ F_b + b_eᵀ τ_b, sums about e's end point.
     let (mut force, mut torque) = (V3::zero(), V3::zero());
