@@ -48,10 +48,12 @@ use super::vec::V3;
 #[derive(Clone, Copy, Debug)]
 pub struct LaneScreen {
     /// Each lane's root point in grid coordinates (cells from the grid's
-    /// first point, head axes).
-    root_cells: [[f32; 3]; LANES],
-    /// Each lane's root point minus the head's position, world, metres.
-    root_from_head_m: [[f32; 3]; LANES],
+    /// first point, head axes): x of every lane, then y, then z, so that a
+    /// coordinate's lanes load as one vector.
+    root_cells: [[f32; LANES]; 3],
+    /// Each lane's root point minus the head's position, world, metres
+    /// (laid out as `root_cells`).
+    root_from_head_m: [[f32; LANES]; 3],
     /// Rows of the head's body-from-world rotation over the cell size:
     /// world metres to grid cells.
     cells_from_world: [[f32; 3]; 3],
@@ -78,8 +80,10 @@ impl LaneScreen {
         let rows = body_from_world.transpose();
         let row = |v: DVec3| (v / field.cell_m).as_vec3().to_array();
         Self {
-            root_cells: root_positions_m.map(to_cells),
-            root_from_head_m: root_positions_m.map(|r| (r - head.position_m).as_vec3().to_array()),
+            root_cells: by_axis(root_positions_m.map(to_cells)),
+            root_from_head_m: by_axis(
+                root_positions_m.map(|r| (r - head.position_m).as_vec3().to_array()),
+            ),
             cells_from_world: [row(rows.x_axis), row(rows.y_axis), row(rows.z_axis)],
             head_velocity_m_per_s: head.velocity_m_per_s.as_vec3().to_array(),
             head_angular_velocity_rad_per_s: head.angular_velocity_rad_per_s.as_vec3().to_array(),
@@ -99,11 +103,11 @@ impl LaneScreen {
         velocity_m_per_s: V3<T>,
         implicit: bool,
     ) -> u32 {
-        let lanes3 = |a: &[[f32; 3]; LANES]| {
+        let lanes3 = |a: &[[f32; LANES]; 3]| {
             V3::new(
-                T::from_fn(|i| a[i][0]),
-                T::from_fn(|i| a[i][1]),
-                T::from_fn(|i| a[i][2]),
+                T::from_fn(|i| a[0][i]),
+                T::from_fn(|i| a[1][i]),
+                T::from_fn(|i| a[2][i]),
             )
         };
         let root = lanes3(&self.root_cells);
@@ -195,6 +199,11 @@ fn near_mask<T: Real>(near: &NearCells, grid: V3<T>, size: T) -> u32 {
         mask |= u32::from(may) << lane;
     }
     mask
+}
+
+/// Per-lane triples regrouped by axis: x of every lane, then y, then z.
+fn by_axis(per_lane: [[f32; 3]; LANES]) -> [[f32; LANES]; 3] {
+    std::array::from_fn(|axis| std::array::from_fn(|lane| per_lane[lane][axis]))
 }
 
 /// Per lane, the largest |component| of `v`.
