@@ -93,7 +93,7 @@ pub enum Part {
 }
 
 /// The head with the model on or off on `engine`, colliding.
-pub(super) fn build(groom: &Groom, engine: EngineKind, on: bool) -> anyhow::Result<HeadlessSim> {
+pub fn build(groom: &Groom, engine: EngineKind, on: bool) -> anyhow::Result<HeadlessSim> {
     let overrides = SimOverrides {
         engine: Some(engine),
         interaction: Some(on),
@@ -178,7 +178,7 @@ fn shake(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
 }
 
 /// The full head with its guides scaled to about `count` strands.
-pub(super) fn scaled_groom(count: usize) -> anyhow::Result<Groom> {
+pub fn scaled_groom(count: usize) -> anyhow::Result<Groom> {
     let mut style = Style::from_ron(FULL_HEAD_RON, "full_head.ron".as_ref())
         .context("the built-in full-head style")?;
     let total: u32 = style

@@ -106,23 +106,22 @@ pub fn read_batch(
     };
     let mu = settings.friction_per_s;
     let rho_s = model.mass_per_length();
-    for (c, lanes) in known.iter_mut().zip(points.chunks(LANES)) {
-        let new: [DVec3; LANES] = std::array::from_fn(|l| {
-            let reading = field.read(rest, settings, &lanes[l]);
+    // Lane by lane, root to tip: a strand's next sample is most often in
+    // the cell of its last, so the nodes it reads are still in cache
+    // (sample by sample across the lanes, each read is in another part of
+    // the head). Each sample's reading is its own: the order changes no
+    // number.
+    for l in 0..LANES {
+        let rho_s = f64::from(rho_s.lane(l));
+        for (c, point) in known.iter_mut().zip(points.iter().skip(l).step_by(LANES)) {
+            let reading = field.read(rest, settings, point);
             let push = head.world_from_body * reading.push_m_per_s2;
-            f64::from(rho_s.lane(l)) * (mu * reading.target_m_per_s + push)
-        });
-        *c = lanes_of(&new);
+            let value = rho_s * (mu * reading.target_m_per_s + push);
+            c.x.set_lane(l, value.x as f32);
+            c.y.set_lane(l, value.y as f32);
+            c.z.set_lane(l, value.z as f32);
+        }
     }
     let new = work(known, rates.new);
     *exchange = std::array::from_fn(|l| (old[l], new[l]));
-}
-
-/// f32 lanes of per-lane f64 vectors.
-fn lanes_of(values: &[DVec3; LANES]) -> V3<Lanes> {
-    V3::new(
-        Lanes::from_fn(|l| values[l].x as f32),
-        Lanes::from_fn(|l| values[l].y as f32),
-        Lanes::from_fn(|l| values[l].z as f32),
-    )
 }

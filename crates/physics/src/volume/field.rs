@@ -5,6 +5,7 @@
 //! answers to its step ([`super::reference`] for the f64 `HairSystem`).
 
 use glam::DVec3;
+use wide::f64x4;
 
 use super::friction::grid_velocity;
 use super::pressure::{excess, push_m_per_s2};
@@ -28,8 +29,9 @@ pub struct VolumeField {
     sums: NodeSums,
     /// The splat's per-piece sums, reused.
     pieces: Vec<NodeSums>,
-    /// Mean velocity u_n per node, m/s (zero at an empty node).
-    velocity: Vec<DVec3>,
+    /// Per node [u_n (m/s, three lanes; zero at an empty node), e_n]:
+    /// the mean velocity and the excess a read fetches together.
+    velocity_excess: Vec<f64x4>,
     density: Vec<f64>,
     excess: Vec<f64>,
 }
@@ -46,15 +48,18 @@ impl VolumeField {
         self.density.clear();
         self.density
             .extend((0..grid.node_count()).map(|n| self.sums.density_kg_per_m3(grid, n)));
-        self.velocity.clear();
-        self.velocity
-            .extend((0..grid.node_count()).map(|n| self.sums.velocity_m_per_s(n)));
         excess(
             &self.density,
             &rest.threshold_kg_per_m3,
             rest.typical_kg_per_m3,
             &mut self.excess,
         );
+        self.velocity_excess.clear();
+        self.velocity_excess
+            .extend(self.excess.iter().enumerate().map(|(n, e)| {
+                let u = self.sums.velocity_m_per_s(n);
+                f64x4::new([u.x, u.y, u.z, *e])
+            }));
     }
 
     /// What `point` reads from the field of the last [`Self::update`].
@@ -72,15 +77,18 @@ impl VolumeField {
         };
         // The weights' gradients only where some node is in excess: the
         // push is exactly zero elsewhere, and that is most of the hair.
-        let in_excess = nodes.iter().any(|n| self.excess[*n] > 0.0);
-        let push = match rest.grid.stencil(point.position_m) {
-            Some(stencil) if in_excess => {
-                push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2)
-            }
-            _ => DVec3::ZERO,
+        let in_excess = nodes
+            .iter()
+            .any(|n| self.velocity_excess[*n].as_array()[3] > 0.0);
+        // (The stencil is built only then: a `match` on it with an
+        // `if in_excess` guard would build it for every sample.)
+        let stencil = in_excess.then(|| rest.grid.stencil(point.position_m));
+        let push = match stencil.flatten() {
+            Some(stencil) => push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2),
+            None => DVec3::ZERO,
         };
         SampleReading {
-            target_m_per_s: grid_velocity(&nodes, &weights, &self.velocity),
+            target_m_per_s: grid_velocity(&nodes, &weights, &self.velocity_excess),
             push_m_per_s2: push,
         }
     }

@@ -33,6 +33,7 @@
 //! as contact has.
 
 use glam::DVec3;
+use wide::f64x4;
 
 #[cfg(doc)]
 use super::splat::NodeSums;
@@ -66,14 +67,19 @@ impl VolumePull<'_> {
 /// The grid velocity u(x) = Σ w_n u_n at a point with stencil `nodes` and
 /// `weights` ([`super::grid::Grid::weights`]), m/s, from the nodes' mean
 /// velocities u_n ([`NodeSums::velocity_m_per_s`], found once per node
-/// and frame).
+/// and frame) in the first three lanes of `node_velocity` (the fourth is
+/// not read): one four-lane multiply and add per node, the sum of the
+/// scalar products in the same order.
 #[inline]
-pub fn grid_velocity(nodes: &[usize; 8], weights: &[f64; 8], node_velocity: &[DVec3]) -> DVec3 {
-    nodes
+pub fn grid_velocity(nodes: &[usize; 8], weights: &[f64; 8], node_velocity: &[f64x4]) -> DVec3 {
+    let sum = nodes
         .iter()
         .zip(weights)
-        .map(|(node, w)| *w * node_velocity[*node])
-        .sum()
+        .fold(f64x4::ZERO, |sum, (node, w)| {
+            sum + f64x4::splat(*w) * node_velocity[*node]
+        });
+    let [x, y, z, _] = *sum.as_array();
+    DVec3::new(x, y, z)
 }
 
 /// One implicit step of the friction alone for a free sample:

@@ -122,7 +122,7 @@ impl Grid {
 
     /// The eight nodes around `p` and their weights (the stencil without
     /// gradients, which the splat does not need), or `None` outside.
-    #[inline]
+    #[inline(always)]
     pub fn weights(&self, p: DVec3) -> Option<([usize; 8], [f64; 8])> {
         let (nodes, frac) = self.cell(p)?;
         let weights = std::array::from_fn(|corner| {
@@ -141,7 +141,7 @@ impl Grid {
     /// The eight corner nodes of the cell holding `p` (corner c has bit
     /// a of c set when it is the upper node along axis a) and `p`'s
     /// position in the cell, 0..=1 per axis; `None` outside the box.
-    #[inline]
+    #[inline(always)]
     fn cell(&self, p: DVec3) -> Option<([usize; 8], [f64; 3])> {
         let local = (p - self.origin_m) / self.cell_m;
         let mut base = [0usize; 3];

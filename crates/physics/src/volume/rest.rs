@@ -48,15 +48,14 @@ impl RestDensity {
         let density: Vec<f64> = (0..grid.node_count())
             .map(|n| sums.density_kg_per_m3(&grid, n))
             .collect();
-        let total: f64 = sums.mass_kg.iter().sum();
+        let total: f64 = (0..sums.len()).map(|n| sums.mass_kg(n)).sum();
         if total <= 0.0 || !total.is_finite() {
             return None;
         }
-        let typical = sums
-            .mass_kg
+        let typical = density
             .iter()
-            .zip(&density)
-            .map(|(m, rho)| m * rho)
+            .enumerate()
+            .map(|(n, rho)| sums.mass_kg(n) * rho)
             .sum::<f64>()
             / total;
         let threshold = density
