@@ -197,7 +197,8 @@ fn phi_jet<T: Real>(sigma: T, k: V3<T>, k_dot: V3<T>, co: Coefficients<T>) -> Ph
     PhiJet {
         phi,
         phi_dot,
-        y: y_at(sigma, k),
+        // φ·φ, the operations of `y_at`: the bits the coefficients saw.
+        y: phi.dot(phi),
         y_dot: pd + pd,
         y_ddot: dd + dd,
         co,

@@ -35,18 +35,19 @@ const CORNER_MARGIN_M: f64 = 1e-12;
 /// within the skin (the lookup interpolates between them, so a point of a
 /// cell with every corner beyond the skin feels no force). A skipped point
 /// costs one bit instead of eight grid values and the gradient: most
-/// points of a head of hair are nowhere near the scalp. 1 bit per cell:
-/// 256 KiB for the largest field ([`MAX_CELLS`](crate::collision::sdf::MAX_CELLS)).
+/// points of a head of hair are nowhere near the scalp. 2 bits per cell
+/// (the set and the set grown by a cell): 512 KiB for the largest field
+/// ([`MAX_CELLS`](crate::collision::sdf::MAX_CELLS)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct NearCells {
+    /// Cell i's bit at index i < `count`; then, at `count` + i, the same
+    /// set grown by one cell along every axis (set where cell i or one of
+    /// its 26 neighbours is near). The exact test reads the first half; the
+    /// f32 lane screen ([`super::lane_screen`]) reads a point's own cell
+    /// where it is well inside it, and the grown set where it is within
+    /// rounding of a face, so that rounding can never move it out of a
+    /// near cell's reach.
     bits: Vec<u64>,
-    /// What the f32 lane screen ([`super::lane_screen`]) reads: the cells'
-    /// bits (index i < `count`) followed by the same set grown by one cell
-    /// along every axis (index `count` + i: set where cell i or one of its
-    /// 26 neighbours is near). A point well inside a cell reads its cell's
-    /// own bit; one within rounding of a face reads the grown set, so that
-    /// rounding can never move it out of a near cell's reach.
-    screen: Vec<u64>,
     cells: [usize; 3],
     count: usize,
 }
@@ -56,7 +57,7 @@ impl NearCells {
     pub fn new(field: &SignedDistanceField, skin_m: f64) -> Self {
         let cells = field.dims.map(|d| d.saturating_sub(1));
         let count = cells[0] * cells[1] * cells[2];
-        let mut bits = vec![0u64; count.div_ceil(64)];
+        let mut bits = vec![0u64; (2 * count).div_ceil(64)];
         for z in 0..cells[2] {
             for y in 0..cells[1] {
                 for x in 0..cells[0] {
@@ -73,21 +74,8 @@ impl NearCells {
                 }
             }
         }
-        let grown = grow_by_one_cell(&bits, cells);
-        let mut screen = vec![0u64; (2 * count).div_ceil(64)];
-        for i in 0..count {
-            for (set, at) in [(bit(&bits, i), i), (bit(&grown, i), count + i)] {
-                if set {
-                    screen[at / 64] |= 1 << (at % 64);
-                }
-            }
-        }
-        Self {
-            bits,
-            screen,
-            cells,
-            count,
-        }
+        grow_by_one_cell(&mut bits, cells, count);
+        Self { bits, cells, count }
     }
 
     /// Cells in the grid.
@@ -103,7 +91,8 @@ impl NearCells {
     /// Whether cell (x, y, z) may be within the skin.
     #[inline(always)]
     pub fn contains(&self, x: usize, y: usize, z: usize) -> bool {
-        bit(&self.bits, x + self.cells[0] * (y + self.cells[1] * z))
+        let i = x + self.cells[0] * (y + self.cells[1] * z);
+        i < self.count && bit(&self.bits, i)
     }
 
     /// For `index` = x + cells_x (y + cells_y z) below [`Self::cell_count`],
@@ -111,7 +100,7 @@ impl NearCells {
     /// whether it or one of its neighbours may be.
     #[inline(always)]
     pub fn screen_contains(&self, index: usize) -> bool {
-        bit(&self.screen, index)
+        bit(&self.bits, index)
     }
 }
 
@@ -122,10 +111,10 @@ fn bit(bits: &[u64], i: usize) -> bool {
         .is_some_and(|word| word & (1 << (i % 64)) != 0)
 }
 
-/// `bits` (one per cell of a `cells` grid, x fastest) with every set
-/// cell's 26 neighbours set too.
-fn grow_by_one_cell(bits: &[u64], cells: [usize; 3]) -> Vec<u64> {
-    let mut grown = vec![0u64; bits.len()];
+/// Sets, in the second half of `bits` (from index `count`), the first
+/// half's cells (one per cell of a `cells` grid, x fastest) with every set
+/// cell's 26 neighbours.
+fn grow_by_one_cell(bits: &mut [u64], cells: [usize; 3], count: usize) {
     let index = |x: usize, y: usize, z: usize| x + cells[0] * (y + cells[1] * z);
     let around = |c: usize, n: usize| c.saturating_sub(1)..(c + 2).min(n);
     for z in 0..cells[2] {
@@ -137,15 +126,14 @@ fn grow_by_one_cell(bits: &[u64], cells: [usize; 3]) -> Vec<u64> {
                 for nz in around(z, cells[2]) {
                     for ny in around(y, cells[1]) {
                         for nx in around(x, cells[0]) {
-                            let i = index(nx, ny, nz);
-                            grown[i / 64] |= 1 << (i % 64);
+                            let i = count + index(nx, ny, nz);
+                            bits[i / 64] |= 1 << (i % 64);
                         }
                     }
                 }
             }
         }
     }
-    grown
 }
 
 /// The head's collider for one step, with its [`NearCells`]: whether a

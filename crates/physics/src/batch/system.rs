@@ -122,9 +122,9 @@ impl Scratch {
 
     /// Runs `f` with this thread's buffers for `n` elements and
     /// `iterations` GMRES iterations, made on the thread's first batch of
-    /// that size and kept: rayon's `for_each_init` made them afresh for
-    /// every piece of work it split off (about 140 a frame on Sintel,
-    /// 20 KB each, zero-filled). Nothing in a step calls back into rayon,
+    /// that size and kept, on the parallel and the serial path alike:
+    /// rayon's `for_each_init` made them afresh for every piece of work it
+    /// split off (about 140 a frame on Sintel, 20 KB each, zero-filled). Nothing in a step calls back into rayon,
     /// so the borrow is never taken twice.
     fn with_thread_scratch<R>(n: usize, iterations: usize, f: impl FnOnce(&mut Scratch) -> R) -> R {
         thread_local! {
@@ -920,14 +920,15 @@ impl Group {
                     })
                 });
         } else {
-            let mut scratch = Scratch::new(n, step_kind.iterations());
-            self.q
-                .chunks_mut(n)
-                .zip(self.v.chunks_mut(n))
-                .zip(self.roots.chunks(LANES))
-                .zip(self.models.iter())
-                .enumerate()
-                .for_each(|batch| step_batch(&mut scratch, batch));
+            Scratch::with_thread_scratch(n, step_kind.iterations(), |scratch| {
+                self.q
+                    .chunks_mut(n)
+                    .zip(self.v.chunks_mut(n))
+                    .zip(self.roots.chunks(LANES))
+                    .zip(self.models.iter())
+                    .enumerate()
+                    .for_each(|batch| step_batch(scratch, batch))
+            });
         }
     }
 }
