@@ -105,12 +105,14 @@
 //! `tests/batch_volume.rs` (its known answers, and agreement with the
 //! reference running it).
 
+mod batch_step;
 pub mod block_diagonal;
 pub mod contact;
 pub mod dense;
 pub mod exact;
 pub mod forward;
 pub mod geometry;
+mod group;
 pub mod guard;
 pub mod implicit;
 pub mod lane_model;
