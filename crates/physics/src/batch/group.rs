@@ -12,6 +12,7 @@ use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
+use super::pull::SamplePull;
 use super::vec::V3;
 use super::volume::{BatchVolume, GroupView};
 use crate::frame_balance::StrandMeasure;
@@ -33,12 +34,23 @@ pub(super) struct Group {
     /// Batch-major: batch b's element e is entry b·N + e.
     pub(super) q: Vec<V3<Lanes>>,
     pub(super) v: Vec<V3<Lanes>>,
-    /// The guard's per-lane measures at the end of the last frame, while
-    /// the state has not changed since.
-    pub(super) measures: Option<Vec<[StrandMeasure; LANES]>>,
-    /// Per strand (batch-major, padding included): its recent resets and
-    /// whether the guard pinned it.
-    guard_standing: Vec<LaneStanding>,
+    /// Per batch: the guard's measures of its lanes, at the start of the
+    /// frame while it steps, at its end once the frame is judged.
+    pub(super) measures: Vec<[StrandMeasure; LANES]>,
+    /// Whether `measures` describe the state as it is (false after a
+    /// reset, a new strand or a state set from outside).
+    pub(super) measured: bool,
+    /// Per batch: its lanes' standing with the guard.
+    standing: Vec<BatchStanding>,
+}
+
+/// One batch's standing with the guard.
+#[derive(Clone, Copy, Debug, Default)]
+struct BatchStanding {
+    /// Per lane: what the last check found (`None`: passed, or not judged).
+    failed: [Option<GuardCause>; LANES],
+    /// Per lane: its recent resets and whether the guard pinned it.
+    lanes: [LaneStanding; LANES],
 }
 
 /// One strand's standing with the batch guard.
@@ -48,28 +60,43 @@ struct LaneStanding {
     pinned: bool,
 }
 
-/// One batch's state, roots and constants, read only, as the guard's
-/// measure takes them.
+/// What the guard needs to judge a frame at its end, batch by batch, in
+/// the same pass as the frame's last substep: each batch is measured and
+/// checked right after it stepped, while its state and constants are
+/// still in cache (a separate pass over the whole group found them gone:
+/// the measure's loads missed, a third of its time).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FrameCheck<'a> {
+    pub(super) guard: &'a Guard,
+    /// The head at the end of the frame.
+    pub(super) motion: &'a RigidMotion,
+    /// The head's contact with the head there, if a collider is set.
+    pub(super) contact: Option<SkinTest<'a>>,
+    /// The frame's length, s.
+    pub(super) dt_secs: f64,
+}
+
+/// One batch's state, roots and constants, read only, with where its
+/// measures go, as the guard's start-of-frame measure takes them.
 type BatchView<'a> = (
-    ((&'a [V3<Lanes>], &'a [V3<Lanes>]), &'a [RootPose]),
-    &'a Arc<LaneModel>,
-);
-
-/// One batch's state, roots and constants, as the step's iterators hand
-/// them out.
-type BatchRef<'a> = (
-    ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]),
-    &'a Arc<LaneModel>,
-);
-
-/// One batch's state and constants with its lanes' measures at the start
-/// and end of a frame, as the guard's check takes them.
-type BatchCheck<'a> = (
     (
-        (&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]),
+        ((&'a [V3<Lanes>], &'a [V3<Lanes>]), &'a [RootPose]),
         &'a Arc<LaneModel>,
     ),
-    (&'a [StrandMeasure; LANES], &'a [StrandMeasure; LANES]),
+    &'a mut [StrandMeasure; LANES],
+);
+
+/// One batch's state, roots, constants, measures and standing, as the
+/// step's iterators hand them out.
+type BatchRef<'a> = (
+    (
+        (
+            ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]),
+            &'a Arc<LaneModel>,
+        ),
+        &'a mut [StrandMeasure; LANES],
+    ),
+    &'a mut BatchStanding,
 );
 
 impl Group {
@@ -82,8 +109,9 @@ impl Group {
             strands: Vec::new(),
             q: Vec::new(),
             v: Vec::new(),
-            measures: None,
-            guard_standing: Vec::new(),
+            measures: Vec::new(),
+            measured: false,
+            standing: Vec::new(),
         }
     }
 
@@ -106,7 +134,8 @@ impl Group {
             self.models.push(uniform.clone());
             self.q.extend_from_slice(&uniform.natural);
             self.v.extend(std::iter::repeat_n(V3::zero(), n));
-            self.guard_standing.extend([LaneStanding::default(); LANES]);
+            self.measures.push(Default::default());
+            self.standing.push(BatchStanding::default());
         } else {
             // Batches of one call already hold `model` in every lane.
             if !Arc::ptr_eq(&self.models[batch], uniform) {
@@ -116,32 +145,32 @@ impl Group {
             for l in lane..LANES {
                 let (q, v) = (&mut self.q[range.clone()], &mut self.v[range.clone()]);
                 set_natural_at_rest(&self.models[batch], q, v, l);
-                self.guard_standing[batch * LANES + l] = LaneStanding::default();
+                self.standing[batch].lanes[l] = LaneStanding::default();
             }
         }
         self.roots.push(root);
         self.strands.push(strand);
-        self.measures = None;
+        self.measured = false;
         slot
     }
 
-    /// Per batch, the guard's measures of every lane for the head moving
-    /// as `motion` (see [`super::guard`]).
+    /// Measures every lane for the head moving as `motion` (see
+    /// [`super::guard`]) into `measures`: the start of a frame, where the
+    /// last frame's end measures do not describe the state.
     pub(super) fn measure(
-        &self,
+        &mut self,
         motion: &RigidMotion,
         env: &StepEnv,
         contact: Option<&SkinTest<'_>>,
         pulls: Option<(&BatchVolume, usize)>,
         parallel: bool,
-    ) -> Vec<[StrandMeasure; LANES]> {
+    ) {
         let n = self.n;
-        let one = |(b, (((q, v), roots), model)): (usize, BatchView<'_>)| {
-            let motions: [RigidMotion; LANES] =
-                std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
+        let one = |(b, ((((q, v), roots), model), out)): (usize, BatchView<'_>)| {
+            let motions = carried(motion, roots);
             let root = RootMotion::<Lanes>::gather(&motions);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            measure_lanes(&**model, env, &root, &motions, q, v, contact, pull.as_ref())
+            *out = measure_lanes(&**model, env, &root, &motions, q, v, contact, pull.as_ref());
         };
         if parallel {
             self.q
@@ -149,19 +178,20 @@ impl Group {
                 .zip(self.v.par_chunks(n))
                 .zip(self.roots.par_chunks(LANES))
                 .zip(self.models.par_iter())
+                .zip(self.measures.par_iter_mut())
                 .enumerate()
-                .map(one)
-                .collect()
+                .for_each(one);
         } else {
             self.q
                 .chunks(n)
                 .zip(self.v.chunks(n))
                 .zip(self.roots.chunks(LANES))
                 .zip(self.models.iter())
+                .zip(self.measures.iter_mut())
                 .enumerate()
-                .map(one)
-                .collect()
+                .for_each(one);
         }
+        self.measured = true;
     }
 
     /// The group as the hair–hair model's gather reads it.
@@ -175,58 +205,30 @@ impl Group {
         }
     }
 
-    /// The guard's end-of-frame check of the frame that started at
-    /// `start_secs`; appends an event per reset or pinned strand.
-    #[expect(
-        clippy::too_many_arguments,
-        reason = "the frame's measures and times, where events go, and how to run"
-    )]
-    pub(super) fn guard(
+    /// Turns the last check's findings ([`FrameCheck`], made in the
+    /// frame's last substep) into the guard's record for the frame that
+    /// started at `start_secs`: appends an event per reset or pinned strand.
+    /// The measures stay the start of the next frame unless a strand was
+    /// reset.
+    pub(super) fn record_check(
         &mut self,
         guard: &Guard,
-        start: &[[StrandMeasure; LANES]],
-        end: &[[StrandMeasure; LANES]],
-        dt_secs: f64,
         start_secs: f64,
         events: &mut Vec<GuardEvent>,
-        parallel: bool,
     ) {
-        let n = self.n;
-        for standing in &mut self.guard_standing {
-            standing.resets.tick();
-        }
-        // Each batch's f64 checks (and resets) are its own: in parallel.
-        let check = |(((q, v), model), (start, end)): BatchCheck<'_>| {
-            check_and_reset(guard, model, q, v, start, end, dt_secs)
-        };
-        let failures: Vec<[Option<GuardCause>; LANES]> = if parallel {
-            self.q
-                .par_chunks_mut(n)
-                .zip(self.v.par_chunks_mut(n))
-                .zip(self.models.par_iter())
-                .zip(start.par_iter().zip(end))
-                .map(check)
-                .collect()
-        } else {
-            self.q
-                .chunks_mut(n)
-                .zip(self.v.chunks_mut(n))
-                .zip(self.models.iter())
-                .zip(start.iter().zip(end))
-                .map(check)
-                .collect()
-        };
-        for (batch, failed) in failures.into_iter().enumerate() {
-            for (lane, cause) in failed.into_iter().enumerate() {
-                let standing = &mut self.guard_standing[batch * LANES + lane];
+        let before = events.len();
+        for (batch, standing) in self.standing.iter_mut().enumerate() {
+            let failed = std::mem::take(&mut standing.failed);
+            for (lane, (cause, standing)) in failed.into_iter().zip(&mut standing.lanes).enumerate()
+            {
+                standing.resets.tick();
                 // A pinned strand is held, not judged.
                 let Some(cause) = cause.filter(|_| !standing.pinned) else {
                     continue;
                 };
                 standing.pinned = standing.resets.record_reset(guard);
-                let local = batch * LANES + lane;
                 // Padding lanes are reset too, but name no strand.
-                if let Some(&strand) = self.strands.get(local) {
+                if let Some(&strand) = self.strands.get(batch * LANES + lane) {
                     events.push(GuardEvent {
                         strand,
                         time_secs: start_secs,
@@ -240,26 +242,17 @@ impl Group {
                 }
             }
         }
+        self.measured = events.len() == before;
     }
 
-    /// Puts every pinned strand back at its natural shape, at rest.
-    pub(super) fn hold_pinned(&mut self) {
-        let n = self.n;
-        for (i, standing) in self.guard_standing.iter().enumerate() {
-            if !standing.pinned {
-                continue;
-            }
-            let (batch, lane) = (i / LANES, i % LANES);
-            let range = batch * n..(batch + 1) * n;
-            set_natural_at_rest(
-                &self.models[batch],
-                &mut self.q[range.clone()],
-                &mut self.v[range],
-                lane,
-            );
-        }
-    }
-
+    /// One substep of every batch, the head moving as `motion`; with
+    /// `check` (the frame's last substep, guard on), each batch is then
+    /// measured and judged at once ([`judge_batch`]) and
+    /// [`Self::record_check`] records what failed.
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the substep's head, forces and kind, the frame's check, and how to run"
+    )]
     pub(super) fn step(
         &mut self,
         motion: &RigidMotion,
@@ -267,35 +260,42 @@ impl Group {
         step_kind: BatchStep,
         contact: Option<SkinTest<'_>>,
         pulls: Option<(&BatchVolume, usize)>,
+        check: Option<&FrameCheck<'_>>,
         parallel: bool,
     ) {
         let n = self.n;
-        let step_batch =
-            |scratch: &mut Scratch, (b, (((q, v), roots), model)): (usize, BatchRef<'_>)| {
-                let motions: [RigidMotion; LANES] =
-                    std::array::from_fn(|i| motion.carry(&roots[i.min(roots.len() - 1)]));
-                let root = RootMotion::<Lanes>::gather(&motions);
-                let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-                // One branch per batch: without a collider, the sweep has no
-                // contact stage at all.
-                match contact {
-                    Some(test) => {
-                        let positions = std::array::from_fn(|i| motions[i].position_m);
-                        let implicit = step_kind != BatchStep::BlockDiagonal;
-                        let end_force = LaneContact::new(test, model, positions, implicit);
-                        step_pulled(model, env, &root, step_kind, q, v, scratch, end_force, pull);
-                    }
-                    None => {
-                        step_pulled(model, env, &root, step_kind, q, v, scratch, NoContact, pull)
-                    }
+        let step_batch = |scratch: &mut Scratch,
+                          (b, (((((q, v), roots), model), measures), standing)): (
+            usize,
+            BatchRef<'_>,
+        )| {
+            let motions = carried(motion, roots);
+            let root = RootMotion::<Lanes>::gather(&motions);
+            let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
+            // One branch per batch: without a collider, the sweep has no
+            // contact stage at all.
+            match contact {
+                Some(test) => {
+                    let positions = std::array::from_fn(|i| motions[i].position_m);
+                    let implicit = step_kind != BatchStep::BlockDiagonal;
+                    let end_force = LaneContact::new(test, model, positions, implicit);
+                    step_pulled(model, env, &root, step_kind, q, v, scratch, end_force, pull);
                 }
-            };
+                None => step_pulled(model, env, &root, step_kind, q, v, scratch, NoContact, pull),
+            }
+            if let Some(check) = check {
+                let batch = BatchState { model, roots, q, v };
+                standing.failed = judge_batch(check, env, batch, measures, &standing.lanes, pull);
+            }
+        };
         if parallel {
             self.q
                 .par_chunks_mut(n)
                 .zip(self.v.par_chunks_mut(n))
                 .zip(self.roots.par_chunks(LANES))
                 .zip(self.models.par_iter())
+                .zip(self.measures.par_iter_mut())
+                .zip(self.standing.par_iter_mut())
                 .enumerate()
                 .for_each(|batch| {
                     Scratch::with_thread_scratch(n, step_kind.iterations(), |scratch| {
@@ -309,9 +309,54 @@ impl Group {
                     .zip(self.v.chunks_mut(n))
                     .zip(self.roots.chunks(LANES))
                     .zip(self.models.iter())
+                    .zip(self.measures.iter_mut())
+                    .zip(self.standing.iter_mut())
                     .enumerate()
                     .for_each(|batch| step_batch(scratch, batch))
             });
         }
     }
+}
+
+/// Each lane's root motion for the head moving as `head` (padding lanes
+/// copy the batch's last root).
+fn carried(head: &RigidMotion, roots: &[RootPose]) -> [RigidMotion; LANES] {
+    std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]))
+}
+
+/// One batch as the guard's end-of-frame judgement takes it.
+struct BatchState<'a> {
+    model: &'a LaneModel,
+    roots: &'a [RootPose],
+    q: &'a mut [V3<Lanes>],
+    v: &'a mut [V3<Lanes>],
+}
+
+/// The guard's end of a frame for one batch that has just stepped: holds
+/// its pinned lanes at rest, measures every lane at the end of the frame,
+/// checks each against its start `measures` (which then become the end's)
+/// and resets the lanes that fail; returns, per lane, what failed. Not
+/// inlined: folded into the step's closure it made the whole step twice as
+/// slow (one function too large for the compiler to keep the step's lanes
+/// in registers), guard on or off.
+#[inline(never)]
+fn judge_batch(
+    check: &FrameCheck<'_>,
+    env: &StepEnv,
+    batch: BatchState<'_>,
+    measures: &mut [StrandMeasure; LANES],
+    standing: &[LaneStanding; LANES],
+    pull: Option<SamplePull<'_>>,
+) -> [Option<GuardCause>; LANES] {
+    let BatchState { model, roots, q, v } = batch;
+    for (lane, _) in standing.iter().enumerate().filter(|(_, s)| s.pinned) {
+        set_natural_at_rest(model, q, v, lane);
+    }
+    let motions = carried(check.motion, roots);
+    let root = RootMotion::<Lanes>::gather(&motions);
+    let contact = check.contact.as_ref();
+    let end = measure_lanes(model, env, &root, &motions, q, v, contact, pull.as_ref());
+    let failed = check_and_reset(check.guard, model, q, v, measures, &end, check.dt_secs);
+    *measures = end;
+    failed
 }

@@ -8,10 +8,12 @@
 //! [`measure_lanes`] sweeps the batch root to tip in f32 lanes, summing
 //! over the quadrature samples each lane's kinetic, elastic and
 //! gravitational energy, momentum, angular momentum about the root, the
-//! external forces with their torque and power (drag, the head's
-//! contact at the element end points, as the step applies it, and the
-//! hair–hair model's pull, [`super::pull`]), and the
-//! fastest point relative to the root's rigid motion. Each lane's sums go
+//! external forces with their torque and power (gravity, drag and the
+//! hair–hair model's pull, [`super::pull`]), whether the head's contact
+//! acts at any element end point, as the step applies it (a frame in
+//! contact is judged by finiteness and speed alone, so the contact's force
+//! itself is not summed), and the fastest point relative to the root's
+//! rigid motion. Each lane's sums go
 //! into a [`StrandMeasure`], and [`Guard::check`] judges the frame from
 //! the measures at its start and end: finite, true speed under the limit,
 //! no energy that no force put in (with an allowance for f32 round-off,
@@ -147,9 +149,9 @@ pub fn measure_lanes(
     force += g.scale(mass) - (momentum - air.scale(mass)).scale(drag_per_mass);
     torque += first_moment.cross(g) - (angular - first_moment.cross(air)).scale(drag_per_mass);
     power -= (kinetic + kinetic - air.dot(momentum)) * drag_per_mass;
-    let contact_force = match contact {
-        Some(contact) => end_point_contact(model, contact, motions, &ends),
-        None => Default::default(),
+    let in_contact = match contact {
+        Some(contact) => lanes_in_contact(model, contact, motions, &ends),
+        None => 0,
     };
     std::array::from_fn(|lane| {
         let x = |t: Lanes| f64::from(t.lane(lane));
@@ -158,7 +160,7 @@ pub fn measure_lanes(
         let gravity = DVec3::from_array(env.gravity_m_per_s2.map(f64::from));
         let relative_gravity_j = -gravity.dot(x3(first_moment));
         let gravity_j = relative_gravity_j - x(mass) * gravity.dot(motion.position_m);
-        let mut out = StrandMeasure {
+        StrandMeasure {
             kinetic_j: x(kinetic),
             energy_j: x(kinetic) + x(elastic) + gravity_j,
             size_j: x(kinetic) + x(elastic) + relative_gravity_j.abs(),
@@ -169,7 +171,7 @@ pub fn measure_lanes(
             external_power_w: x(power),
             contact_power_w: 0.0,
             contact_j: 0.0,
-            in_contact: !contact_force[lane].is_empty(),
+            in_contact: in_contact & (1 << lane) != 0,
             root_velocity_m_per_s: motion.velocity_m_per_s,
             root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
             root_acceleration_m_per_s2: motion.acceleration_m_per_s2,
@@ -177,38 +179,37 @@ pub fn measure_lanes(
             mass_kg: x(mass),
             second_moment_kg_m2: x(second_moment),
             fastest_relative_m_per_s: x(fastest),
-        };
-        for (point, velocity, f) in &contact_force[lane] {
-            out.external_force_n += *f;
-            out.external_torque_n_m += point.cross(*f);
-            out.external_power_w += f.dot(*velocity);
-            out.contact_power_w += f.dot(*velocity);
         }
-        out
     })
 }
 
-/// Per lane, the head contact's force at each element end point of a
-/// batch whose end points (relative to each lane's root) and velocities
-/// are `ends`: (point, velocity, force in N), for the points with a force.
-/// The step's contact: f at each end point, carrying half of each element
-/// beside it ([`super::contact`]), screened in lanes first
-/// ([`super::lane_screen`]), then as the step screens (exact: a rejected
-/// point has no force), then the implicit push: where it acts is where the
-/// Exact steps' contact acts, and a superset of where the explicit penalty
-/// does (only "is there contact" and the balance's external terms use it).
-fn end_point_contact(
+/// Per lane (bit `lane` of the mask), whether the head's contact acts at
+/// any element end point of a batch whose end points (relative to each
+/// lane's root) and velocities are `ends`. The step's contact: a force at
+/// each end point, carrying half of each element beside it
+/// ([`super::contact`]), screened in lanes first ([`super::lane_screen`]),
+/// then as the step screens (exact: a rejected point has no force), then
+/// the implicit push: where it acts is where the Exact steps' contact
+/// acts, and a superset of where the explicit penalty does.
+///
+/// Only "is there contact" is found, not the force: a frame that starts or
+/// ends in contact is judged by finiteness and true speed alone
+/// ([`Guard::check_with_round_off`]), so the contact's work never enters a
+/// verdict. A lane stops being tested at its first point in contact, and
+/// the sweep at the point where every lane is.
+fn lanes_in_contact(
     model: &impl Constants<Lanes>,
     contact: &SkinTest<'_>,
     motions: &[RigidMotion; LANES],
     ends: &[(V3<Lanes>, V3<Lanes>)],
-) -> [Vec<(DVec3, DVec3, DVec3)>; LANES] {
-    let mut contact_force: [Vec<(DVec3, DVec3, DVec3)>; LANES] = Default::default();
+) -> u32 {
+    const ALL: u32 = (1 << LANES) - 1;
     let screen = LaneScreen::new(contact, &motions.map(|m| m.position_m));
     let rho_s = model.mass_per_length();
     let n = ends.len();
+    let mut found = 0;
     for (e, (point_m, velocity_m_per_s)) in ends.iter().enumerate() {
-        let screened = screen.may_feel(contact.near, *point_m, *velocity_m_per_s, true);
+        let screened = screen.may_feel(contact.near, *point_m, *velocity_m_per_s, true) & !found;
         if screened == 0 {
             continue;
         }
@@ -218,10 +219,7 @@ fn end_point_contact(
             Lanes::splat(0.0)
         };
         let share = model.length_m(e) + next_m;
-        for (lane, list) in contact_force.iter_mut().enumerate() {
-            if screened & (1 << lane) == 0 {
-                continue;
-            }
+        for lane in (0..LANES).filter(|lane| screened & (1 << lane) != 0) {
             let pick = |x: V3<Lanes>| {
                 DVec3::new(
                     f64::from(x.x.lane(lane)),
@@ -229,9 +227,8 @@ fn end_point_contact(
                     f64::from(x.z.lane(lane)),
                 )
             };
-            let point = pick(*point_m);
             let velocity = pick(*velocity_m_per_s);
-            let world = motions[lane].position_m + point;
+            let world = motions[lane].position_m + pick(*point_m);
             if !contact.may_feel(world, velocity, true) {
                 continue;
             }
@@ -241,11 +238,14 @@ fn end_point_contact(
                 .map_or(DVec3::ZERO, |c| c.force_n_per_m)
                 * f64::from(0.5 * share.lane(lane));
             if f != DVec3::ZERO {
-                list.push((point, velocity, f));
+                found |= 1 << lane;
             }
         }
+        if found == ALL {
+            break;
+        }
     }
-    contact_force
+    found
 }
 
 /// The velocity the root's rigid motion gives a point `r` (relative to the

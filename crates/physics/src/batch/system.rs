@@ -25,7 +25,7 @@ use super::batch_step::{BatchStep, krylov_bytes_per_element};
 use super::contact::{NearCells, SkinTest};
 use super::exact::Elimination;
 use super::forward::{FrameState, advance};
-use super::group::Group;
+use super::group::{FrameCheck, Group};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
@@ -33,7 +33,6 @@ use super::vec::V3;
 use super::volume::{BatchVolume, GroupView};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
-use crate::frame_balance::StrandMeasure;
 use crate::guard::{Guard, GuardAction, GuardEvent};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -163,7 +162,7 @@ impl BatchSystem {
         self.settings.interaction = settings;
         // The guard's reused measures counted the old model's work.
         for group in &mut self.groups {
-            group.measures = None;
+            group.measured = false;
         }
         match (&mut self.volume, settings.enabled) {
             (Some(volume), true) => volume.state_mut().set_settings(settings),
@@ -284,58 +283,56 @@ impl BatchSystem {
             volume.prepare(&views, &head.motion_at(start_secs), self.parallel);
         }
         let volume = self.volume.as_ref();
-        let start_measures: Vec<Vec<[StrandMeasure; LANES]>> = match self.guard {
-            Some(_) => {
-                let motion = head.motion_at(start_secs);
-                let contact = contact_test(&self.collider, self.contact, &motion, h);
-                let parallel = self.parallel;
-                self.groups
-                    .iter_mut()
-                    .enumerate()
-                    .map(|(i, g)| match g.measures.take() {
-                        // The model's pull is new each frame: the reused
-                        // measure counts its work instead of the old one's.
-                        Some(mut m) => {
-                            if let Some(volume) = volume {
-                                volume.exchange_start_work(i, &mut m);
-                            }
-                            m
-                        }
-                        None => {
-                            let pulls = volume.map(|v| (v, i));
-                            g.measure(&motion, &env, contact.as_ref(), pulls, parallel)
-                        }
-                    })
-                    .collect()
-            }
-            None => Vec::new(),
-        };
-        for _ in 0..self.settings.substeps {
-            let motion = head.motion_at(self.time_secs);
+        if self.guard.is_some() {
+            let motion = head.motion_at(start_secs);
             let contact = contact_test(&self.collider, self.contact, &motion, h);
             for (i, group) in self.groups.iter_mut().enumerate() {
-                let pulls = volume.map(|v| (v, i));
-                group.step(&motion, &env, step_kind, contact, pulls, self.parallel);
+                if !group.measured {
+                    let pulls = volume.map(|v| (v, i));
+                    group.measure(&motion, &env, contact.as_ref(), pulls, self.parallel);
+                } else if let Some(volume) = volume {
+                    // The model's pull is new each frame: the reused
+                    // measure counts its work instead of the old one's.
+                    volume.exchange_start_work(i, &mut group.measures);
+                }
             }
-            self.time_secs += h;
+        }
+        for substep in 0..self.settings.substeps {
+            let motion = head.motion_at(self.time_secs);
+            let contact = contact_test(&self.collider, self.contact, &motion, h);
+            let end_secs = self.time_secs + h;
+            // The guard judges the frame in its last substep's pass.
+            let last = substep + 1 == self.settings.substeps;
+            let end_motion = (last && self.guard.is_some()).then(|| head.motion_at(end_secs));
+            let check = self.guard.as_ref().zip(end_motion.as_ref());
+            let check = check.map(|(guard, motion)| FrameCheck {
+                guard,
+                motion,
+                contact: contact_test(&self.collider, self.contact, motion, h),
+                dt_secs: self.settings.dt_secs,
+            });
+            for (i, group) in self.groups.iter_mut().enumerate() {
+                let pulls = volume.map(|v| (v, i));
+                let check = check.as_ref();
+                group.step(
+                    &motion,
+                    &env,
+                    step_kind,
+                    contact,
+                    pulls,
+                    check,
+                    self.parallel,
+                );
+            }
+            self.time_secs = end_secs;
         }
         self.head = head.motion_at(self.time_secs);
         self.last_resets.clear();
         self.last_pins.clear();
         self.last_events.clear();
         if let Some(guard) = &self.guard {
-            let motion = self.head;
-            let contact = contact_test(&self.collider, self.contact, &motion, h);
-            let dt = self.settings.dt_secs;
-            let parallel = self.parallel;
-            let events = &mut self.last_events;
-            for (i, (group, start)) in self.groups.iter_mut().zip(&start_measures).enumerate() {
-                group.hold_pinned();
-                let pulls = volume.map(|v| (v, i));
-                let end = group.measure(&motion, &env, contact.as_ref(), pulls, parallel);
-                let before = events.len();
-                group.guard(guard, start, &end, dt, start_secs, events, parallel);
-                group.measures = (events.len() == before).then_some(end);
+            for group in &mut self.groups {
+                group.record_check(guard, start_secs, &mut self.last_events);
             }
             // Groups are by element count, not by index: events in index order.
             self.last_events.sort_by_key(|event| event.strand);
@@ -386,7 +383,7 @@ impl BatchSystem {
         let g = &mut self.groups[g];
         let n = g.n;
         assert!(q.len() == n && v.len() == n, "state length must be {n}");
-        g.measures = None;
+        g.measured = false;
         for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
             for (x, s) in dst[batch * n..(batch + 1) * n].iter_mut().zip(src) {
                 x.x.set_lane(lane, s.x as f32);
