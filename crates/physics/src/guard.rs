@@ -260,7 +260,14 @@ impl Guard {
         }
         let gained_j = unexplained_energy_j(start, end, dt_secs);
         let allowed_j = self.energy_tolerance * (start.kinetic_j + end.kinetic_j)
-            + round_off * (start.size_j + end.size_j)
+            + round_off * (start.size_j + end.size_j);
+        // The uncertainties below are never negative: a gain within the
+        // allowance so far passes whatever they add (the same verdict, and
+        // most strands in most frames skip their cost).
+        if gained_j <= allowed_j {
+            return None;
+        }
+        let allowed_j = allowed_j
             + work_uncertainty_j(start, end, dt_secs)
             + root_sampling_uncertainty_j(start, end, dt_secs);
         (gained_j > allowed_j).then_some(GuardCause::EnergyGain {
