@@ -67,7 +67,7 @@ struct Beyond {
     torque: vec4<f32>,
 }
 
-const SERIES_LIMIT_Y: f32 = 4.0;
+const SERIES_LIMIT_Y: f32 = 16.0;
 
 fn skew(v: vec3<f32>) -> mat3x3<f32> {
     return mat3x3<f32>(vec3<f32>(0.0, v.z, -v.y), vec3<f32>(-v.z, 0.0, v.x), vec3<f32>(v.y, -v.x, 0.0));
@@ -100,7 +100,8 @@ fn inverse3(mm: mat3x3<f32>) -> mat3x3<f32> {
     return transpose(mat3x3<f32>(r0 * inv_det, r1 * inv_det, r2 * inv_det));
 }
 
-// Series of A (offset 1), B (2), C (3): (−1)ⁿ/(2n + offset)!, 9 terms.
+// Series of A (offset 1), B (2), C (3): (−1)ⁿ/(2n + offset)!, 11 terms
+// (the batch geometry's: series below y = 16, see batch/geometry.rs).
 fn series_term(offset: u32, n: u32) -> f32 {
     var f = 1.0;
     for (var j = 2u; j <= 2u * n + offset; j++) {
@@ -110,11 +111,11 @@ fn series_term(offset: u32, n: u32) -> f32 {
 }
 
 fn horner(offset: u32, y: f32) -> vec3<f32> {
-    var p = series_term(offset, 8u);
+    var p = series_term(offset, 10u);
     var dp = 0.0;
     var half_ddp = 0.0;
-    for (var i = 0; i < 8; i++) {
-        let n = u32(7 - i);
+    for (var i = 0; i < 10; i++) {
+        let n = u32(9 - i);
         half_ddp = half_ddp * y + dp;
         dp = dp * y + p;
         p = p * y + series_term(offset, n);

@@ -17,18 +17,27 @@
 //! This needs no matrix jets and is about three times cheaper than the
 //! reference's arithmetic; the parity tests compare the two.
 //!
-//! The coefficients come from 9 terms of their series in y below y = 4 (f32
-//! round-off only: the first neglected term is 4⁹/19! ≈ 2e-12) and from sines
-//! and cosines above; a batch whose lanes are all below 4 (any hair but tight
-//! coils) skips the closed form.
+//! The coefficients come from 11 terms of their series in y below y = 16
+//! (x = 4 rad of turn across an element; the first neglected term is
+//! 16¹¹/23! ≈ 7e-10) and from sines and cosines above; a batch whose lanes
+//! are all below 16 skips the closed form. The series reach that far
+//! because, in f32, they are the more accurate of the two there: their
+//! largest term (0.67 for B at x = 4) against B = 0.10 costs a few ulps,
+//! while the closed forms' derivatives cancel, (B − 3C)/2y and so on, and
+//! lose up to 1e-5 of C″ near y = 4 (`tests/lane_coefficients.rs`
+//! measures both). A limit of 4, as the f64 reference keeps, sent 47% of
+//! an imported groom's coefficient evaluations (Sintel, batches with a lane
+//! past 4) through both forms, sines, cosines and six divisions included;
+//! past 16, 23%.
 
 use super::lanes::Real;
 use super::vec::{M3, V3};
 
-/// Below this y = x² the coefficients come from their series.
-const SERIES_LIMIT_Y: f32 = 4.0;
-/// Series terms kept in f32.
-const TERMS: usize = 9;
+/// Below this y = x² the coefficients come from their series (module docs).
+pub const SERIES_LIMIT_Y: f32 = 16.0;
+/// Series terms kept in f32: enough for round-off only up to
+/// [`SERIES_LIMIT_Y`].
+const TERMS: usize = 11;
 
 /// (−1)ⁿ/(2n + offset)! for n = 0..TERMS, computed in f64 then rounded.
 const fn series_coefficients(offset: u32) -> [f32; TERMS] {
@@ -76,7 +85,7 @@ pub struct Coefficients<T> {
     pub c: [T; 3],
 }
 
-/// The closed forms, valid for y ≥ 4 (y is clamped there).
+/// The closed forms, used for y ≥ [`SERIES_LIMIT_Y`] (y is clamped there).
 #[inline(always)]
 fn closed<T: Real>(y: T) -> Coefficients<T> {
     let y = y.max(T::splat(SERIES_LIMIT_Y));
