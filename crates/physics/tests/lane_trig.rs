@@ -26,7 +26,7 @@ fn ulps(a: f32, b: f32) -> u32 {
 fn lane_sin_and_cos_are_within_one_f32_ulp_of_the_true_values() {
     let mut worst = 0;
     let mut checked = 0;
-    // x from 2 (the closed form's start, y = 4) to 1,000 rad, and a sweep
+    // x from 2 (below the closed form's start, x = 4) to 1,000 rad, and a sweep
     // of small and negative values, 8 at a time.
     let xs: Vec<f32> = (0..200_000)
         .map(|i| 2.0 + i as f32 * 0.005)

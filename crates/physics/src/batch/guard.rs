@@ -35,6 +35,8 @@
 //! A strand that passes is not touched, so a healthy run is bit-identical
 //! with and without the guard.
 
+use std::cell::RefCell;
+
 use glam::DVec3;
 
 use super::forward::{FrameState, advance};
@@ -78,6 +80,11 @@ fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
 /// sizes of the energies summed): f32 sums of a few hundred terms.
 pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
 
+thread_local! {
+    /// Each thread's buffer of element end points for [`measure_lanes`].
+    static KEPT_ENDS: RefCell<Vec<(V3<Lanes>, V3<Lanes>)>> = const { RefCell::new(Vec::new()) };
+}
+
 /// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
 /// moving as `root` (lanes) with root points at `root_positions_m`
 /// (world), under `env`'s gravity and air, with the head's `contact` if any
@@ -110,7 +117,9 @@ pub fn measure_lanes(
     // Element end points (relative to the root) and their velocities, for
     // the contact's terms after the sweep: kept out of the SIMD loop, whose
     // state would otherwise be spilled for the per-lane lookups.
-    let mut ends = Vec::with_capacity(if contact.is_some() { n } else { 0 });
+    // The thread's buffer, kept: a batch's measure allocates nothing.
+    let mut ends = KEPT_ENDS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
+    ends.clear();
     for e in 0..n {
         let length_m = model.length_m(e);
         for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
@@ -153,6 +162,7 @@ pub fn measure_lanes(
         Some(contact) => lanes_in_contact(model, contact, motions, &ends),
         None => 0,
     };
+    KEPT_ENDS.with(|kept| *kept.borrow_mut() = ends);
     std::array::from_fn(|lane| {
         let x = |t: Lanes| f64::from(t.lane(lane));
         let x3 = |t: V3<Lanes>| DVec3::new(x(t.x), x(t.y), x(t.z));
