@@ -52,6 +52,7 @@ pub mod guard_status;
 pub mod head_motion;
 pub mod head_of_style;
 pub mod import_job;
+pub mod imported_summary;
 pub mod interaction_panel;
 pub mod job;
 pub mod live_sim;

@@ -16,10 +16,11 @@ use std::ops::RangeInclusive;
 
 use egui::{DragValue, Ui};
 use helixhair_physics::engine::EngineKind;
-use helixhair_physics::{Method, NaturalShape, StrandParams};
+use helixhair_physics::{Method, NaturalShape};
 
-use crate::style::Style;
+use crate::style::{StrandGroup, Style};
 
+use super::imported_summary::{group_shapes_strands, imported_summary};
 use super::value_slider::{Look, scaled_slider, slider};
 
 /// One slider's track: `(label, start, end)` in the value's own unit
@@ -171,11 +172,24 @@ pub fn select_engine(style: &mut Style, engine: EngineKind) {
 }
 
 /// Draws one group's parameters; typed text that is not a number is
-/// reported in `notes`.
-pub fn group_params(ui: &mut Ui, params: &mut StrandParams, notes: &mut Vec<String>) {
-    curl(ui, &mut params.natural_shape, params.elements, notes);
-    number(ui, notes, "length", &mut params.length_m, Look::unit(" m"));
-    count(ui, notes, "elements", &mut params.elements, Look::unit(""));
+/// reported in `notes`. An imported groom's strands take only the material
+/// from the group: without listed or scalp roots, the shape sliders
+/// (curl, length, elements) give way to a line on the groom
+/// ([`imported_summary`]).
+pub fn group_params(ui: &mut Ui, group: &mut StrandGroup, notes: &mut Vec<String>) {
+    let shaped_here = group_shapes_strands(group);
+    if let Some(imported) = &group.imported {
+        ui.label(imported_summary(imported));
+        if shaped_here {
+            ui.label("the listed and scalp roots' strands:");
+        }
+    }
+    let params = &mut group.params;
+    if shaped_here {
+        curl(ui, &mut params.natural_shape, params.elements, notes);
+        number(ui, notes, "length", &mut params.length_m, Look::unit(" m"));
+        count(ui, notes, "elements", &mut params.elements, Look::unit(""));
+    }
     scaled(
         ui,
         notes,

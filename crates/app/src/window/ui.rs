@@ -16,6 +16,7 @@ use super::default_style::regrow_roots;
 use super::file_menu::{FileWindows, dropped as dropped_file, file_windows, open_picker, picked};
 use super::file_picker::{FilePicker, PickerMode};
 use super::head_motion::Clip;
+use super::imported_summary::group_shapes_strands;
 use super::readout_panel::readouts;
 use super::style_panel::{count_field, group_params, sim_settings};
 use super::tool_bar::tool_bar;
@@ -186,8 +187,12 @@ fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             .default_open(g == 0)
             .open(open_groups)
             .show(ui, |ui| {
-                preset_row(ui, app, view, g);
-                group_params(ui, &mut app.doc.style_mut().groups[g].params, &mut notes);
+                // A preset is mostly a curl, which an imported strand does
+                // not take (its rest shape is the groom's).
+                if group_shapes_strands(&app.doc.style().groups[g]) {
+                    preset_row(ui, app, view, g);
+                }
+                group_params(ui, &mut app.doc.style_mut().groups[g], &mut notes);
             });
     }
     if let Some(note) = typed_value_check(app, &before) {

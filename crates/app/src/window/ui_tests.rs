@@ -219,3 +219,37 @@ fn group_titles_count_imported_strands() {
         "5 imported strands, 4 simulated"
     );
 }
+
+#[test]
+fn an_imported_group_says_what_its_strands_take_from_the_groom() {
+    // The group panel showed the generic shape sliders (0.20 m, 10
+    // elements) for a groom whose strands each keep their own.
+    let root = default_style(1).groups[0].roots[0];
+    let strand = |elements: usize, element_length_m: f64| crate::style_imported::ImportedStrand {
+        root,
+        element_length_m,
+        strains: vec![glam::DVec3::ZERO; elements],
+        natural: vec![glam::DVec3::ZERO; elements],
+        guide: true,
+        stiffness_scale: 1.0,
+    };
+    let mut strands = vec![strand(4, 0.01), strand(6, 0.02), strand(5, 0.01)];
+    strands[2].guide = false;
+    strands[1].stiffness_scale = 3.0;
+    let imported = crate::style_imported::ImportedStrands {
+        source: "sintel.tfx".into(),
+        head: None,
+        strands,
+    };
+    let line = super::super::imported_summary::imported_summary(&imported);
+    assert!(
+        line.starts_with(
+            "imported from sintel.tfx: 3 strands (2 simulated), 4–6 elements, 4.0–12.0 cm long."
+        ),
+        "{line}"
+    );
+    assert!(
+        line.ends_with("with the moduli raised for 1 to hold their shape."),
+        "{line}"
+    );
+}
