@@ -40,6 +40,7 @@
 //! substeps the grid velocity and push are those of the frame's start.
 
 pub mod balance;
+pub mod cell;
 pub mod field;
 pub mod friction;
 pub mod grid;
