@@ -17,6 +17,7 @@
 //! search runs twice per sample and frame).
 
 use glam::DVec3;
+use wide::f64x4;
 
 use super::grid::{Grid, Stencil};
 
@@ -50,12 +51,14 @@ impl Cell {
 /// A grid made ready for finding cells.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Locator {
-    origin_m: DVec3,
+    /// The grid's origin (x, y, z, 0), metres.
+    origin_m: f64x4,
     cell_m: f64,
-    /// Per axis, the last cell's index.
-    last_cell: [f64; 3],
-    /// Per axis, the far face in cell units (the last cell's index + 1).
-    far_face: [f64; 3],
+    /// Per axis, the last cell's index (and 0).
+    last_cell: f64x4,
+    /// Per axis, the far face in cell units, the last cell's index + 1
+    /// (and 0).
+    far_face: f64x4,
     /// Nodes along x, and in an xy layer.
     strides: [f64; 2],
     /// Offsets of a cell's eight corner nodes from its first
@@ -70,36 +73,35 @@ impl Locator {
         let [nx, ny, _] = grid.dims;
         let step = [1, nx, nx * ny];
         Self {
-            origin_m: grid.origin_m,
+            origin_m: f64x4::new(grid.origin_m.extend(0.0).to_array()),
             cell_m: grid.cell_m,
-            last_cell: grid.dims.map(|n| (n - 2) as f64),
-            far_face: grid.dims.map(|n| (n - 2) as f64 + 1.0),
+            last_cell: f64x4::new(lanes(|a| (grid.dims[a] - 2) as f64)),
+            far_face: f64x4::new(lanes(|a| (grid.dims[a] - 2) as f64 + 1.0)),
             strides: [nx as f64, (nx * ny) as f64],
             offsets: std::array::from_fn(|c| (0..3).map(|a| ((c >> a) & 1) * step[a]).sum()),
         }
     }
 
     /// The cell holding `p` (head coordinates): its first corner node and
-    /// `p`'s position in it; `None` outside the box.
+    /// `p`'s position in it; `None` outside the box. The three axes go in
+    /// the lanes of one f64x4 (the fourth holds 0, inside), each lane's
+    /// arithmetic the scalar one: x' = (x − origin) / Δx, inside when
+    /// 0 ≤ x' ≤ far face, cell min(last cell, ⌊x'⌋), f = x' − cell.
     #[inline(always)]
     pub fn locate(&self, p: DVec3) -> Option<Cell> {
-        let local = (p - self.origin_m) / self.cell_m;
-        let mut base = [0.0; 3];
-        let mut frac = [0.0; 3];
-        for axis in 0..3 {
-            let x = local[axis];
-            let last_cell = self.last_cell[axis];
-            if !(x >= 0.0 && x <= self.far_face[axis]) {
-                return None;
-            }
-            let cell = x.floor().min(last_cell);
-            base[axis] = cell;
-            frac[axis] = x - cell;
+        let local = (f64x4::new([p.x, p.y, p.z, 0.0]) - self.origin_m) / f64x4::splat(self.cell_m);
+        let inside = local.simd_ge(f64x4::ZERO) & local.simd_le(self.far_face);
+        if inside.to_bitmask() != 0b1111 {
+            return None;
         }
+        // (No NaN is left: a NaN is never inside.)
+        let base = self.last_cell.fast_min(local.floor());
+        let [fx, fy, fz, _] = (local - base).to_array();
+        let [bx, by, bz, _] = base.to_array();
         let [sy, sz] = self.strides;
         Some(Cell {
-            first: exact_index(base[0] + base[1] * sy + base[2] * sz),
-            frac,
+            first: exact_index(bx + by * sy + bz * sz),
+            frac: [fx, fy, fz],
         })
     }
 
@@ -121,6 +123,11 @@ impl Locator {
             }),
         }
     }
+}
+
+/// Four lanes: `f(axis)` for the three axes, then 0.
+fn lanes(f: impl Fn(usize) -> f64) -> [f64; 4] {
+    [f(0), f(1), f(2), 0.0]
 }
 
 /// 2⁵²: from 2⁵² to 2⁵³ the f64s are the integers, with the integer part
