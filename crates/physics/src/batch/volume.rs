@@ -11,7 +11,8 @@
 //! sample's position relative to its root and its world velocity; they are
 //! widened to f64 and carried into head coordinates exactly as the
 //! reference's [`crate::volume::reference::head_points`] does, with mass
-//! ρS·w·ℓ. The splat, the density excess and what each sample reads back
+//! ρS·w·ℓ (four lanes at a time in f64x4, each lane's operations those of
+//! the reference's DVec3 arithmetic, in the same order). The splat, the density excess and what each sample reads back
 //! (grid velocity, pressure push) are the same functions the reference
 //! calls. The reading becomes the sample's known force
 //! c = ρS (μ u + a) (world axes), rounded to f32 once.

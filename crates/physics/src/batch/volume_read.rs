@@ -2,7 +2,9 @@
 //! the pull's work for the guard's reused start measure.
 //!
 //! Each sample of each lane reads the field (grid velocity u, pressure
-//! push a, the reference's [`crate::volume::VolumeField::read`]) and keeps
+//! push a: [`crate::volume::VolumeField::read_in`], the reference's
+//! [`crate::volume::VolumeField::read`] in the cell the splat found for
+//! the sample, [`crate::volume::VolumeField::cells`]) and keeps
 //! c = ρS (μ u + a) in f32. While it is at it, it sums, per lane, the old
 //! pull's work and the new one's at the state just gathered
 //! ([`crate::volume::balance::PullWork`]): the guard's start measure is the

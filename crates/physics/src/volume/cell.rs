@@ -1,6 +1,7 @@
 //! Finding the cell of the grid ([`super::grid`]) that holds a point, and
 //! the point's trilinear weights in it: what every sample's splat and its
-//! read-back start with, twice per sample and frame.
+//! read-back start with. The splat finds each sample's cell once per
+//! frame and the read-back reuses it ([`super::field::VolumeField::cells`]).
 //!
 //! A point x (head coordinates) sits at x' = (x − origin) / Δx in cell
 //! units; its cell along an axis is ⌊x'⌋ (the last cell for a point on the
@@ -9,12 +10,12 @@
 //! f (upper node), which sum to one.
 //!
 //! [`Locator`] keeps what a search needs ready (each axis's last cell and
-//! the node strides as f64, the corner offsets): the cell's first node is
-//! found in f64, where the node indices are exact integers (a grid has at
-//! most 2²¹ nodes), and turned into an index once ([`exact_index`]),
-//! instead of a conversion per axis and three back (an f64 to usize
-//! conversion is about ten instructions on x86-64 without AVX-512, and the
-//! search runs twice per sample and frame).
+//! far face, the node strides as f64, the corner offsets): the cell's
+//! first node is found in f64, where the node indices are exact integers
+//! (a grid has at most 2²¹ nodes), and turned into an index once, exactly
+//! (x + 2⁵² has x in its low bits), instead of a conversion per axis (an
+//! f64 to usize conversion is about ten instructions on x86-64 without
+//! AVX-512) and the index arithmetic after.
 
 use glam::DVec3;
 use wide::f64x4;

@@ -66,7 +66,7 @@ impl VolumePull<'_> {
 
 /// The grid velocity u(x) = Σ w_n u_n at a point of a cell whose nodes
 /// are `around[offsets[c]]` with weights `weights[c]`
-/// ([`super::grid::Grid::corner_offsets`], [`super::grid::Cell::weights`]),
+/// ([`super::cell::Locator::offsets`], [`super::cell::Cell::weights`]),
 /// m/s, from the nodes' mean velocities u_n
 /// ([`NodeSums::velocity_m_per_s`], found once per node and frame) in the
 /// first three lanes of `around` (the fourth is not read): one four-lane
