@@ -295,3 +295,29 @@ fn exchanging_the_pull_in_a_cached_measure_equals_measuring_again() {
     assert_ne!(exchanged.external_power_w, end.external_power_w);
     assert_eq!(exchanged.energy_j, fresh.energy_j);
 }
+
+/// The cell search on a 3 × 3 × 3-node grid of 1 m cells from the origin:
+/// known cells, places in them and weights, the far face in the last
+/// cell, and nothing outside or at NaN.
+#[test]
+fn a_point_finds_its_cell_and_weights() {
+    let grid = helixhair_physics::volume::Grid {
+        origin_m: DVec3::ZERO,
+        cell_m: 1.0,
+        dims: [3, 3, 3],
+    };
+    let cell = grid.locate(DVec3::new(1.25, 0.5, 1.75)).unwrap();
+    // Node (1, 0, 1) is 1 + 0·3 + 1·9.
+    assert_eq!(cell.first, 10);
+    assert_eq!(cell.frac, [0.25, 0.5, 0.75]);
+    let weights = cell.weights();
+    // Corner 0 is (1 − 0.25)(1 − 0.5)(1 − 0.75); corner 7 is 0.25·0.5·0.75.
+    assert_eq!(weights[0], 0.75 * 0.5 * 0.25);
+    assert_eq!(weights[7], 0.25 * 0.5 * 0.75);
+    assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+    let far = grid.locate(DVec3::splat(2.0)).unwrap();
+    assert_eq!((far.first, far.frac), (13, [1.0; 3]));
+    assert!(grid.locate(DVec3::new(-0.1, 1.0, 1.0)).is_none());
+    assert!(grid.locate(DVec3::new(1.0, 2.1, 1.0)).is_none());
+    assert!(grid.locate(DVec3::new(1.0, f64::NAN, 1.0)).is_none());
+}

@@ -11,7 +11,8 @@
 //! sample's position relative to its root and its world velocity; they are
 //! widened to f64 and carried into head coordinates exactly as the
 //! reference's [`crate::volume::reference::head_points`] does, with mass
-//! ρS·w·ℓ. The splat, the density excess and what each sample reads back
+//! ρS·w·ℓ (four lanes at a time in f64x4, each lane's operations those of
+//! the reference's DVec3 arithmetic, in the same order). The splat, the density excess and what each sample reads back
 //! (grid velocity, pressure push) are the same functions the reference
 //! calls. The reading becomes the sample's known force
 //! c = ρS (μ u + a) (world axes), rounded to f32 once.
@@ -37,6 +38,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 use rayon::prelude::*;
+use wide::f64x4;
 
 use super::forward::{FrameState, advance};
 use super::geometry::local_point;
@@ -49,6 +51,7 @@ use super::volume_read::{BatchRates, Exchange, ReadInputs, read_batch};
 use crate::frame_balance::StrandMeasure;
 use crate::motion::{RigidMotion, RootPose};
 use crate::volume::balance::PullWork;
+use crate::volume::cell::Cell;
 use crate::volume::{InteractionSettings, ModelState, RestDensity, SamplePoint};
 
 /// One group of strands as the gather reads it: its batches' constants,
@@ -70,10 +73,11 @@ pub struct GroupView<'a> {
 /// One batch's inputs and outputs of the read-back.
 type BatchOut<'a> = (&'a mut [SamplePoint], &'a mut [[V3<Lanes>; 2]]);
 
-/// One batch's read-back: its c, points, motion and work exchange.
+/// One batch's read-back: its c, points and their cells, motion and work
+/// exchange.
 type BatchRead<'a> = (
     (
-        (&'a mut [V3<Lanes>], &'a [SamplePoint]),
+        (&'a mut [V3<Lanes>], (&'a [SamplePoint], &'a [Option<Cell>])),
         &'a [[V3<Lanes>; 2]],
     ),
     &'a mut [Exchange; LANES],
@@ -170,9 +174,10 @@ impl BatchVolume {
             gather_group(view, head, parallel, pulls);
         }
         let parts: Vec<&[SamplePoint]> = self.groups.iter().map(|g| g.points.as_slice()).collect();
-        let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
+        let Some((_, field, settings)) = self.state.update(&parts, parallel) else {
             return;
         };
+        let mut cells = field.cells();
         let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
             let lanes = pulls.samples * LANES;
@@ -183,7 +188,6 @@ impl BatchVolume {
             let rates: Vec<Lanes> = view.models.iter().map(|m| friction_rate(mu, m)).collect();
             let old_rates = std::mem::replace(&mut pulls.rate, rates);
             let inputs = ReadInputs {
-                rest,
                 field,
                 settings,
                 head,
@@ -191,6 +195,8 @@ impl BatchVolume {
             pulls.known.resize(batches * pulls.samples, V3::zero());
             let none = (PullWork::default(), PullWork::default());
             pulls.exchange.resize(batches, [none; LANES]);
+            let (group_cells, after) = cells.split_at(pulls.points.len());
+            cells = after;
             let read = |(b, (((known, points), motion), exchange)): (usize, BatchRead<'_>)| {
                 let rates = BatchRates {
                     model: &view.models[b],
@@ -202,7 +208,12 @@ impl BatchVolume {
             if parallel {
                 let known = pulls.known.par_chunks_mut(pulls.samples);
                 known
-                    .zip(pulls.points.par_chunks(lanes))
+                    .zip(
+                        pulls
+                            .points
+                            .par_chunks(lanes)
+                            .zip(group_cells.par_chunks(lanes)),
+                    )
                     .zip(pulls.motion.par_chunks(pulls.samples))
                     .zip(pulls.exchange.par_iter_mut())
                     .enumerate()
@@ -210,7 +221,7 @@ impl BatchVolume {
             } else {
                 let known = pulls.known.chunks_mut(pulls.samples);
                 known
-                    .zip(pulls.points.chunks(lanes))
+                    .zip(pulls.points.chunks(lanes).zip(group_cells.chunks(lanes)))
                     .zip(pulls.motion.chunks(pulls.samples))
                     .zip(pulls.exchange.iter_mut())
                     .enumerate()
@@ -279,15 +290,19 @@ pub fn gather_batch(
     let motions: [RigidMotion; LANES] =
         std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
     let root = RootMotion::<Lanes>::gather(&motions);
-    let body_from_world = head.world_from_body.transpose();
+    // The f64 part in four lanes at a time (half a batch), each lane's
+    // arithmetic that of a DVec3 (`root + r - head`, then glam's
+    // `body_from_world * d`: ((X d_x) + (Y d_y)) + (Z d_z) per component).
+    let turn = head.world_from_body.transpose();
+    let columns = [turn.x_axis, turn.y_axis, turn.z_axis].map(|c| c.to_array().map(f64x4::splat));
+    let head_at = head.position_m.to_array().map(f64x4::splat);
+    let root_at: [[f64x4; 3]; 2] = std::array::from_fn(|h| {
+        std::array::from_fn(|a| {
+            f64x4::new(std::array::from_fn(|k| motions[4 * h + k].position_m[a]))
+        })
+    });
     let rho_s = model.mass_per_length();
-    let pick = |x: V3<Lanes>, l: usize| {
-        DVec3::new(
-            f64::from(x.x.lane(l)),
-            f64::from(x.y.lane(l)),
-            f64::from(x.z.lane(l)),
-        )
-    };
+    let strands = roots.len();
     let mut s = FrameState::at_root(&root);
     let mut i = 0;
     for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
@@ -296,20 +311,39 @@ pub fn gather_batch(
             let lp = local_point(Lanes::splat(*node) * length_m, *k, *k_dot);
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
             motion[i] = [r, vel];
-            for (l, root_motion) in motions.iter().enumerate() {
-                let mass_kg =
-                    f64::from(rho_s.lane(l)) * f64::from(*weight) * f64::from(length_m.lane(l));
-                out[i * LANES + l] = SamplePoint {
-                    position_m: body_from_world
-                        * (root_motion.position_m + pick(r, l) - head.position_m),
-                    velocity_m_per_s: pick(vel, l),
-                    mass_kg: if l < roots.len() { mass_kg } else { 0.0 },
-                };
+            let w = f64x4::splat(f64::from(*weight));
+            for (h, root_h) in root_at.iter().enumerate() {
+                let rel = [r.x, r.y, r.z].map(|x| widen(x, h));
+                let d: [f64x4; 3] = std::array::from_fn(|a| root_h[a] + rel[a] - head_at[a]);
+                let position: [[f64; 4]; 3] = std::array::from_fn(|c| {
+                    (columns[0][c] * d[0] + columns[1][c] * d[1] + columns[2][c] * d[2]).to_array()
+                });
+                let velocity = [vel.x, vel.y, vel.z].map(|x| widen(x, h).to_array());
+                let mass = (widen(rho_s, h) * w * widen(length_m, h)).to_array();
+                for k in 0..4 {
+                    let l = 4 * h + k;
+                    out[i * LANES + l] = SamplePoint {
+                        position_m: DVec3::new(position[0][k], position[1][k], position[2][k]),
+                        velocity_m_per_s: DVec3::new(
+                            velocity[0][k],
+                            velocity[1][k],
+                            velocity[2][k],
+                        ),
+                        mass_kg: if l < strands { mass[k] } else { 0.0 },
+                    };
+                }
             }
             i += 1;
         }
         s = advance(&s, length_m, *k, *k_dot).0;
     }
+}
+
+/// Lanes `4h..4h + 4` of `x` in f64 (exact).
+#[inline(always)]
+fn widen(x: Lanes, h: usize) -> f64x4 {
+    let a = x.to_array();
+    f64x4::new(std::array::from_fn(|k| f64::from(a[4 * h + k])))
 }
 
 /// The rest density of the groups' rest pose (natural strains, at rest,

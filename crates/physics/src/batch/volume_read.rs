@@ -2,7 +2,9 @@
 //! the pull's work for the guard's reused start measure.
 //!
 //! Each sample of each lane reads the field (grid velocity u, pressure
-//! push a, the reference's [`crate::volume::VolumeField::read`]) and keeps
+//! push a: [`crate::volume::VolumeField::read_in`], the reference's
+//! [`crate::volume::VolumeField::read`] in the cell the splat found for
+//! the sample, [`crate::volume::VolumeField::cells`]) and keeps
 //! c = ρS (μ u + a) in f32. While it is at it, it sums, per lane, the old
 //! pull's work and the new one's at the state just gathered
 //! ([`crate::volume::balance::PullWork`]): the guard's start measure is the
@@ -21,13 +23,12 @@ use super::pull::{SamplePull, add_pull_work};
 use super::vec::V3;
 use crate::motion::RigidMotion;
 use crate::volume::balance::PullWork;
-use crate::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
+use crate::volume::cell::Cell;
+use crate::volume::{InteractionSettings, SamplePoint, VolumeField};
 
 /// What every batch of a group reads with.
 #[derive(Clone, Copy, Debug)]
 pub struct ReadInputs<'a> {
-    /// The rest density (grid, thresholds).
-    pub rest: &'a RestDensity,
     /// This frame's field.
     pub field: &'a VolumeField,
     /// The model's settings.
@@ -50,7 +51,8 @@ pub struct BatchRates<'a> {
 /// A lane's old and new pull work at the frame's start.
 pub type Exchange = (PullWork, PullWork);
 
-/// Reads batch `points` (sample i, lane l at i·LANES + l) into `known`
+/// Reads batch `points` (sample i, lane l at i·LANES + l; in `cells`, the
+/// field's [`VolumeField::cells`] of these points) into `known`
 /// (its old c on entry, the new c on return) and sums each lane's old and
 /// new pull work into `exchange`, at the samples' positions relative to
 /// their roots and velocities `motion` (f32 lanes, from the gather: the
@@ -58,13 +60,12 @@ pub type Exchange = (PullWork, PullWork);
 pub fn read_batch(
     inputs: &ReadInputs<'_>,
     rates: &BatchRates<'_>,
-    points: &[SamplePoint],
+    (points, cells): (&[SamplePoint], &[Option<Cell>]),
     motion: &[[V3<Lanes>; 2]],
     known: &mut [V3<Lanes>],
     exchange: &mut [Exchange; LANES],
 ) {
     let ReadInputs {
-        rest,
         field,
         settings,
         head,
@@ -111,11 +112,22 @@ pub fn read_batch(
     // (sample by sample across the lanes, each read is in another part of
     // the head). Each sample's reading is its own: the order changes no
     // number.
+    // Most samples feel no push, +0 on every axis (bit for bit, not −0:
+    // the turn of −0 may differ in the sign of a zero); its turn to world
+    // axes is the same for all of them.
+    let no_push = head.world_from_body * DVec3::ZERO;
+    let is_no_push = |a: DVec3| a.to_array().iter().all(|x| x.to_bits() == 0);
     for l in 0..LANES {
         let rho_s = f64::from(rho_s.lane(l));
-        for (c, point) in known.iter_mut().zip(points.iter().skip(l).step_by(LANES)) {
-            let reading = field.read(rest, settings, point);
-            let push = head.world_from_body * reading.push_m_per_s2;
+        let points = points.iter().skip(l).step_by(LANES);
+        let cells = cells.iter().skip(l).step_by(LANES);
+        for (c, (point, cell)) in known.iter_mut().zip(points.zip(cells)) {
+            let reading = field.read_in(settings, *cell, point);
+            let push = if is_no_push(reading.push_m_per_s2) {
+                no_push
+            } else {
+                head.world_from_body * reading.push_m_per_s2
+            };
             let value = rho_s * (mu * reading.target_m_per_s + push);
             c.x.set_lane(l, value.x as f32);
             c.y.set_lane(l, value.y as f32);

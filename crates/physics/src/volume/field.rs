@@ -7,6 +7,7 @@
 use glam::DVec3;
 use wide::f64x4;
 
+use super::cell::{Cell, Locator};
 use super::friction::grid_velocity;
 use super::pressure::{excess, push_m_per_s2};
 use super::rest::RestDensity;
@@ -29,11 +30,18 @@ pub struct VolumeField {
     sums: NodeSums,
     /// The splat's per-piece sums, reused.
     pieces: Vec<NodeSums>,
-    /// Per node [u_n (m/s, three lanes; zero at an empty node), e_n]:
-    /// the mean velocity and the excess a read fetches together.
+    /// Per node n [u_n (m/s, three lanes; zero at an empty node), 1 when
+    /// some corner of the cell whose first corner is n is in excess, else
+    /// 0]: what a read fetches with its cell's first node.
     velocity_excess: Vec<f64x4>,
     density: Vec<f64>,
     excess: Vec<f64>,
+    /// The rest grid made ready for reads.
+    locator: Option<Locator>,
+    /// The cell of every point of the last update, the parts one after
+    /// the other (`None` outside the grid): found once by the splat,
+    /// reused by the read-back.
+    cells: Vec<Option<Cell>>,
 }
 
 impl VolumeField {
@@ -44,7 +52,10 @@ impl VolumeField {
     /// rest threshold.
     pub fn update(&mut self, rest: &RestDensity, parts: &[&[SamplePoint]], parallel: bool) {
         let grid = &rest.grid;
-        splat_pieces(grid, parts, &mut self.sums, &mut self.pieces, parallel);
+        let locator = grid.locator();
+        self.locator = Some(locator);
+        let (sums, pieces, cells) = (&mut self.sums, &mut self.pieces, &mut self.cells);
+        splat_pieces(grid, parts, sums, pieces, cells, parallel);
         self.density.clear();
         self.density
             .extend((0..grid.node_count()).map(|n| self.sums.density_kg_per_m3(grid, n)));
@@ -55,40 +66,72 @@ impl VolumeField {
             &mut self.excess,
         );
         self.velocity_excess.clear();
-        self.velocity_excess
-            .extend(self.excess.iter().enumerate().map(|(n, e)| {
-                let u = self.sums.velocity_m_per_s(n);
-                f64x4::new([u.x, u.y, u.z, *e])
-            }));
+        let excess = &self.excess;
+        // (A node past the grid's last cell along some axis is no cell's
+        // first corner; its flag is never read.)
+        let cell_in_excess = |n: usize| {
+            let corner = |o: &usize| excess.get(n + o).is_some_and(|e| *e > 0.0);
+            locator.offsets.iter().any(corner)
+        };
+        self.velocity_excess.extend((0..grid.node_count()).map(|n| {
+            let u = self.sums.velocity_m_per_s(n);
+            let flag = if cell_in_excess(n) { 1.0 } else { 0.0 };
+            f64x4::new([u.x, u.y, u.z, flag])
+        }));
     }
 
-    /// What `point` reads from the field of the last [`Self::update`].
+    /// What `point` reads from the field of the last [`Self::update`], on
+    /// `rest` (the rest density of that update; its grid was made ready
+    /// for reads there). A point outside the grid, or read before any
+    /// update, reads its own velocity and no push.
+    #[inline]
     pub fn read(
         &self,
         rest: &RestDensity,
         settings: &InteractionSettings,
         point: &SamplePoint,
     ) -> SampleReading {
-        let Some((nodes, weights)) = rest.grid.weights(point.position_m) else {
+        debug_assert!(self.locator.is_none_or(|l| l == rest.grid.locator()));
+        let cell = self.locator.and_then(|l| l.locate(point.position_m));
+        self.read_in(settings, cell, point)
+    }
+
+    /// Each point's cell in the last [`Self::update`], the parts one after
+    /// the other; `None` outside the grid.
+    pub fn cells(&self) -> &[Option<Cell>] {
+        &self.cells
+    }
+
+    /// What `point` reads, in `cell` (its entry of [`Self::cells`], found
+    /// by the update's splat; the very cell [`Self::read`] finds).
+    #[inline]
+    pub fn read_in(
+        &self,
+        settings: &InteractionSettings,
+        cell: Option<Cell>,
+        point: &SamplePoint,
+    ) -> SampleReading {
+        let found = self.locator.as_ref().zip(cell);
+        let Some((locator, cell)) = found else {
             return SampleReading {
                 target_m_per_s: point.velocity_m_per_s,
                 push_m_per_s2: DVec3::ZERO,
             };
         };
+        let offsets = &locator.offsets;
+        // One bounds check for the cell's nodes, not one per node.
+        let first = cell.first as usize;
+        let around = &self.velocity_excess[first..=first + offsets[7]];
         // The weights' gradients only where some node is in excess: the
         // push is exactly zero elsewhere, and that is most of the hair.
-        let in_excess = nodes
-            .iter()
-            .any(|n| self.velocity_excess[*n].as_array()[3] > 0.0);
-        // (The stencil is built only then: a `match` on it with an
-        // `if in_excess` guard would build it for every sample.)
-        let stencil = in_excess.then(|| rest.grid.stencil(point.position_m));
-        let push = match stencil.flatten() {
-            Some(stencil) => push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2),
-            None => DVec3::ZERO,
+        let push = if around[0].as_array()[3] > 0.0 {
+            let stencil = locator.stencil(&cell);
+            push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2)
+        } else {
+            DVec3::ZERO
         };
         SampleReading {
-            target_m_per_s: grid_velocity(&nodes, &weights, &self.velocity_excess),
+            target_m_per_s: grid_velocity(around, offsets, &cell.weights()),
             push_m_per_s2: push,
         }
     }

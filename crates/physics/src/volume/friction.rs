@@ -64,19 +64,21 @@ impl VolumePull<'_> {
     }
 }
 
-/// The grid velocity u(x) = Σ w_n u_n at a point with stencil `nodes` and
-/// `weights` ([`super::grid::Grid::weights`]), m/s, from the nodes' mean
-/// velocities u_n ([`NodeSums::velocity_m_per_s`], found once per node
-/// and frame) in the first three lanes of `node_velocity` (the fourth is
-/// not read): one four-lane multiply and add per node, the sum of the
-/// scalar products in the same order.
-#[inline]
-pub fn grid_velocity(nodes: &[usize; 8], weights: &[f64; 8], node_velocity: &[f64x4]) -> DVec3 {
-    let sum = nodes
+/// The grid velocity u(x) = Σ w_n u_n at a point of a cell whose nodes
+/// are `around[offsets[c]]` with weights `weights[c]`
+/// ([`super::cell::Locator::offsets`], [`super::cell::Cell::weights`]),
+/// m/s, from the nodes' mean velocities u_n
+/// ([`NodeSums::velocity_m_per_s`], found once per node and frame) in the
+/// first three lanes of `around` (the fourth is not read): one four-lane
+/// multiply and add per node, the sum of the scalar products in the same
+/// order.
+#[inline(always)]
+pub fn grid_velocity(around: &[f64x4], offsets: &[usize; 8], weights: &[f64; 8]) -> DVec3 {
+    let sum = offsets
         .iter()
         .zip(weights)
-        .fold(f64x4::ZERO, |sum, (node, w)| {
-            sum + f64x4::splat(*w) * node_velocity[*node]
+        .fold(f64x4::ZERO, |sum, (offset, w)| {
+            sum + f64x4::splat(*w) * around[*offset]
         });
     let [x, y, z, _] = *sum.as_array();
     DVec3::new(x, y, z)

@@ -15,6 +15,8 @@
 
 use glam::DVec3;
 
+use super::cell::{Cell, Locator};
+
 /// Most nodes a grid may have: 2²¹ (about 130³), 2.1 M f64 masses and
 /// momenta, 67 MB. A cell so small that the box would need more is
 /// coarsened to fit.
@@ -79,6 +81,11 @@ impl Grid {
         self.dims.iter().product()
     }
 
+    /// The grid made ready for finding cells ([`Locator`]).
+    pub fn locator(&self) -> Locator {
+        Locator::new(self)
+    }
+
     /// Index of node (i, j, k).
     pub fn index(&self, i: usize, j: usize, k: usize) -> usize {
         (k * self.dims[1] + j) * self.dims[0] + i
@@ -97,70 +104,14 @@ impl Grid {
     /// The stencil of point `p` (head coordinates), or `None` outside the box.
     #[inline]
     pub fn stencil(&self, p: DVec3) -> Option<Stencil> {
-        let (nodes, frac) = self.cell(p)?;
-        let inv = 1.0 / self.cell_m;
-        let mut stencil = Stencil {
-            nodes,
-            weights: [0.0; 8],
-            gradients: [DVec3::ZERO; 8],
-        };
-        for corner in 0..8 {
-            // Per axis: the 1-D weight and its derivative (1/m).
-            let one_d = |axis: usize| {
-                if (corner >> axis) & 1 == 1 {
-                    (frac[axis], inv)
-                } else {
-                    (1.0 - frac[axis], -inv)
-                }
-            };
-            let ((wx, dx), (wy, dy), (wz, dz)) = (one_d(0), one_d(1), one_d(2));
-            stencil.weights[corner] = wx * wy * wz;
-            stencil.gradients[corner] = DVec3::new(dx * wy * wz, wx * dy * wz, wx * wy * dz);
-        }
-        Some(stencil)
+        let locator = self.locator();
+        Some(locator.stencil(&locator.locate(p)?))
     }
 
-    /// The eight nodes around `p` and their weights (the stencil without
-    /// gradients, which the splat does not need), or `None` outside.
-    #[inline(always)]
-    pub fn weights(&self, p: DVec3) -> Option<([usize; 8], [f64; 8])> {
-        let (nodes, frac) = self.cell(p)?;
-        let weights = std::array::from_fn(|corner| {
-            let one_d = |axis: usize| {
-                if (corner >> axis) & 1 == 1 {
-                    frac[axis]
-                } else {
-                    1.0 - frac[axis]
-                }
-            };
-            one_d(0) * one_d(1) * one_d(2)
-        });
-        Some((nodes, weights))
-    }
-
-    /// The eight corner nodes of the cell holding `p` (corner c has bit
-    /// a of c set when it is the upper node along axis a) and `p`'s
-    /// position in the cell, 0..=1 per axis; `None` outside the box.
-    #[inline(always)]
-    fn cell(&self, p: DVec3) -> Option<([usize; 8], [f64; 3])> {
-        let local = (p - self.origin_m) / self.cell_m;
-        let mut base = [0usize; 3];
-        let mut frac = [0.0; 3];
-        for axis in 0..3 {
-            let x = local[axis];
-            let last_cell = (self.dims[axis] - 2) as f64;
-            if !(x >= 0.0 && x <= last_cell + 1.0) {
-                return None;
-            }
-            let cell = x.floor().min(last_cell);
-            base[axis] = cell as usize;
-            frac[axis] = x - cell;
-        }
-        let first = self.index(base[0], base[1], base[2]);
-        let step = [1, self.dims[0], self.dims[0] * self.dims[1]];
-        let nodes = std::array::from_fn(|corner| {
-            first + (0..3).map(|a| ((corner >> a) & 1) * step[a]).sum::<usize>()
-        });
-        Some((nodes, frac))
+    /// The cell holding `p` (head coordinates), or `None` outside the box
+    /// ([`Locator::locate`]).
+    #[inline]
+    pub fn locate(&self, p: DVec3) -> Option<Cell> {
+        self.locator().locate(p)
     }
 }

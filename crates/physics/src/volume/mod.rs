@@ -11,7 +11,9 @@
 //!
 //! 1. [`grid`]: a box of cubic cells fitted to the head's hair at rest,
 //!    fixed in head coordinates; a trilinear stencil ties a point to the
-//!    eight nodes around it.
+//!    eight nodes around it. [`cell`] finds a point's cell and weights,
+//!    once per sample and frame: the splat finds it and the read-back
+//!    reuses it.
 //! 2. [`splat`]: every quadrature sample spreads its mass and momentum onto
 //!    the nodes: density and mean velocity of the hair around each node.
 //! 3. [`rest`]: the density of the groom's rest pose, node by node, sets
@@ -40,6 +42,7 @@
 //! substeps the grid velocity and push are those of the frame's start.
 
 pub mod balance;
+pub mod cell;
 pub mod field;
 pub mod friction;
 pub mod grid;

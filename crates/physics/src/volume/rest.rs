@@ -44,7 +44,8 @@ impl RestDensity {
         let grid = Grid::fitted(points.iter().map(|p| p.position_m), cell_m, margin_m)?;
         let mut sums = NodeSums::default();
         // The frames' splat, so that the rest pose sums exactly alike.
-        splat_pieces(&grid, &[points], &mut sums, &mut Vec::new(), false);
+        let (mut pieces, mut cells) = (Vec::new(), Vec::new());
+        splat_pieces(&grid, &[points], &mut sums, &mut pieces, &mut cells, false);
         let density: Vec<f64> = (0..grid.node_count())
             .map(|n| sums.density_kg_per_m3(&grid, n))
             .collect();

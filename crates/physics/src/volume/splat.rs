@@ -23,6 +23,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 use wide::f64x4;
 
+use super::cell::{Cell, Locator};
 use super::grid::Grid;
 
 /// One strand sample as the model sees it.
@@ -81,30 +82,25 @@ impl NodeSums {
     }
 }
 
-/// Spreads `points` onto `grid`, reusing `sums`' buffers. Points outside
-/// the grid are left out, and so are points of zero mass (a batch's
-/// padding): they would add only zeros.
-pub fn splat<'a>(
-    grid: &Grid,
-    points: impl IntoIterator<Item = &'a SamplePoint>,
-    sums: &mut NodeSums,
-) {
-    let n = grid.node_count();
-    sums.nodes.clear();
-    sums.nodes.resize(n, f64x4::ZERO);
-    for p in points {
-        if p.mass_kg == 0.0 {
-            continue;
-        }
-        let Some((nodes, weights)) = grid.weights(p.position_m) else {
-            continue;
-        };
-        let v = p.velocity_m_per_s;
-        let per_mass = f64x4::new([1.0, v.x, v.y, v.z]);
-        for (node, w) in nodes.iter().zip(weights) {
-            let m = w * p.mass_kg;
-            sums.nodes[*node] += f64x4::splat(m) * per_mass;
-        }
+/// Adds point `p`, in `cell` ([`Locator::locate`]), to the eight nodes
+/// around it.
+#[inline(always)]
+fn add_point(locator: &Locator, p: &SamplePoint, cell: Option<Cell>, nodes: &mut [f64x4]) {
+    if p.mass_kg == 0.0 {
+        return;
+    }
+    let Some(cell) = cell else {
+        return;
+    };
+    let v = p.velocity_m_per_s;
+    let per_mass = f64x4::new([1.0, v.x, v.y, v.z]);
+    // One bounds check for the cell's nodes, not one per node.
+    let offsets = &locator.offsets;
+    let first = cell.first as usize;
+    let around = &mut nodes[first..=first + offsets[7]];
+    for (offset, w) in offsets.iter().zip(cell.weights()) {
+        let m = w * p.mass_kg;
+        around[*offset] += f64x4::splat(m) * per_mass;
     }
 }
 
@@ -118,14 +114,19 @@ pub const SPLAT_PIECES: usize = 4;
 /// Nodes one task adds up when the pieces are summed.
 const NODES_PER_TASK: usize = 4096;
 
-/// [`splat`] of the points of `parts` (in order, cut anywhere) in
+/// Spreads the points of `parts` (in order, cut anywhere) onto `grid` in
 /// [`SPLAT_PIECES`] pieces, each into its buffer of `pieces` (reused),
 /// in parallel when `parallel`; the pieces' sums are added into `sums`.
+/// Points outside the grid are left out, and so are points of zero mass
+/// (a batch's padding): they would add only zeros. Every point's cell
+/// (`None` outside), the parts one after the other, is written to `cells`
+/// (resized), for the read-back to reuse.
 pub fn splat_pieces(
     grid: &Grid,
     parts: &[&[SamplePoint]],
     sums: &mut NodeSums,
     pieces: &mut Vec<NodeSums>,
+    cells: &mut Vec<Option<Cell>>,
     parallel: bool,
 ) {
     let total: usize = parts.iter().map(|p| p.len()).sum();
@@ -133,14 +134,31 @@ pub fn splat_pieces(
         .map(|k| k * total / SPLAT_PIECES)
         .collect();
     pieces.resize_with(SPLAT_PIECES, NodeSums::default);
-    let one = |(k, piece): (usize, &mut NodeSums)| {
+    cells.resize(total, None);
+    let mut cell_pieces = Vec::with_capacity(SPLAT_PIECES);
+    let mut rest = cells.as_mut_slice();
+    for k in 0..SPLAT_PIECES {
+        let (piece, after) = rest.split_at_mut(bounds[k + 1] - bounds[k]);
+        cell_pieces.push(piece);
+        rest = after;
+    }
+    let locator = grid.locator();
+    let one = |(k, (piece, cells)): (usize, (&mut NodeSums, &mut &mut [Option<Cell>]))| {
         let range = bounds[k]..bounds[k + 1];
-        splat(grid, points_in(parts, range), piece);
+        piece.nodes.clear();
+        piece.nodes.resize(grid.node_count(), f64x4::ZERO);
+        let points = slices_in(parts, range).flatten();
+        for (p, cell) in points.zip(cells.iter_mut()) {
+            *cell = locator.locate(p.position_m);
+            add_point(&locator, p, *cell, &mut piece.nodes);
+        }
     };
     if parallel {
-        pieces.par_iter_mut().enumerate().for_each(one);
+        let pieces = pieces.par_iter_mut().zip(cell_pieces.par_iter_mut());
+        pieces.enumerate().for_each(one);
     } else {
-        pieces.iter_mut().enumerate().for_each(one);
+        let pieces = pieces.iter_mut().zip(cell_pieces.iter_mut());
+        pieces.enumerate().for_each(one);
     }
     sums.nodes.resize(grid.node_count(), f64x4::ZERO);
     let pieces = &*pieces;
@@ -163,18 +181,18 @@ pub fn splat_pieces(
     }
 }
 
-/// The points of `parts` whose index in the whole (parts one after the
-/// other) lies in `range`.
-fn points_in<'a>(
+/// The slices of `parts` whose points' indices in the whole (parts one
+/// after the other) lie in `range`.
+fn slices_in<'a>(
     parts: &'a [&'a [SamplePoint]],
     range: std::ops::Range<usize>,
-) -> impl Iterator<Item = &'a SamplePoint> {
+) -> impl Iterator<Item = &'a [SamplePoint]> {
     let mut start = 0;
-    parts.iter().flat_map(move |part| {
+    parts.iter().map(move |part| {
         let (from, to) = (start, start + part.len());
         start = to;
         let lo = range.start.clamp(from, to) - from;
         let hi = range.end.clamp(from, to) - from;
-        part[lo..hi].iter()
+        &part[lo..hi]
     })
 }
