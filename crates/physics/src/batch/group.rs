@@ -170,7 +170,11 @@ impl Group {
             let motions = carried(motion, roots);
             let root = RootMotion::<Lanes>::gather(&motions);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            *out = measure_lanes(&**model, env, &root, &motions, q, v, contact, pull.as_ref());
+            let measured =
+                measure_lanes(&**model, env, &root, &motions, q, v, contact, pull.as_ref());
+            for (lane, out) in out.iter_mut().enumerate() {
+                *out = measured.strand(lane);
+            }
         };
         if parallel {
             self.q
@@ -356,7 +360,5 @@ fn judge_batch(
     let root = RootMotion::<Lanes>::gather(&motions);
     let contact = check.contact.as_ref();
     let end = measure_lanes(model, env, &root, &motions, q, v, contact, pull.as_ref());
-    let failed = check_and_reset(check.guard, model, q, v, measures, &end, check.dt_secs);
-    *measures = end;
-    failed
+    check_and_reset(check.guard, model, q, v, measures, &end, check.dt_secs)
 }

@@ -93,16 +93,16 @@ thread_local! {
     clippy::too_many_arguments,
     reason = "the batch's state and every force the balance counts"
 )]
-pub fn measure_lanes(
+pub fn measure_lanes<'a>(
     model: &impl Constants<Lanes>,
     env: &StepEnv,
     root: &RootMotion<Lanes>,
-    motions: &[RigidMotion; LANES],
+    motions: &'a [RigidMotion; LANES],
     q: &[V3<Lanes>],
     v: &[V3<Lanes>],
     contact: Option<&SkinTest<'_>>,
     pull: Option<&SamplePull<'_>>,
-) -> [StrandMeasure; LANES] {
+) -> LaneMeasures<'a> {
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
     let g = V3::splat(env.gravity_m_per_s2);
@@ -163,34 +163,77 @@ pub fn measure_lanes(
         None => 0,
     };
     KEPT_ENDS.with(|kept| *kept.borrow_mut() = ends);
-    std::array::from_fn(|lane| {
+    LaneMeasures {
+        kinetic,
+        elastic,
+        power,
+        fastest,
+        mass,
+        second_moment,
+        momentum,
+        angular,
+        force,
+        torque,
+        first_moment,
+        in_contact,
+        motions,
+        gravity_m_per_s2: DVec3::from_array(env.gravity_m_per_s2.map(f64::from)),
+    }
+}
+
+/// A batch's measure as [`measure_lanes`] sums it, in lanes; each strand's
+/// [`StrandMeasure`] is read from it lane by lane ([`Self::strand`]), where
+/// it is needed, instead of all eight built and copied at once.
+#[derive(Clone, Copy, Debug)]
+pub struct LaneMeasures<'a> {
+    kinetic: Lanes,
+    elastic: Lanes,
+    power: Lanes,
+    fastest: Lanes,
+    mass: Lanes,
+    second_moment: Lanes,
+    momentum: V3<Lanes>,
+    angular: V3<Lanes>,
+    force: V3<Lanes>,
+    torque: V3<Lanes>,
+    first_moment: V3<Lanes>,
+    /// Bit `lane`: whether the head's contact acts on that lane.
+    in_contact: u32,
+    motions: &'a [RigidMotion; LANES],
+    gravity_m_per_s2: DVec3,
+}
+
+impl LaneMeasures<'_> {
+    /// Lane `lane`'s measure, in f64.
+    pub fn strand(&self, lane: usize) -> StrandMeasure {
         let x = |t: Lanes| f64::from(t.lane(lane));
         let x3 = |t: V3<Lanes>| DVec3::new(x(t.x), x(t.y), x(t.z));
-        let motion = &motions[lane];
-        let gravity = DVec3::from_array(env.gravity_m_per_s2.map(f64::from));
-        let relative_gravity_j = -gravity.dot(x3(first_moment));
-        let gravity_j = relative_gravity_j - x(mass) * gravity.dot(motion.position_m);
+        let motion = &self.motions[lane];
+        let gravity = self.gravity_m_per_s2;
+        let relative_gravity_j = -gravity.dot(x3(self.first_moment));
+        let gravity_j = relative_gravity_j - x(self.mass) * gravity.dot(motion.position_m);
+        let (kinetic, elastic) = (x(self.kinetic), x(self.elastic));
         StrandMeasure {
-            kinetic_j: x(kinetic),
-            energy_j: x(kinetic) + x(elastic) + gravity_j,
-            size_j: x(kinetic) + x(elastic) + relative_gravity_j.abs(),
-            momentum: x3(momentum),
-            angular_momentum: x3(angular),
-            external_force_n: x3(force),
-            external_torque_n_m: x3(torque),
-            external_power_w: x(power),
+            kinetic_j: kinetic,
+            energy_j: kinetic + elastic + gravity_j,
+            size_j: kinetic + elastic + relative_gravity_j.abs(),
+            momentum: x3(self.momentum),
+            angular_momentum: x3(self.angular),
+            external_force_n: x3(self.force),
+            external_torque_n_m: x3(self.torque),
+            external_power_w: x(self.power),
             contact_power_w: 0.0,
             contact_j: 0.0,
-            in_contact: in_contact & (1 << lane) != 0,
+            in_contact: self.in_contact & (1 << lane) != 0,
             root_velocity_m_per_s: motion.velocity_m_per_s,
             root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
             root_acceleration_m_per_s2: motion.acceleration_m_per_s2,
             root_angular_acceleration_rad_per_s2: motion.angular_acceleration_rad_per_s2,
-            mass_kg: x(mass),
-            second_moment_kg_m2: x(second_moment),
-            fastest_relative_m_per_s: x(fastest),
+            mass_kg: x(self.mass),
+            second_moment_kg_m2: x(self.second_moment),
+            fastest_relative_m_per_s: x(self.fastest),
         }
-    })
+    }
 }
 
 /// Per lane (bit `lane` of the mask), whether the head's contact acts at
@@ -265,26 +308,31 @@ fn s_root_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
 }
 
 /// Checks one batch (`q`, `v`: N triples each) whose lanes started the
-/// frame measured as `start` and ended it as `end`; resets each failing
-/// lane to `model`'s natural shape at rest. Returns, per lane, what failed
-/// (`None`: the lane passed), as the f64 guard names it.
+/// frame measured as `measures` and ended it as `end`, and leaves the end's
+/// measures in `measures`; resets each failing lane to `model`'s natural
+/// shape at rest. Returns, per lane, what failed (`None`: the lane
+/// passed), as the f64 guard names it.
 pub fn check_and_reset(
     guard: &Guard,
     model: &LaneModel,
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
-    start: &[StrandMeasure; LANES],
-    end: &[StrandMeasure; LANES],
+    measures: &mut [StrandMeasure; LANES],
+    end: &LaneMeasures<'_>,
     dt_secs: f64,
 ) -> [Option<GuardCause>; LANES] {
     let finite_q = finite_lanes(q);
     let finite_v = finite_lanes(v);
-    let failed: [Option<GuardCause>; LANES] = std::array::from_fn(|i| {
-        if !(finite_q[i] && finite_v[i]) {
-            return Some(GuardCause::NotFinite);
-        }
-        guard.check_with_round_off(&[], &[], &start[i], &end[i], dt_secs, F32_ENERGY_ROUND_OFF)
-    });
+    let mut failed = [None; LANES];
+    for (lane, (start, failed)) in measures.iter_mut().zip(&mut failed).enumerate() {
+        let end = end.strand(lane);
+        *failed = if finite_q[lane] && finite_v[lane] {
+            guard.check_with_round_off(&[], &[], start, &end, dt_secs, F32_ENERGY_ROUND_OFF)
+        } else {
+            Some(GuardCause::NotFinite)
+        };
+        *start = end;
+    }
     for (lane, _) in failed.iter().enumerate().filter(|(_, f)| f.is_some()) {
         set_natural_at_rest(model, q, v, lane);
     }

@@ -58,10 +58,15 @@ impl SignedDistanceField {
             (g.z as usize).min(self.dims[2] - 2),
         ];
         let t = g - DVec3::new(i[0] as f64, i[1] as f64, i[2] as f64);
-        // The cell's eight corners, read once: corner[dx][dy][dz].
-        let corner = [0, 1]
-            .map(|dx| [0, 1].map(|dy| [0, 1].map(|dz| self.at(i[0] + dx, i[1] + dy, i[2] + dz))));
-        let c = |dx: usize, dy: usize, dz: usize| corner[dx][dy][dz];
+        // The cell's eight corners: grid point (x, y, z) is entry
+        // x + nx (y + ny z), so corner (dx, dy, dz) is the cell's first
+        // plus dx + nx dy + nx ny dz, all within one slice read once (plain
+        // indexing: nested array maps here were a twentieth of a groom's
+        // frame, their closures not inlined).
+        let (row, plane) = (self.dims[0], self.dims[0] * self.dims[1]);
+        let first = i[0] + row * (i[1] + self.dims[1] * i[2]);
+        let cell = &self.distance_m[first..=first + 1 + row + plane];
+        let c = |dx: usize, dy: usize, dz: usize| cell[dx + row * dy + plane * dz];
         // Trilinear value and its exact gradient.
         let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
         let (c00, c10) = (
