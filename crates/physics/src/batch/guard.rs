@@ -108,7 +108,7 @@ pub fn measure_lanes<'a>(
     let g = V3::splat(env.gravity_m_per_s2);
     let air = V3::splat(env.air_velocity_m_per_s);
     let zero = Lanes::splat(0.0);
-    let (mut kinetic, mut elastic, mut power, mut fastest) = (zero, zero, zero, zero);
+    let (mut kinetic, mut elastic, mut power, mut fastest_squared) = (zero, zero, zero, zero);
     let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
         (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
     let (mut mass, mut second_moment) = (zero, zero);
@@ -139,7 +139,9 @@ pub fn measure_lanes<'a>(
             }
             let carried = s_root_velocity(root, r);
             let rel = vel - carried;
-            fastest = fastest.max(rel.dot(rel).sqrt());
+            // Squares here, one root at the end: the root is monotone and
+            // correctly rounded, so the same bits (NaN stays NaN).
+            fastest_squared = fastest_squared.max(rel.dot(rel));
         }
         let d = q[e] - model.natural(e);
         let k = model.stiffness(e);
@@ -167,7 +169,6 @@ pub fn measure_lanes<'a>(
         kinetic,
         elastic,
         power,
-        fastest,
         mass,
         second_moment,
         momentum,
@@ -177,6 +178,7 @@ pub fn measure_lanes<'a>(
         first_moment,
         in_contact,
         motions,
+        fastest: fastest_squared.sqrt(),
         gravity_m_per_s2: DVec3::from_array(env.gravity_m_per_s2.map(f64::from)),
     }
 }
