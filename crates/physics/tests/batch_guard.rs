@@ -127,3 +127,31 @@ fn a_healthy_run_is_left_alone_and_matches_the_unguarded_one() {
     assert_eq!(guarded.guard_reset_count(), 0);
     assert_eq!(states(&guarded, 0..5), states(&unguarded, 0..5));
 }
+
+#[test]
+fn a_guard_switched_back_on_judges_the_frame_it_sees_not_one_it_missed() {
+    // The same healthy shake as above, its guard off for 45 frames in the
+    // middle: switched back on, it judges the frames it sees, from the
+    // state it starts from, and steps in no more than when it was on
+    // throughout (nothing).
+    let shake = Oscillation {
+        axis: DVec3::new(0.2, 1.0, 0.1),
+        amplitude_rad: 0.3,
+        frequency_hz: 1.0,
+    };
+    let mut system = mixed(Method::Exact, Some(Guard::default()));
+    for frame in 0..150 {
+        match frame {
+            30 => system.set_guard(None),
+            75 => system.set_guard(Some(Guard::default())),
+            _ => {}
+        }
+        system.step_frame(&shake);
+        assert!(
+            system.last_guard_events().is_empty(),
+            "frame {frame}: {:?}",
+            system.last_guard_events()
+        );
+    }
+    assert_eq!(system.guard_reset_count(), 0);
+}

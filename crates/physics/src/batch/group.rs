@@ -70,7 +70,7 @@ pub(super) struct FrameCheck<'a> {
     pub(super) guard: &'a Guard,
     /// The head at the end of the frame.
     pub(super) motion: &'a RigidMotion,
-    /// The head's contact with the head there, if a collider is set.
+    /// The contact test with the head there, if a collider is set.
     pub(super) contact: Option<SkinTest<'a>>,
     /// The frame's length, s.
     pub(super) dt_secs: f64,

@@ -342,6 +342,13 @@ impl BatchSystem {
                     _ => self.last_resets.push(event.strand),
                 }
             }
+        } else {
+            // Stepped unjudged, the state has left the last measures
+            // behind (as a reference strand's unguarded step drops its
+            // cached measure): a guard switched on again measures afresh.
+            for group in &mut self.groups {
+                group.measured = false;
+            }
         }
         self.reset_count += self.last_resets.len() + self.last_pins.len();
     }
