@@ -169,23 +169,26 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
         let [carried_a, carried_b] = &mut carried;
         let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);
         rhs_squared += rhs.dot(rhs);
-        let hu_top = h_aa.mul_mat(&el.a) + h_ab.mul_mat(&el.b);
-        let hu_bottom = h_ba.mul_mat(&el.a) + h_bb.mul_mat(&el.b);
-        let w_top = (el.u + terms.x_beyond).scale(s) - hu_top;
-        let w_bottom = (own_v + terms.y_beyond).scale(s) - hu_bottom;
-        let s_tilde = terms.mass_block.scale(s).add_diagonal(diagonal)
-            - (el.a.t_mul_mat(&hu_top) + el.b.t_mul_mat(&hu_bottom));
+        let hu_top = h_ab.mul_mat_add(&el.b, &h_aa.mul_mat(&el.a));
+        let hu_bottom = h_bb.mul_mat_add(&el.b, &h_ba.mul_mat(&el.a));
+        let w_top = (el.u + terms.x_beyond).scale_add(s, -hu_top);
+        let w_bottom = (own_v + terms.y_beyond).scale_add(s, -hu_bottom);
+        let hu_projected = el.b.t_mul_mat_add(&hu_bottom, &el.a.t_mul_mat(&hu_top));
+        let s_tilde = terms
+            .mass_block
+            .scale_add(s, -hu_projected)
+            .add_diagonal(diagonal);
         let s_inv = s_tilde.inverse();
         let p_top = w_top.mul_mat(&s_inv);
         let p_bottom = w_bottom.mul_mat(&s_inv);
-        *h_aa += p_top.mul_mat_t(&w_top);
-        *h_ab += p_top.mul_mat_t(&w_bottom);
-        *h_ba += p_bottom.mul_mat_t(&w_top);
-        *h_bb += p_bottom.mul_mat_t(&w_bottom);
-        let r = rhs - (el.a.t_mul_vec(*carried_a) + el.b.t_mul_vec(*carried_b));
+        *h_aa = p_top.mul_mat_t_add(&w_top, h_aa);
+        *h_ab = p_top.mul_mat_t_add(&w_bottom, h_ab);
+        *h_ba = p_bottom.mul_mat_t_add(&w_top, h_ba);
+        *h_bb = p_bottom.mul_mat_t_add(&w_bottom, h_bb);
+        let r = rhs - el.b.t_mul_vec_add(*carried_b, el.a.t_mul_vec(*carried_a));
         let y = s_inv * r;
-        *carried_a += w_top * y;
-        *carried_b += w_bottom * y;
+        *carried_a = w_top.mul_vec_add(y, *carried_a);
+        *carried_b = w_bottom.mul_vec_add(y, *carried_b);
         elimination[e] = Elimination {
             w_top,
             w_bottom,
@@ -215,10 +218,12 @@ pub fn back_substitute<T: Real, const LOCAL: bool>(
         if LOCAL {
             moved_a = moved_a - el.span.cross(moved_b);
         }
-        let delta_v =
-            x.s_inv * (x.rhs - (x.w_top.t_mul_vec(moved_a) + x.w_bottom.t_mul_vec(moved_b)));
-        moved_a += el.a * delta_v;
-        moved_b += el.b * delta_v;
+        let delta_v = x.s_inv
+            * (x.rhs
+                - x.w_bottom
+                    .t_mul_vec_add(moved_b, x.w_top.t_mul_vec(moved_a)));
+        moved_a = el.a.mul_vec_add(delta_v, moved_a);
+        moved_b = el.b.mul_vec_add(delta_v, moved_b);
         out(e, delta_v);
     }
 }
@@ -240,10 +245,10 @@ pub fn solve_again<T: Real, const LOCAL: bool>(
         let el = &scratch[e];
         let stored = &mut elimination[e];
         let [carried_a, carried_b] = &mut carried;
-        let r = b[e] - (el.a.t_mul_vec(*carried_a) + el.b.t_mul_vec(*carried_b));
+        let r = b[e] - el.b.t_mul_vec_add(*carried_b, el.a.t_mul_vec(*carried_a));
         let y = stored.s_inv * r;
-        *carried_a += stored.w_top * y;
-        *carried_b += stored.w_bottom * y;
+        *carried_a = stored.w_top.mul_vec_add(y, *carried_a);
+        *carried_b = stored.w_bottom.mul_vec_add(y, *carried_b);
         stored.rhs = r;
         if LOCAL {
             // The carried wrench's part of `shift_articulated`.

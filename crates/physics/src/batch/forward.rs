@@ -65,12 +65,14 @@ impl<T: Real> FrameState<T> {
         [
             self.point_m + d,
             self.point_velocity + w.cross(d) + rel_v,
-            self.point_acceleration
-                + self.angular_acceleration.cross(d)
-                + w.cross(w.cross(d))
-                + w_rel_v
-                + w_rel_v
-                + self.frame * h_ddot,
+            self.frame.mul_vec_add(
+                h_ddot,
+                self.point_acceleration
+                    + self.angular_acceleration.cross(d)
+                    + w.cross(w.cross(d))
+                    + w_rel_v
+                    + w_rel_v,
+            ),
         ]
     }
 }
@@ -128,9 +130,10 @@ pub fn advance_local_with<T: Real>(
     let next = FrameState {
         frame: s.frame.mul_mat(&turn.rotation),
         angular_velocity: s.angular_velocity + spin,
-        angular_acceleration: s.angular_acceleration
-            + s.angular_velocity.cross(spin)
-            + s.frame * turn.spin_dot,
+        angular_acceleration: s.frame.mul_vec_add(
+            turn.spin_dot,
+            s.angular_acceleration + s.angular_velocity.cross(spin),
+        ),
         point_m: p,
         point_velocity: pv,
         point_acceleration: pa,
@@ -193,7 +196,7 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     let zero = T::splat(0.0);
     let (mut force_sum, mut torque_sum, mut first_moment) = (V3::zero(), V3::zero(), V3::zero());
     let mut mass = zero;
-    let mut inertia = M3::zero();
+    let mut second = [zero; 6];
     // Σ wρS JᵀJ by its upper triangle (00, 01, 02, 11, 12, 22).
     let mut gram = [zero; 6];
     let mut local_force = V3::zero();
@@ -209,27 +212,32 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
         let [r, vel, acc] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
         let w_len = T::splat(*weight) * length_m;
         let w_mass = w_len * rho_s;
-        let mut per_length = (g - acc).scale(rho_s) - (vel - air).scale(nu);
+        let mut per_length = (g - acc).scale_add(rho_s, (air - vel).scale(nu));
         if H::SAMPLE_FORCES {
             per_length += hook.sample_force(e, j, vel);
         }
         let force = per_length.scale(w_len);
         let jac = &lp.jacobian;
-        local_force += jac.t_mul_vec(s.frame.t_mul_vec(force));
+        local_force = jac.t_mul_vec_add(s.frame.t_mul_vec(force), local_force);
         let (c0, c1, c2) = (jac.c0, jac.c1, jac.c2);
-        gram[0] += w_mass * c0.dot(c0);
-        gram[1] += w_mass * c0.dot(c1);
-        gram[2] += w_mass * c0.dot(c2);
-        gram[3] += w_mass * c1.dot(c1);
-        gram[4] += w_mass * c1.dot(c2);
-        gram[5] += w_mass * c2.dot(c2);
+        gram[0] = w_mass.mul_add(c0.dot(c0), gram[0]);
+        gram[1] = w_mass.mul_add(c0.dot(c1), gram[1]);
+        gram[2] = w_mass.mul_add(c0.dot(c2), gram[2]);
+        gram[3] = w_mass.mul_add(c1.dot(c1), gram[3]);
+        gram[4] = w_mass.mul_add(c1.dot(c2), gram[4]);
+        gram[5] = w_mass.mul_add(c2.dot(c2), gram[5]);
         force_sum += force;
         torque_sum += r.cross(force);
         mass += w_mass;
         let r_w = r.scale(w_mass);
         first_moment += r_w;
-        let rr = r_w.dot(r);
-        inertia += (M3::outer(r_w, r).scale(T::splat(-1.0))).add_diagonal(V3::new(rr, rr, rr));
+        // Σ wρS r rᵀ by its upper triangle; I = tr(·)𝟙 − (·) after the loop.
+        second[0] = r_w.x.mul_add(r.x, second[0]);
+        second[1] = r_w.x.mul_add(r.y, second[1]);
+        second[2] = r_w.x.mul_add(r.z, second[2]);
+        second[3] = r_w.y.mul_add(r.y, second[3]);
+        second[4] = r_w.y.mul_add(r.z, second[4]);
+        second[5] = r_w.z.mul_add(r.z, second[5]);
         if OFF_DIAGONAL {
             let jac_w = jac.scale(w_mass);
             u_local += jac_w;
@@ -240,7 +248,12 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     el.torque_sum = torque_sum;
     el.mass = mass;
     el.first_moment = first_moment;
-    el.inertia = inertia;
+    let trace = second[0] + second[3] + second[5];
+    el.inertia = M3::from_cols(
+        V3::new(trace - second[0], -second[1], -second[2]),
+        V3::new(-second[1], trace - second[3], -second[4]),
+        V3::new(-second[2], -second[4], trace - second[5]),
+    );
     el.own_force = local_force;
     el.own_mass_block = M3::from_cols(
         V3::new(gram[0], gram[1], gram[2]),

@@ -67,9 +67,9 @@ fn horner<T: Real>(c: &[f32; TERMS], y: T) -> [T; 3] {
     let mut dp = T::splat(0.0);
     let mut half_ddp = T::splat(0.0);
     for &cn in c[..TERMS - 1].iter().rev() {
-        half_ddp = half_ddp * y + dp;
-        dp = dp * y + p;
-        p = p * y + T::splat(cn);
+        half_ddp = half_ddp.mul_add(y, dp);
+        dp = dp.mul_add(y, p);
+        p = p.mul_add(y, T::splat(cn));
     }
     [p, dp, half_ddp + half_ddp]
 }
@@ -220,7 +220,7 @@ fn coefficient_jet<T: Real>(f: [T; 3], j: &PhiJet<T>) -> [T; 3] {
     [
         f[0],
         f[1] * j.y_dot,
-        f[2] * j.y_dot * j.y_dot + f[1] * j.y_ddot,
+        (f[2] * j.y_dot).mul_add(j.y_dot, f[1] * j.y_ddot),
     ]
 }
 
@@ -234,21 +234,29 @@ fn point_from_jet<T: Real>(sigma: T, j: &PhiJet<T>) -> LocalPoint<T> {
     let g1 = V3::new(zero, phi.z, -phi.y);
     let g1d = V3::new(zero, pd.z, -pd.y);
     let g2 = V3::new(phi.x * phi.x - j.y, phi.x * phi.y, phi.x * phi.z);
-    let g2d = pd.scale(phi.x) + phi.scale(pd.x) - V3::new(j.y_dot, zero, zero);
-    let g2dd = pd.scale(pd.x + pd.x) - V3::new(j.y_ddot, zero, zero);
-    let f = V3::new(one, zero, zero) + g1.scale(b) + g2.scale(c);
-    let fd = g1.scale(bd) + g1d.scale(b) + g2.scale(cd) + g2d.scale(c);
-    let fdd =
-        g1.scale(bdd) + g1d.scale(bd + bd) + g2.scale(cdd) + g2d.scale(cd + cd) + g2dd.scale(c);
+    let g2d = phi.scale_add(pd.x, pd.scale_add(phi.x, V3::new(-j.y_dot, zero, zero)));
+    let g2dd = pd.scale_add(pd.x + pd.x, V3::new(-j.y_ddot, zero, zero));
+    let f = g2.scale_add(c, g1.scale_add(b, V3::new(one, zero, zero)));
+    let fd = g2d.scale_add(c, g2.scale_add(cd, g1d.scale_add(b, g1.scale(bd))));
+    let fdd = g2dd.scale_add(
+        c,
+        g2d.scale_add(
+            cd + cd,
+            g2.scale_add(cdd, g1d.scale_add(bd + bd, g1.scale(bdd))),
+        ),
+    );
     // ∂f/∂φ, column j: φ_j u + C φₓ e_j + (C φ for j = 0) + (−B [e₀]×)_j,
     // u = 2B′g₁ + 2C′g₂ − 2C e₀.
     let two = T::splat(2.0);
-    let u = g1.scale(two * j.co.b[1]) + g2.scale(two * j.co.c[1]) - V3::new(two * c, zero, zero);
+    let u = g2.scale_add(
+        two * j.co.c[1],
+        g1.scale_add(two * j.co.b[1], V3::new(-(two * c), zero, zero)),
+    );
     let cx = c * phi.x;
     let s2 = sigma * sigma;
-    let col0 = u.scale(phi.x) + V3::new(cx, zero, zero) + phi.scale(c);
-    let col1 = u.scale(phi.y) + V3::new(zero, cx, -b);
-    let col2 = u.scale(phi.z) + V3::new(zero, b, cx);
+    let col0 = phi.scale_add(c, u.scale_add(phi.x, V3::new(cx, zero, zero)));
+    let col1 = u.scale_add(phi.y, V3::new(zero, cx, -b));
+    let col2 = u.scale_add(phi.z, V3::new(zero, b, cx));
     let s = sigma;
     LocalPoint {
         h: f.scale(s),
@@ -312,8 +320,8 @@ pub fn local_end_with<T: Real>(
     let turn = LocalTurn {
         rotation,
         left_jacobian,
-        spin: pd + m1.scale(b) + m2.scale(c),
-        spin_dot: m1.scale(bd) + m2.scale(cd) + pd.cross(m1).scale(c),
+        spin: m2.scale_add(c, m1.scale_add(b, pd)),
+        spin_dot: pd.cross(m1).scale_add(c, m2.scale_add(cd, m1.scale(bd))),
     };
     (point, turn)
 }

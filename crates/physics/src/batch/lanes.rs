@@ -43,6 +43,8 @@ pub trait Real:
     fn sqrt(self) -> Self;
     /// (sin, cos), lane by lane.
     fn sin_cos(self) -> (Self, Self);
+    /// self · a + b with one rounding (a fused multiply-add), lane by lane.
+    fn mul_add(self, a: Self, b: Self) -> Self;
     /// Lane-wise maximum.
     fn max(self, o: Self) -> Self;
     /// Lane-wise floor (largest integer not above).
@@ -77,6 +79,10 @@ impl Real for f32 {
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
         f32::sin_cos(self)
+    }
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        f32::mul_add(self, a, b)
     }
     #[inline(always)]
     fn max(self, o: Self) -> Self {
@@ -124,6 +130,10 @@ impl Real for f64 {
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
         f64::sin_cos(self)
+    }
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        f64::mul_add(self, a, b)
     }
     #[inline(always)]
     fn max(self, o: Self) -> Self {
@@ -268,6 +278,10 @@ impl Real for Lanes {
         (join(sin_low, sin_high), join(cos_low, cos_high))
     }
     #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        fused_mul_add(self, a, b)
+    }
+    #[inline(always)]
     fn max(self, o: Self) -> Self {
         Lanes(self.0.max(o.0))
     }
@@ -290,5 +304,24 @@ impl Real for Lanes {
     #[inline(always)]
     fn select_greater(self, than: Self, if_greater: Self, otherwise: Self) -> Self {
         Lanes(self.0.simd_gt(than.0).select(if_greater.0, otherwise.0))
+    }
+}
+
+/// self · a + b per lane with one rounding: one FMA instruction where the
+/// build enables FMA (`.cargo/config.toml`'s native target on any x86-64
+/// since 2013), else each lane's `f32::mul_add` (correctly rounded in
+/// software; slow, but the same bits, so results never depend on the
+/// instruction set). `wide`'s own fallback is an unfused multiply and add,
+/// whose bits differ.
+#[inline(always)]
+fn fused_mul_add(x: Lanes, a: Lanes, b: Lanes) -> Lanes {
+    #[cfg(target_feature = "fma")]
+    {
+        Lanes(x.0.mul_add(a.0, b.0))
+    }
+    #[cfg(not(target_feature = "fma"))]
+    {
+        let (x, a, b) = (x.to_array(), a.to_array(), b.to_array());
+        Lanes::from_array(std::array::from_fn(|i| x[i].mul_add(a[i], b[i])))
     }
 }

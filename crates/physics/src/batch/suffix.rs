@@ -54,9 +54,9 @@ impl<T: Real> Beyond<T> {
         let m = self.mass;
         let m_delta = delta.scale(m);
         let diagonal = m_delta.dot(delta) - (c.dot(delta) + c.dot(delta));
-        self.inertia = (self.inertia + M3::outer(c, delta) + M3::outer(delta, c)
-            - M3::outer(m_delta, delta))
-        .add_diagonal(V3::new(diagonal, diagonal, diagonal));
+        let inertia = M3::outer_add(-m_delta, delta, self.inertia);
+        self.inertia = M3::outer_add(c, delta, M3::outer_add(delta, c, inertia))
+            .add_diagonal(V3::new(diagonal, diagonal, diagonal));
         self.first_moment = c - m_delta;
         self.torque = self.torque - delta.cross(self.force);
     }
@@ -88,11 +88,16 @@ pub struct ElementTerms<T> {
 /// The terms of element `el` given the sums `beyond` it.
 #[inline(always)]
 pub fn element_terms<T: Real>(el: &ElementData<T>, beyond: &Beyond<T>) -> ElementTerms<T> {
-    let x_beyond = el.a.scale(beyond.mass) - M3::cross_cols(beyond.first_moment, &el.b);
-    let y_beyond = M3::cross_cols(beyond.first_moment, &el.a) + beyond.inertia.mul_mat(&el.b);
+    let x_beyond =
+        el.a.scale_add(beyond.mass, M3::cross_cols(-beyond.first_moment, &el.b));
+    let y_beyond = beyond
+        .inertia
+        .mul_mat_add(&el.b, &M3::cross_cols(beyond.first_moment, &el.a));
+    let mass_block = el.a.t_mul_mat_add(&x_beyond, &el.own_mass_block);
+    let force = el.a.t_mul_vec_add(beyond.force, el.own_force);
     ElementTerms {
-        mass_block: el.own_mass_block + el.a.t_mul_mat(&x_beyond) + el.b.t_mul_mat(&y_beyond),
-        force: el.own_force + el.a.t_mul_vec(beyond.force) + el.b.t_mul_vec(beyond.torque),
+        mass_block: el.b.t_mul_mat_add(&y_beyond, &mass_block),
+        force: el.b.t_mul_vec_add(beyond.torque, force),
         x_beyond,
         y_beyond,
     }

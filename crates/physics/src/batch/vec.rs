@@ -2,6 +2,14 @@
 //! step needs, written so that on [`super::Lanes`] each one is a handful of
 //! SIMD instructions. Matrices are column-major like glam's: `m.c1` is the
 //! second column and `m * v = c0 v.x + c1 v.y + c2 v.z`.
+//!
+//! Dot products, matrix products and cross products are chains of fused
+//! multiply-adds ([`Real::mul_add`]: one rounding per term instead of two,
+//! and one instruction instead of two), and the `*_add` forms start the
+//! chain from an accumulator, so `acc + M v` costs no separate add. On an
+//! imported groom's frame (Sintel, one thread) fusing the step's products
+//! took 17% of its instructions and about 12% of its time (docs/RESULTS.md,
+//! "Cutting the frame, third pass").
 
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
@@ -38,21 +46,36 @@ impl<T: Real> V3<T> {
     /// Dot product.
     #[inline(always)]
     pub fn dot(self, o: Self) -> T {
-        self.x * o.x + self.y * o.y + self.z * o.z
+        self.z.mul_add(o.z, self.y.mul_add(o.y, self.x * o.x))
+    }
+    /// acc + self·o, fused ([`Real::mul_add`]).
+    #[inline(always)]
+    pub fn dot_add(self, o: Self, acc: T) -> T {
+        self.z
+            .mul_add(o.z, self.y.mul_add(o.y, self.x.mul_add(o.x, acc)))
     }
     /// Cross product.
     #[inline(always)]
     pub fn cross(self, o: Self) -> Self {
         Self::new(
-            self.y * o.z - self.z * o.y,
-            self.z * o.x - self.x * o.z,
-            self.x * o.y - self.y * o.x,
+            self.y.mul_add(o.z, -(self.z * o.y)),
+            self.z.mul_add(o.x, -(self.x * o.z)),
+            self.x.mul_add(o.y, -(self.y * o.x)),
         )
     }
     /// Scaled by a scalar.
     #[inline(always)]
     pub fn scale(self, s: T) -> Self {
         Self::new(self.x * s, self.y * s, self.z * s)
+    }
+    /// self · s + o, fused per component ([`Real::mul_add`]).
+    #[inline(always)]
+    pub fn scale_add(self, s: T, o: Self) -> Self {
+        Self::new(
+            self.x.mul_add(s, o.x),
+            self.y.mul_add(s, o.y),
+            self.z.mul_add(s, o.z),
+        )
     }
 }
 
@@ -138,20 +161,63 @@ impl<T: Real> M3<T> {
     pub fn scale(self, s: T) -> Self {
         Self::from_cols(self.c0.scale(s), self.c1.scale(s), self.c2.scale(s))
     }
+    /// self · s + acc, fused entry by entry ([`Real::mul_add`]).
+    #[inline(always)]
+    pub fn scale_add(self, s: T, acc: Self) -> Self {
+        Self::from_cols(
+            self.c0.scale_add(s, acc.c0),
+            self.c1.scale_add(s, acc.c1),
+            self.c2.scale_add(s, acc.c2),
+        )
+    }
+    /// acc + a bᵀ, fused.
+    #[inline(always)]
+    pub fn outer_add(a: V3<T>, b: V3<T>, acc: Self) -> Self {
+        Self::from_cols(
+            a.scale_add(b.x, acc.c0),
+            a.scale_add(b.y, acc.c1),
+            a.scale_add(b.z, acc.c2),
+        )
+    }
     /// Matrix times vector.
     #[inline(always)]
     pub fn mul_vec(&self, v: V3<T>) -> V3<T> {
-        self.c0.scale(v.x) + self.c1.scale(v.y) + self.c2.scale(v.z)
+        self.c2
+            .scale_add(v.z, self.c1.scale_add(v.y, self.c0.scale(v.x)))
+    }
+    /// acc + M v, fused.
+    #[inline(always)]
+    pub fn mul_vec_add(&self, v: V3<T>, acc: V3<T>) -> V3<T> {
+        self.c2
+            .scale_add(v.z, self.c1.scale_add(v.y, self.c0.scale_add(v.x, acc)))
     }
     /// Transpose times vector, Mᵀv.
     #[inline(always)]
     pub fn t_mul_vec(&self, v: V3<T>) -> V3<T> {
         V3::new(self.c0.dot(v), self.c1.dot(v), self.c2.dot(v))
     }
+    /// acc + Mᵀv, fused.
+    #[inline(always)]
+    pub fn t_mul_vec_add(&self, v: V3<T>, acc: V3<T>) -> V3<T> {
+        V3::new(
+            self.c0.dot_add(v, acc.x),
+            self.c1.dot_add(v, acc.y),
+            self.c2.dot_add(v, acc.z),
+        )
+    }
     /// Matrix product.
     #[inline(always)]
     pub fn mul_mat(&self, o: &Self) -> Self {
         Self::from_cols(self.mul_vec(o.c0), self.mul_vec(o.c1), self.mul_vec(o.c2))
+    }
+    /// acc + M O, fused.
+    #[inline(always)]
+    pub fn mul_mat_add(&self, o: &Self, acc: &Self) -> Self {
+        Self::from_cols(
+            self.mul_vec_add(o.c0, acc.c0),
+            self.mul_vec_add(o.c1, acc.c1),
+            self.mul_vec_add(o.c2, acc.c2),
+        )
     }
     /// Mᵀ O.
     #[inline(always)]
@@ -162,10 +228,32 @@ impl<T: Real> M3<T> {
             self.t_mul_vec(o.c2),
         )
     }
+    /// acc + Mᵀ O, fused.
+    #[inline(always)]
+    pub fn t_mul_mat_add(&self, o: &Self, acc: &Self) -> Self {
+        Self::from_cols(
+            self.t_mul_vec_add(o.c0, acc.c0),
+            self.t_mul_vec_add(o.c1, acc.c1),
+            self.t_mul_vec_add(o.c2, acc.c2),
+        )
+    }
     /// M Oᵀ = Σ_i m_i o_iᵀ over columns.
     #[inline(always)]
     pub fn mul_mat_t(&self, o: &Self) -> Self {
-        Self::outer(self.c0, o.c0) + Self::outer(self.c1, o.c1) + Self::outer(self.c2, o.c2)
+        Self::outer_add(
+            self.c2,
+            o.c2,
+            Self::outer_add(self.c1, o.c1, Self::outer(self.c0, o.c0)),
+        )
+    }
+    /// acc + M Oᵀ, fused.
+    #[inline(always)]
+    pub fn mul_mat_t_add(&self, o: &Self, acc: &Self) -> Self {
+        Self::outer_add(
+            self.c2,
+            o.c2,
+            Self::outer_add(self.c1, o.c1, Self::outer_add(self.c0, o.c0, *acc)),
+        )
     }
     /// [v]× M, column by column.
     #[inline(always)]
@@ -218,6 +306,14 @@ impl<T: Real> Sub for M3<T> {
     #[inline(always)]
     fn sub(self, o: Self) -> Self {
         Self::from_cols(self.c0 - o.c0, self.c1 - o.c1, self.c2 - o.c2)
+    }
+}
+
+impl<T: Real> Neg for M3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self::from_cols(-self.c0, -self.c1, -self.c2)
     }
 }
 

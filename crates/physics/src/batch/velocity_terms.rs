@@ -163,7 +163,7 @@ pub fn velocity_product<T: Real>(
             let [r, _, acc_plus] = origin_plus.carry(lp.h, lp.h_dot, lp.h_ddot);
             let [_, _, acc_minus] = origin_minus.carry(lm.h, lm.h_dot, lm.h_ddot);
             let f = (acc_plus - acc_minus).scale(factor * (T::splat(*weight) * length_m));
-            local += lp.jacobian.t_mul_vec(plus.frame.t_mul_vec(f));
+            local = lp.jacobian.t_mul_vec_add(plus.frame.t_mul_vec(f), local);
             result.force += f;
             result.torque += r.cross(f);
         }
@@ -181,7 +181,8 @@ pub fn velocity_product<T: Real>(
     let (mut force, mut torque) = (V3::zero(), V3::zero());
     for e in (0..own.len()).rev() {
         let el = &scratch[e];
-        out[e] = own[e].own + el.a.t_mul_vec(force) + el.b.t_mul_vec(torque);
+        out[e] =
+            el.b.t_mul_vec_add(torque, el.a.t_mul_vec_add(force, own[e].own));
         // Move the moments to e's start point (by −span), then add e's own.
         torque = torque + el.span.cross(force) + own[e].torque;
         force += own[e].force;
