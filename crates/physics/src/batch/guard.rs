@@ -127,12 +127,12 @@ pub fn measure_lanes<'a>(
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
             let w_len = Lanes::splat(*weight) * length_m;
             let w_mass = w_len * rho_s;
-            kinetic += vel.dot(vel) * w_mass * Lanes::splat(0.5);
-            momentum += vel.scale(w_mass);
-            angular += r.cross(vel).scale(w_mass);
-            first_moment += r.scale(w_mass);
+            kinetic = (vel.dot(vel) * w_mass).mul_add(Lanes::splat(0.5), kinetic);
+            momentum = vel.scale_add(w_mass, momentum);
+            angular = r.cross(vel).scale_add(w_mass, angular);
+            first_moment = r.scale_add(w_mass, first_moment);
             mass += w_mass;
-            second_moment += r.dot(r) * w_mass;
+            second_moment = r.dot(r).mul_add(w_mass, second_moment);
             if let Some(pull) = pull {
                 let sums = (&mut force, &mut torque, &mut power);
                 add_pull_work(pull, e, j, r, vel, w_len, sums);

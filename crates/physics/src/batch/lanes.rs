@@ -325,3 +325,28 @@ fn fused_mul_add(x: Lanes, a: Lanes, b: Lanes) -> Lanes {
         Lanes::from_array(std::array::from_fn(|i| x[i].mul_add(a[i], b[i])))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Known answer: (1 + 2⁻¹³)(1 − 2⁻¹³) − 1 = −2⁻²⁶ exactly, which a
+    /// fused multiply-add returns and a separate multiply (rounding the
+    /// product to 1) and add turn into 0. Every lane, on whichever path
+    /// the build compiles (FMA instruction or per-lane fallback), and the
+    /// scalar twins, agree on the fused answer.
+    #[test]
+    fn mul_add_is_fused_on_every_path() {
+        let e = 2f32.powi(-13);
+        let fused = -(2f32.powi(-26));
+        let lanes = Lanes::splat(1.0 + e).mul_add(Lanes::splat(1.0 - e), Lanes::splat(-1.0));
+        assert_eq!(lanes.to_array(), [fused; LANES]);
+        assert_eq!(Real::mul_add(1.0 + e, 1.0 - e, -1.0f32), fused);
+        let unfused = (1.0 + e) * (1.0 - e) - 1.0f32;
+        assert_eq!(unfused, 0.0, "the product rounds to 1 when not fused");
+        assert_eq!(
+            Real::mul_add(f64::from(1.0 + e), f64::from(1.0 - e), -1.0),
+            f64::from(fused)
+        );
+    }
+}
