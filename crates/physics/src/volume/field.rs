@@ -9,11 +9,12 @@ use wide::f64x4;
 
 use super::cell::{Cell, CellLanes, Locator, OUTSIDE};
 use super::friction::grid_velocity;
-use super::pressure::{excess, push_m_per_s2};
+use super::pressure::{self, push_m_per_s2};
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
-use super::splat::{NodeSums, SamplePoint, splat_pieces};
+use super::splat::{NODES_PER_TASK, NodeSums, SamplePoint, splat_pieces};
 use super::splat_lanes::{PointLanes, splat_lane_pieces};
+use rayon::prelude::*;
 
 /// What one sample reads from the field.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,7 +61,7 @@ impl VolumeField {
         self.locator = Some(locator);
         let (sums, pieces, cells) = (&mut self.sums, &mut self.pieces, &mut self.cells);
         splat_pieces(grid, parts, sums, pieces, cells, parallel);
-        self.finish(rest, locator);
+        self.finish(rest, locator, parallel);
     }
 
     /// [`Self::update`] for points held four to a group, lane by lane, as
@@ -73,22 +74,39 @@ impl VolumeField {
         self.locator = Some(locator);
         let (sums, pieces) = (&mut self.sums, &mut self.pieces);
         splat_lane_pieces(grid, parts, sums, pieces, &mut self.cell_lanes, parallel);
-        self.finish(rest, locator);
+        self.finish(rest, locator, parallel);
     }
 
-    /// From the node sums: density, excess, and the node data reads fetch.
-    fn finish(&mut self, rest: &RestDensity, locator: Locator) {
+    /// From the node sums: density, excess, and the node data reads
+    /// fetch; node by node, in parallel when `parallel` (each node's
+    /// numbers are its own).
+    fn finish(&mut self, rest: &RestDensity, locator: Locator, parallel: bool) {
         let grid = &rest.grid;
-        self.density.clear();
-        self.density
-            .extend((0..grid.node_count()).map(|n| self.sums.density_kg_per_m3(grid, n)));
-        excess(
-            &self.density,
-            &rest.threshold_kg_per_m3,
-            rest.typical_kg_per_m3,
-            &mut self.excess,
-        );
-        self.velocity_excess.clear();
+        let count = grid.node_count();
+        self.density.resize(count, 0.0);
+        self.excess.resize(count, 0.0);
+        self.velocity_excess.resize(count, f64x4::ZERO);
+        let sums = &self.sums;
+        let density_excess = |start: usize, (density, excess): (&mut [f64], &mut [f64])| {
+            for (i, rho) in density.iter_mut().enumerate() {
+                *rho = sums.density_kg_per_m3(grid, start + i);
+            }
+            let threshold = &rest.threshold_kg_per_m3[start..start + density.len()];
+            pressure::excess(density, threshold, rest.typical_kg_per_m3, excess);
+        };
+        if parallel {
+            let pairs = self.density.par_chunks_mut(NODES_PER_TASK);
+            let pairs = pairs.zip(self.excess.par_chunks_mut(NODES_PER_TASK));
+            pairs
+                .enumerate()
+                .for_each(|(t, pair)| density_excess(t * NODES_PER_TASK, pair));
+        } else {
+            let pairs = self.density.chunks_mut(NODES_PER_TASK);
+            let pairs = pairs.zip(self.excess.chunks_mut(NODES_PER_TASK));
+            pairs
+                .enumerate()
+                .for_each(|(t, pair)| density_excess(t * NODES_PER_TASK, pair));
+        }
         let excess = &self.excess;
         // (A node past the grid's last cell along some axis is no cell's
         // first corner; its flag is never read.)
@@ -96,11 +114,21 @@ impl VolumeField {
             let corner = |o: &usize| excess.get(n + o).is_some_and(|e| *e > 0.0);
             locator.offsets.iter().any(corner)
         };
-        self.velocity_excess.extend((0..grid.node_count()).map(|n| {
-            let u = self.sums.velocity_m_per_s(n);
-            let flag = if cell_in_excess(n) { 1.0 } else { 0.0 };
-            f64x4::new([u.x, u.y, u.z, flag])
-        }));
+        let node_data = |(t, out): (usize, &mut [f64x4])| {
+            for (i, node) in out.iter_mut().enumerate() {
+                let n = t * NODES_PER_TASK + i;
+                let u = sums.velocity_m_per_s(n);
+                let flag = if cell_in_excess(n) { 1.0 } else { 0.0 };
+                *node = f64x4::new([u.x, u.y, u.z, flag]);
+            }
+        };
+        if parallel {
+            let chunks = self.velocity_excess.par_chunks_mut(NODES_PER_TASK);
+            chunks.enumerate().for_each(node_data);
+        } else {
+            let chunks = self.velocity_excess.chunks_mut(NODES_PER_TASK);
+            chunks.enumerate().for_each(node_data);
+        }
     }
 
     /// What `point` reads from the field of the last [`Self::update`], on
@@ -204,17 +232,14 @@ impl VolumeField {
             }
             let first = first as usize;
             let around = &self.velocity_excess[first..=first + offsets[7]];
-            let push = match cells.lane(k) {
-                Some(cell) if around[0].as_array()[3] > 0.0 => {
-                    let stencil = locator.stencil(&cell);
-                    Some(push_m_per_s2(
-                        &stencil,
-                        &self.excess,
-                        settings.pressure_m2_per_s2,
-                    ))
-                }
-                _ => None,
-            };
+            let push = (around[0].as_array()[3] > 0.0).then(|| {
+                let cell = Cell {
+                    first: first as u32,
+                    frac: cells.frac.map(|f| f.as_array()[k]),
+                };
+                let stencil = locator.stencil(&cell);
+                push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2)
+            });
             let target = offsets
                 .iter()
                 .zip(&weights)

@@ -111,8 +111,9 @@ fn add_point(locator: &Locator, p: &SamplePoint, cell: Option<Cell>, nodes: &mut
 /// copies of the node sums (a 2 cm grid around a head: about 1 MB each).
 pub const SPLAT_PIECES: usize = 4;
 
-/// Nodes one task adds up when the pieces are summed.
-const NODES_PER_TASK: usize = 4096;
+/// Nodes one task adds up when the pieces are summed (and one task of
+/// the node pass, [`super::field`]).
+pub(super) const NODES_PER_TASK: usize = 4096;
 
 /// Spreads the points of `parts` (in order, cut anywhere) onto `grid` in
 /// [`SPLAT_PIECES`] pieces, each into its buffer of `pieces` (reused),
