@@ -231,8 +231,24 @@ impl VolumeField {
                 continue;
             }
             let first = first as usize;
-            let around = &self.velocity_excess[first..=first + offsets[7]];
-            let push = (around[0].as_array()[3] > 0.0).then(|| {
+            let node = &self.velocity_excess;
+            // The corners two by two, each pair along x one slice (one
+            // bounds check for two nodes), summed in the order of
+            // `offsets`.
+            let mut target = f64x4::ZERO;
+            let mut flag = 0.0;
+            let pairs = offsets.chunks_exact(2).zip(weights.chunks_exact(2));
+            for (i, (pair, w)) in pairs.enumerate() {
+                if let [lower, upper] = &node[first + pair[0]..first + pair[0] + 2] {
+                    // The cell's first node: its flag.
+                    if i == 0 {
+                        flag = lower.as_array()[3];
+                    }
+                    target += f64x4::splat(w[0][k]) * *lower;
+                    target += f64x4::splat(w[1][k]) * *upper;
+                }
+            }
+            let push = (flag > 0.0).then(|| {
                 let cell = Cell {
                     first: first as u32,
                     frac: cells.frac.map(|f| f.as_array()[k]),
@@ -240,12 +256,6 @@ impl VolumeField {
                 let stencil = locator.stencil(&cell);
                 push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2)
             });
-            let target = offsets
-                .iter()
-                .zip(&weights)
-                .fold(f64x4::ZERO, |sum, (offset, w)| {
-                    sum + f64x4::splat(w[k]) * around[*offset]
-                });
             each(k, target, push);
         }
     }
