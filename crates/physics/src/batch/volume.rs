@@ -36,7 +36,6 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use glam::DVec3;
 use rayon::prelude::*;
 use wide::f64x4;
 
@@ -51,8 +50,9 @@ use super::volume_read::{BatchRates, Exchange, ReadInputs, read_batch};
 use crate::frame_balance::StrandMeasure;
 use crate::motion::{RigidMotion, RootPose};
 use crate::volume::balance::PullWork;
-use crate::volume::cell::Cell;
-use crate::volume::{InteractionSettings, ModelState, RestDensity, SamplePoint};
+use crate::volume::cell::CellLanes;
+use crate::volume::splat_lanes::PointLanes;
+use crate::volume::{InteractionSettings, ModelState, RestDensity};
 
 /// One group of strands as the gather reads it: its batches' constants,
 /// roots and batch-major state (batch b's element e at b·N + e).
@@ -70,14 +70,14 @@ pub struct GroupView<'a> {
     pub v: &'a [V3<Lanes>],
 }
 
-/// One batch's inputs and outputs of the read-back.
-type BatchOut<'a> = (&'a mut [SamplePoint], &'a mut [[V3<Lanes>; 2]]);
+/// One batch's outputs of the gather.
+type BatchOut<'a> = (&'a mut [PointLanes], &'a mut [[V3<Lanes>; 2]]);
 
 /// One batch's read-back: its c, points and their cells, motion and work
 /// exchange.
 type BatchRead<'a> = (
     (
-        (&'a mut [V3<Lanes>], (&'a [SamplePoint], &'a [Option<Cell>])),
+        (&'a mut [V3<Lanes>], (&'a [PointLanes], &'a [CellLanes])),
         &'a [[V3<Lanes>; 2]],
     ),
     &'a mut [Exchange; LANES],
@@ -86,8 +86,9 @@ type BatchRead<'a> = (
 /// One group's samples and pulls of the current frame.
 #[derive(Clone, Debug, Default)]
 struct GroupPulls {
-    /// Batch b's sample i (element-major), lane l at (b·S + i)·LANES + l.
-    points: Vec<SamplePoint>,
+    /// Batch b's sample i (element-major), lanes 4h..4h + 4 at
+    /// (b·S + i)·2 + h.
+    points: Vec<PointLanes>,
     /// Batch b's sample i's position relative to its root and velocity
     /// (world, f32 lanes) at b·S + i.
     motion: Vec<[V3<Lanes>; 2]>,
@@ -173,14 +174,14 @@ impl BatchVolume {
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
             gather_group(view, head, parallel, pulls);
         }
-        let parts: Vec<&[SamplePoint]> = self.groups.iter().map(|g| g.points.as_slice()).collect();
-        let Some((_, field, settings)) = self.state.update(&parts, parallel) else {
+        let parts: Vec<&[PointLanes]> = self.groups.iter().map(|g| g.points.as_slice()).collect();
+        let Some((_, field, settings)) = self.state.update_lanes(&parts, parallel) else {
             return;
         };
-        let mut cells = field.cells();
+        let mut cells = field.cell_lanes();
         let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
-            let lanes = pulls.samples * LANES;
+            let lanes = pulls.samples * HALVES;
             let batches = pulls.points.len() / lanes;
             // An old pull exists when the last frame read this very layout.
             let had_old =
@@ -240,9 +241,9 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     out.samples = n * out.nodes;
     let batches = view.models.len();
     out.points
-        .resize(batches * out.samples * LANES, SAMPLE_NONE);
+        .resize(batches * out.samples * HALVES, PointLanes::default());
     out.motion.resize(batches * out.samples, [V3::zero(); 2]);
-    let (lanes, samples) = (out.samples * LANES, out.samples);
+    let (lanes, samples) = (out.samples * HALVES, out.samples);
     let one = |(((out, (q, v)), roots), model): (((BatchOut<'_>, _), _), &Arc<LaneModel>)| {
         let (points, motion) = out;
         gather_batch(model, roots, head, (q, v), points, motion);
@@ -268,23 +269,20 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     }
 }
 
-const SAMPLE_NONE: SamplePoint = SamplePoint {
-    position_m: DVec3::ZERO,
-    velocity_m_per_s: DVec3::ZERO,
-    mass_kg: 0.0,
-};
+/// A batch's lanes in groups of four ([`PointLanes`]): two per sample.
+pub(super) const HALVES: usize = LANES / 4;
 
 /// One batch's samples (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
 /// at `head`) as points in head coordinates, written to `out` (sample i,
-/// lane l at i·LANES + l; padding lanes get zero mass), and as f32 lanes
-/// of position relative to the root and velocity, world, to `motion`
-/// (sample i at i).
+/// lanes 4h..4h + 4 at i·2 + h; padding lanes get zero mass), and as f32
+/// lanes of position relative to the root and velocity, world, to
+/// `motion` (sample i at i).
 pub fn gather_batch(
     model: &LaneModel,
     roots: &[RootPose],
     head: &RigidMotion,
     (q, v): (&[V3<Lanes>], &[V3<Lanes>]),
-    out: &mut [SamplePoint],
+    out: &mut [PointLanes],
     motion: &mut [[V3<Lanes>; 2]],
 ) {
     let motions: [RigidMotion; LANES] =
@@ -302,7 +300,12 @@ pub fn gather_batch(
         })
     });
     let rho_s = model.mass_per_length();
-    let strands = roots.len();
+    // Padding lanes (past the batch's strands) weigh nothing: a mask of
+    // the real lanes.
+    let real: [f64x4; HALVES] = std::array::from_fn(|h| {
+        let lane = f64x4::new(std::array::from_fn(|k| (4 * h + k) as f64));
+        lane.simd_lt(f64x4::splat(roots.len() as f64))
+    });
     let mut s = FrameState::at_root(&root);
     let mut i = 0;
     for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
@@ -315,23 +318,13 @@ pub fn gather_batch(
             for (h, root_h) in root_at.iter().enumerate() {
                 let rel = [r.x, r.y, r.z].map(|x| widen(x, h));
                 let d: [f64x4; 3] = std::array::from_fn(|a| root_h[a] + rel[a] - head_at[a]);
-                let position: [[f64; 4]; 3] = std::array::from_fn(|c| {
-                    (columns[0][c] * d[0] + columns[1][c] * d[1] + columns[2][c] * d[2]).to_array()
-                });
-                let velocity = [vel.x, vel.y, vel.z].map(|x| widen(x, h).to_array());
-                let mass = (widen(rho_s, h) * w * widen(length_m, h)).to_array();
-                for k in 0..4 {
-                    let l = 4 * h + k;
-                    out[i * LANES + l] = SamplePoint {
-                        position_m: DVec3::new(position[0][k], position[1][k], position[2][k]),
-                        velocity_m_per_s: DVec3::new(
-                            velocity[0][k],
-                            velocity[1][k],
-                            velocity[2][k],
-                        ),
-                        mass_kg: if l < strands { mass[k] } else { 0.0 },
-                    };
-                }
+                out[i * HALVES + h] = PointLanes {
+                    position_m: std::array::from_fn(|c| {
+                        columns[0][c] * d[0] + columns[1][c] * d[1] + columns[2][c] * d[2]
+                    }),
+                    velocity_m_per_s: [vel.x, vel.y, vel.z].map(|x| widen(x, h)),
+                    mass_kg: (widen(rho_s, h) * w * widen(length_m, h)) & real[h],
+                };
             }
             i += 1;
         }
@@ -360,10 +353,11 @@ pub fn rest_density(
             let q: Vec<V3<Lanes>> = (0..view.n).map(|e| model.natural(e)).collect();
             let v = vec![V3::zero(); q.len()];
             let samples = q.len() * model.nodes().len();
-            let mut batch = vec![SAMPLE_NONE; samples * LANES];
+            let mut batch = vec![PointLanes::default(); samples * HALVES];
             let mut motion = vec![[V3::zero(); 2]; samples];
             gather_batch(model, roots, &head, (&q, &v), &mut batch, &mut motion);
-            points.extend(batch.iter().filter(|p| p.mass_kg > 0.0));
+            let lanes = batch.iter().flat_map(|p| (0..4).map(|k| p.lane(k)));
+            points.extend(lanes.filter(|p| p.mass_kg > 0.0));
             let length_m = (0..view.n).fold(Lanes::splat(0.0), |sum, e| sum + model.length_m(e));
             for l in 0..roots.len() {
                 longest_m = longest_m.max(f64::from(length_m.lane(l)));

@@ -16,15 +16,18 @@
 //! the measure's, on the same state).
 
 use glam::DVec3;
+use wide::f64x4;
 
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
 use super::pull::{SamplePull, add_pull_work};
 use super::vec::V3;
+use super::volume::HALVES;
 use crate::motion::RigidMotion;
 use crate::volume::balance::PullWork;
-use crate::volume::cell::Cell;
-use crate::volume::{InteractionSettings, SamplePoint, VolumeField};
+use crate::volume::cell::CellLanes;
+use crate::volume::splat_lanes::PointLanes;
+use crate::volume::{InteractionSettings, VolumeField};
 
 /// What every batch of a group reads with.
 #[derive(Clone, Copy, Debug)]
@@ -51,8 +54,9 @@ pub struct BatchRates<'a> {
 /// A lane's old and new pull work at the frame's start.
 pub type Exchange = (PullWork, PullWork);
 
-/// Reads batch `points` (sample i, lane l at i·LANES + l; in `cells`, the
-/// field's [`VolumeField::cells`] of these points) into `known`
+/// Reads batch `points` (sample i, lanes 4h..4h + 4 at 2i + h; in
+/// `cells`, the field's [`VolumeField::cell_lanes`] of these points) into
+/// `known`
 /// (its old c on entry, the new c on return) and sums each lane's old and
 /// new pull work into `exchange`, at the samples' positions relative to
 /// their roots and velocities `motion` (f32 lanes, from the gather: the
@@ -60,7 +64,7 @@ pub type Exchange = (PullWork, PullWork);
 pub fn read_batch(
     inputs: &ReadInputs<'_>,
     rates: &BatchRates<'_>,
-    (points, cells): (&[SamplePoint], &[Option<Cell>]),
+    (points, cells): (&[PointLanes], &[CellLanes]),
     motion: &[[V3<Lanes>; 2]],
     known: &mut [V3<Lanes>],
     exchange: &mut [Exchange; LANES],
@@ -105,34 +109,42 @@ pub fn read_batch(
         Some(rate) => work(known, rate),
         None => [PullWork::default(); LANES],
     };
-    let mu = settings.friction_per_s;
-    let rho_s = model.mass_per_length();
-    // Lane by lane, root to tip: a strand's next sample is most often in
-    // the cell of its last, so the nodes it reads are still in cache
-    // (sample by sample across the lanes, each read is in another part of
-    // the head). Each sample's reading is its own: the order changes no
-    // number.
+    let mu = f64x4::splat(settings.friction_per_s);
+    let rho_s = model.mass_per_length().to_array().map(f64::from);
+    // Sample by sample, the eight lanes in turn: the eight strands of a
+    // batch lie side by side, so the nodes one sample reads are mostly
+    // those the last read, still in cache. Each sample's reading is its
+    // own: the order changes no number.
     // Most samples feel no push, +0 on every axis (bit for bit, not −0:
     // the turn of −0 may differ in the sign of a zero); its turn to world
     // axes is the same for all of them.
     let no_push = head.world_from_body * DVec3::ZERO;
+    let no_push = f64x4::new([no_push.x, no_push.y, no_push.z, 0.0]);
     let is_no_push = |a: DVec3| a.to_array().iter().all(|x| x.to_bits() == 0);
-    for l in 0..LANES {
-        let rho_s = f64::from(rho_s.lane(l));
-        let points = points.iter().skip(l).step_by(LANES);
-        let cells = cells.iter().skip(l).step_by(LANES);
-        for (c, (point, cell)) in known.iter_mut().zip(points.zip(cells)) {
-            let reading = field.read_in(settings, *cell, point);
-            let push = if is_no_push(reading.push_m_per_s2) {
-                no_push
-            } else {
-                head.world_from_body * reading.push_m_per_s2
+    let groups = points.chunks_exact(HALVES).zip(cells.chunks_exact(HALVES));
+    for (c, (points, cells)) in known.iter_mut().zip(groups) {
+        let mut value = [[0.0_f32; 3]; LANES];
+        for (h, (point, cells)) in points.iter().zip(cells).enumerate() {
+            let read = |k: usize, target: f64x4, push: Option<DVec3>| {
+                let l = 4 * h + k;
+                let push = match push {
+                    Some(a) if !is_no_push(a) => {
+                        let a = head.world_from_body * a;
+                        f64x4::new([a.x, a.y, a.z, 0.0])
+                    }
+                    _ => no_push,
+                };
+                // ρS (μ u + a), axis by axis as in DVec3 arithmetic.
+                let [x, y, z, _] = (f64x4::splat(rho_s[l]) * (mu * target + push)).to_array();
+                value[l] = [x as f32, y as f32, z as f32];
             };
-            let value = rho_s * (mu * reading.target_m_per_s + push);
-            c.x.set_lane(l, value.x as f32);
-            c.y.set_lane(l, value.y as f32);
-            c.z.set_lane(l, value.z as f32);
+            field.read_lanes(settings, cells, &point.velocity_m_per_s, read);
         }
+        *c = V3::new(
+            Lanes::from_array(value.map(|v| v[0])),
+            Lanes::from_array(value.map(|v| v[1])),
+            Lanes::from_array(value.map(|v| v[2])),
+        );
     }
     let new = work(known, rates.new);
     *exchange = std::array::from_fn(|l| (old[l], new[l]));

@@ -49,6 +49,34 @@ impl Cell {
     }
 }
 
+/// The cells of four points, lane by lane ([`Locator::locate_lanes`]):
+/// what the batch engine's splat keeps for its read-back, 28 bytes a
+/// point instead of an `Option<Cell>`'s 40.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CellLanes {
+    /// Each point's cell's first node, [`OUTSIDE`] for a point outside the
+    /// box.
+    pub first: [u32; 4],
+    /// Each point's position in its cell, per axis (x, y, z), lane by lane.
+    pub frac: [f64x4; 3],
+}
+
+/// [`CellLanes::first`] of a point outside the box (a grid has at most
+/// 2²¹ nodes, so no cell starts there).
+pub const OUTSIDE: u32 = u32::MAX;
+
+impl CellLanes {
+    /// Lane `k`'s cell, as [`Locator::locate`] finds it; `None` outside.
+    #[inline(always)]
+    pub fn lane(&self, k: usize) -> Option<Cell> {
+        let first = self.first[k];
+        (first != OUTSIDE).then(|| Cell {
+            first,
+            frac: self.frac.map(|f| f.as_array()[k]),
+        })
+    }
+}
+
 /// A grid made ready for finding cells.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Locator {
@@ -104,6 +132,37 @@ impl Locator {
             first: exact_index(bx + by * sy + bz * sz),
             frac: [fx, fy, fz],
         })
+    }
+
+    /// The cells of four points at `position_m` (head coordinates, axis by
+    /// axis, lane by lane): each lane's arithmetic that of
+    /// [`Self::locate`], the axes now in separate registers and the points
+    /// in lanes, so each lane finds exactly what `locate` finds.
+    #[inline(always)]
+    pub fn locate_lanes(&self, position_m: &[f64x4; 3]) -> CellLanes {
+        let origin = self.origin_m.as_array();
+        let (last, far) = (self.last_cell.as_array(), self.far_face.as_array());
+        let cell = f64x4::splat(self.cell_m);
+        let local: [f64x4; 3] =
+            std::array::from_fn(|a| (position_m[a] - f64x4::splat(origin[a])) / cell);
+        let inside = (0..3).fold(f64x4::splat(f64::from_bits(u64::MAX)), |all, a| {
+            all & local[a].simd_ge(f64x4::ZERO) & local[a].simd_le(f64x4::splat(far[a]))
+        });
+        let base: [f64x4; 3] =
+            std::array::from_fn(|a| f64x4::splat(last[a]).fast_min(local[a].floor()));
+        let [sy, sz] = self.strides;
+        let index = base[0] + base[1] * f64x4::splat(sy) + base[2] * f64x4::splat(sz);
+        let (index, inside) = (index.to_array(), inside.to_bitmask());
+        CellLanes {
+            first: std::array::from_fn(|k| {
+                if inside & (1 << k) != 0 {
+                    exact_index(index[k])
+                } else {
+                    OUTSIDE
+                }
+            }),
+            frac: std::array::from_fn(|a| local[a] - base[a]),
+        }
     }
 
     /// The stencil of a point in `cell`: its nodes, weights and the

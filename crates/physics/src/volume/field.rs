@@ -7,12 +7,14 @@
 use glam::DVec3;
 use wide::f64x4;
 
-use super::cell::{Cell, Locator};
+use super::cell::{Cell, CellLanes, Locator, OUTSIDE};
 use super::friction::grid_velocity;
-use super::pressure::{excess, push_m_per_s2};
+use super::pressure::{self, push_m_per_s2};
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
-use super::splat::{NodeSums, SamplePoint, splat_pieces};
+use super::splat::{NODES_PER_TASK, NodeSums, SamplePoint, splat_pieces};
+use super::splat_lanes::{PointLanes, splat_lane_pieces};
+use rayon::prelude::*;
 
 /// What one sample reads from the field.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,6 +44,9 @@ pub struct VolumeField {
     /// the other (`None` outside the grid): found once by the splat,
     /// reused by the read-back.
     cells: Vec<Option<Cell>>,
+    /// The same for the points of the last [`Self::update_lanes`], four
+    /// to a group.
+    cell_lanes: Vec<CellLanes>,
 }
 
 impl VolumeField {
@@ -56,16 +61,52 @@ impl VolumeField {
         self.locator = Some(locator);
         let (sums, pieces, cells) = (&mut self.sums, &mut self.pieces, &mut self.cells);
         splat_pieces(grid, parts, sums, pieces, cells, parallel);
-        self.density.clear();
-        self.density
-            .extend((0..grid.node_count()).map(|n| self.sums.density_kg_per_m3(grid, n)));
-        excess(
-            &self.density,
-            &rest.threshold_kg_per_m3,
-            rest.typical_kg_per_m3,
-            &mut self.excess,
-        );
-        self.velocity_excess.clear();
+        self.finish(rest, locator, parallel);
+    }
+
+    /// [`Self::update`] for points held four to a group, lane by lane, as
+    /// the batch engine gathers them ([`splat_lane_pieces`]: the same
+    /// numbers as the scalar splat of the same points in the same order);
+    /// their cells are [`Self::cell_lanes`].
+    pub fn update_lanes(&mut self, rest: &RestDensity, parts: &[&[PointLanes]], parallel: bool) {
+        let grid = &rest.grid;
+        let locator = grid.locator();
+        self.locator = Some(locator);
+        let (sums, pieces) = (&mut self.sums, &mut self.pieces);
+        splat_lane_pieces(grid, parts, sums, pieces, &mut self.cell_lanes, parallel);
+        self.finish(rest, locator, parallel);
+    }
+
+    /// From the node sums: density, excess, and the node data reads
+    /// fetch; node by node, in parallel when `parallel` (each node's
+    /// numbers are its own).
+    fn finish(&mut self, rest: &RestDensity, locator: Locator, parallel: bool) {
+        let grid = &rest.grid;
+        let count = grid.node_count();
+        self.density.resize(count, 0.0);
+        self.excess.resize(count, 0.0);
+        self.velocity_excess.resize(count, f64x4::ZERO);
+        let sums = &self.sums;
+        let density_excess = |start: usize, (density, excess): (&mut [f64], &mut [f64])| {
+            for (i, rho) in density.iter_mut().enumerate() {
+                *rho = sums.density_kg_per_m3(grid, start + i);
+            }
+            let threshold = &rest.threshold_kg_per_m3[start..start + density.len()];
+            pressure::excess(density, threshold, rest.typical_kg_per_m3, excess);
+        };
+        if parallel {
+            let pairs = self.density.par_chunks_mut(NODES_PER_TASK);
+            let pairs = pairs.zip(self.excess.par_chunks_mut(NODES_PER_TASK));
+            pairs
+                .enumerate()
+                .for_each(|(t, pair)| density_excess(t * NODES_PER_TASK, pair));
+        } else {
+            let pairs = self.density.chunks_mut(NODES_PER_TASK);
+            let pairs = pairs.zip(self.excess.chunks_mut(NODES_PER_TASK));
+            pairs
+                .enumerate()
+                .for_each(|(t, pair)| density_excess(t * NODES_PER_TASK, pair));
+        }
         let excess = &self.excess;
         // (A node past the grid's last cell along some axis is no cell's
         // first corner; its flag is never read.)
@@ -73,11 +114,21 @@ impl VolumeField {
             let corner = |o: &usize| excess.get(n + o).is_some_and(|e| *e > 0.0);
             locator.offsets.iter().any(corner)
         };
-        self.velocity_excess.extend((0..grid.node_count()).map(|n| {
-            let u = self.sums.velocity_m_per_s(n);
-            let flag = if cell_in_excess(n) { 1.0 } else { 0.0 };
-            f64x4::new([u.x, u.y, u.z, flag])
-        }));
+        let node_data = |(t, out): (usize, &mut [f64x4])| {
+            for (i, node) in out.iter_mut().enumerate() {
+                let n = t * NODES_PER_TASK + i;
+                let u = sums.velocity_m_per_s(n);
+                let flag = if cell_in_excess(n) { 1.0 } else { 0.0 };
+                *node = f64x4::new([u.x, u.y, u.z, flag]);
+            }
+        };
+        if parallel {
+            let chunks = self.velocity_excess.par_chunks_mut(NODES_PER_TASK);
+            chunks.enumerate().for_each(node_data);
+        } else {
+            let chunks = self.velocity_excess.chunks_mut(NODES_PER_TASK);
+            chunks.enumerate().for_each(node_data);
+        }
     }
 
     /// What `point` reads from the field of the last [`Self::update`], on
@@ -93,7 +144,7 @@ impl VolumeField {
     ) -> SampleReading {
         debug_assert!(self.locator.is_none_or(|l| l == rest.grid.locator()));
         let cell = self.locator.and_then(|l| l.locate(point.position_m));
-        self.read_in(settings, cell, point)
+        self.read_in(settings, cell, point.velocity_m_per_s)
     }
 
     /// Each point's cell in the last [`Self::update`], the parts one after
@@ -102,19 +153,26 @@ impl VolumeField {
         &self.cells
     }
 
-    /// What `point` reads, in `cell` (its entry of [`Self::cells`], found
-    /// by the update's splat; the very cell [`Self::read`] finds).
+    /// The cells of the points of the last [`Self::update_lanes`], four to
+    /// a group, the parts one after the other.
+    pub fn cell_lanes(&self) -> &[CellLanes] {
+        &self.cell_lanes
+    }
+
+    /// What a point moving at `velocity_m_per_s` reads, in `cell` (its
+    /// entry of [`Self::cells`] or [`Self::cell_lanes`], found by the
+    /// update's splat; the very cell [`Self::read`] finds).
     #[inline]
     pub fn read_in(
         &self,
         settings: &InteractionSettings,
         cell: Option<Cell>,
-        point: &SamplePoint,
+        velocity_m_per_s: DVec3,
     ) -> SampleReading {
         let found = self.locator.as_ref().zip(cell);
         let Some((locator, cell)) = found else {
             return SampleReading {
-                target_m_per_s: point.velocity_m_per_s,
+                target_m_per_s: velocity_m_per_s,
                 push_m_per_s2: DVec3::ZERO,
             };
         };
@@ -133,6 +191,72 @@ impl VolumeField {
         SampleReading {
             target_m_per_s: grid_velocity(around, offsets, &cell.weights()),
             push_m_per_s2: push,
+        }
+    }
+
+    /// What the four points of a group read, lane by lane, in `cells`
+    /// (their entry of [`Self::cell_lanes`]), each moving at its lane of
+    /// `velocity_m_per_s` (world, axis by axis): `each(k, u, a)` for lane
+    /// k in turn, with u the grid velocity in the first three lanes of an
+    /// f64x4 (the fourth is not a velocity) and a the push, head
+    /// coordinates, `None` where it is +0 for want of a node in excess
+    /// (most of the hair: [`Self::read_in`] reads `DVec3::ZERO` there). Each lane's numbers are [`Self::read_in`]'s for that
+    /// point; only the eight weights are found for the four points at once
+    /// (the same products, lane by lane).
+    #[inline(always)]
+    pub fn read_lanes(
+        &self,
+        settings: &InteractionSettings,
+        cells: &CellLanes,
+        velocity_m_per_s: &[f64x4; 3],
+        mut each: impl FnMut(usize, f64x4, Option<DVec3>),
+    ) {
+        let own = |k: usize| {
+            let [x, y, z] = velocity_m_per_s.map(|v| v.as_array()[k]);
+            f64x4::new([x, y, z, 0.0])
+        };
+        let Some(locator) = self.locator.as_ref() else {
+            (0..4).for_each(|k| each(k, own(k), None));
+            return;
+        };
+        let one = f64x4::splat(1.0);
+        let [x, y, z] = cells.frac.map(|f| [one - f, f]);
+        let weights: [[f64; 4]; 8] =
+            std::array::from_fn(|c| (x[c & 1] * y[(c >> 1) & 1] * z[c >> 2]).to_array());
+        let offsets = &locator.offsets;
+        for k in 0..4 {
+            let first = cells.first[k];
+            if first == OUTSIDE {
+                each(k, own(k), None);
+                continue;
+            }
+            let first = first as usize;
+            let node = &self.velocity_excess;
+            // The corners two by two, each pair along x one slice (one
+            // bounds check for two nodes), summed in the order of
+            // `offsets`.
+            let mut target = f64x4::ZERO;
+            let mut flag = 0.0;
+            let pairs = offsets.chunks_exact(2).zip(weights.chunks_exact(2));
+            for (i, (pair, w)) in pairs.enumerate() {
+                if let [lower, upper] = &node[first + pair[0]..first + pair[0] + 2] {
+                    // The cell's first node: its flag.
+                    if i == 0 {
+                        flag = lower.as_array()[3];
+                    }
+                    target += f64x4::splat(w[0][k]) * *lower;
+                    target += f64x4::splat(w[1][k]) * *upper;
+                }
+            }
+            let push = (flag > 0.0).then(|| {
+                let cell = Cell {
+                    first: first as u32,
+                    frac: cells.frac.map(|f| f.as_array()[k]),
+                };
+                let stencil = locator.stencil(&cell);
+                push_m_per_s2(&stencil, &self.excess, settings.pressure_m2_per_s2)
+            });
+            each(k, target, push);
         }
     }
 

@@ -51,6 +51,7 @@ pub mod reference;
 pub mod rest;
 pub mod settings;
 pub mod splat;
+pub mod splat_lanes;
 pub mod state;
 
 pub use field::{SampleReading, VolumeField};

@@ -28,16 +28,13 @@ use glam::DVec3;
 
 use super::grid::Stencil;
 
-/// Excess fraction e_n per node, written to `out`, from node densities
-/// (kg/m³), thresholds ρ*_n (kg/m³) and the typical rest density ρ̄.
-pub fn excess(density: &[f64], threshold: &[f64], typical_kg_per_m3: f64, out: &mut Vec<f64>) {
-    out.clear();
-    out.extend(
-        density
-            .iter()
-            .zip(threshold)
-            .map(|(rho, limit)| (rho - limit).max(0.0) / typical_kg_per_m3),
-    );
+/// Excess fraction e_n per node, written to `out` (as long as `density`),
+/// from node densities (kg/m³), thresholds ρ*_n (kg/m³) and the typical
+/// rest density ρ̄.
+pub fn excess(density: &[f64], threshold: &[f64], typical_kg_per_m3: f64, out: &mut [f64]) {
+    for ((e, rho), limit) in out.iter_mut().zip(density).zip(threshold) {
+        *e = (rho - limit).max(0.0) / typical_kg_per_m3;
+    }
 }
 
 /// The pressure's acceleration a = −P ∇ẽ at the point of `stencil`,

@@ -111,8 +111,9 @@ fn add_point(locator: &Locator, p: &SamplePoint, cell: Option<Cell>, nodes: &mut
 /// copies of the node sums (a 2 cm grid around a head: about 1 MB each).
 pub const SPLAT_PIECES: usize = 4;
 
-/// Nodes one task adds up when the pieces are summed.
-const NODES_PER_TASK: usize = 4096;
+/// Nodes one task adds up when the pieces are summed (and one task of
+/// the node pass, [`super::field`]).
+pub(super) const NODES_PER_TASK: usize = 4096;
 
 /// Spreads the points of `parts` (in order, cut anywhere) onto `grid` in
 /// [`SPLAT_PIECES`] pieces, each into its buffer of `pieces` (reused),
@@ -130,34 +131,52 @@ pub fn splat_pieces(
     parallel: bool,
 ) {
     let total: usize = parts.iter().map(|p| p.len()).sum();
+    cells.resize(total, None);
+    let locator = grid.locator();
+    let one = |range: std::ops::Range<usize>, nodes: &mut [f64x4], cells: &mut [Option<Cell>]| {
+        let points = slices_in(parts, range).flatten();
+        for (p, cell) in points.zip(cells.iter_mut()) {
+            *cell = locator.locate(p.position_m);
+            add_point(&locator, p, *cell, nodes);
+        }
+    };
+    in_pieces(grid, (sums, pieces), cells, parallel, one);
+}
+
+/// Cuts `items` (points, or groups of points, in order) into
+/// [`SPLAT_PIECES`] pieces, has `one(range, nodes, items of the range)`
+/// splat each piece into its zeroed buffer of `pieces`, in parallel when
+/// `parallel`, and adds the pieces node by node, in order, into `sums`:
+/// the one piece-and-sum scheme of every splat.
+pub(super) fn in_pieces<T: Send>(
+    grid: &Grid,
+    (sums, pieces): (&mut NodeSums, &mut Vec<NodeSums>),
+    items: &mut [T],
+    parallel: bool,
+    one: impl Fn(std::ops::Range<usize>, &mut [f64x4], &mut [T]) + Sync,
+) {
+    let total = items.len();
     let bounds: Vec<usize> = (0..=SPLAT_PIECES)
         .map(|k| k * total / SPLAT_PIECES)
         .collect();
     pieces.resize_with(SPLAT_PIECES, NodeSums::default);
-    cells.resize(total, None);
-    let mut cell_pieces = Vec::with_capacity(SPLAT_PIECES);
-    let mut rest = cells.as_mut_slice();
+    let mut item_pieces = Vec::with_capacity(SPLAT_PIECES);
+    let mut rest = items;
     for k in 0..SPLAT_PIECES {
         let (piece, after) = rest.split_at_mut(bounds[k + 1] - bounds[k]);
-        cell_pieces.push(piece);
+        item_pieces.push(piece);
         rest = after;
     }
-    let locator = grid.locator();
-    let one = |(k, (piece, cells)): (usize, (&mut NodeSums, &mut &mut [Option<Cell>]))| {
-        let range = bounds[k]..bounds[k + 1];
+    let one = |(k, (piece, items)): (usize, (&mut NodeSums, &mut &mut [T]))| {
         piece.nodes.clear();
         piece.nodes.resize(grid.node_count(), f64x4::ZERO);
-        let points = slices_in(parts, range).flatten();
-        for (p, cell) in points.zip(cells.iter_mut()) {
-            *cell = locator.locate(p.position_m);
-            add_point(&locator, p, *cell, &mut piece.nodes);
-        }
+        one(bounds[k]..bounds[k + 1], &mut piece.nodes, items);
     };
     if parallel {
-        let pieces = pieces.par_iter_mut().zip(cell_pieces.par_iter_mut());
+        let pieces = pieces.par_iter_mut().zip(item_pieces.par_iter_mut());
         pieces.enumerate().for_each(one);
     } else {
-        let pieces = pieces.iter_mut().zip(cell_pieces.iter_mut());
+        let pieces = pieces.iter_mut().zip(item_pieces.iter_mut());
         pieces.enumerate().for_each(one);
     }
     sums.nodes.resize(grid.node_count(), f64x4::ZERO);
@@ -181,12 +200,12 @@ pub fn splat_pieces(
     }
 }
 
-/// The slices of `parts` whose points' indices in the whole (parts one
+/// The slices of `parts` whose items' indices in the whole (parts one
 /// after the other) lie in `range`.
-fn slices_in<'a>(
-    parts: &'a [&'a [SamplePoint]],
+pub(super) fn slices_in<'a, T>(
+    parts: &'a [&'a [T]],
     range: std::ops::Range<usize>,
-) -> impl Iterator<Item = &'a [SamplePoint]> {
+) -> impl Iterator<Item = &'a [T]> {
     let mut start = 0;
     parts.iter().map(move |part| {
         let (from, to) = (start, start + part.len());

@@ -8,6 +8,7 @@ use super::field::VolumeField;
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
 use super::splat::SamplePoint;
+use super::splat_lanes::PointLanes;
 
 /// The model's state between frames.
 #[derive(Clone, Debug)]
@@ -90,6 +91,18 @@ impl ModelState {
     ) -> Option<(&RestDensity, &VolumeField, &InteractionSettings)> {
         let rest = self.rest.as_ref()?;
         self.field.update(rest, parts, parallel);
+        Some((rest, &self.field, &self.settings))
+    }
+
+    /// [`Self::update`] for points four to a group, lane by lane
+    /// ([`VolumeField::update_lanes`]).
+    pub fn update_lanes(
+        &mut self,
+        parts: &[&[PointLanes]],
+        parallel: bool,
+    ) -> Option<(&RestDensity, &VolumeField, &InteractionSettings)> {
+        let rest = self.rest.as_ref()?;
+        self.field.update_lanes(rest, parts, parallel);
         Some((rest, &self.field, &self.settings))
     }
 }
