@@ -249,17 +249,9 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     el.mass = mass;
     el.first_moment = first_moment;
     let trace = second[0] + second[3] + second[5];
-    el.inertia = M3::from_cols(
-        V3::new(trace - second[0], -second[1], -second[2]),
-        V3::new(-second[1], trace - second[3], -second[4]),
-        V3::new(-second[2], -second[4], trace - second[5]),
-    );
+    el.inertia = M3::symmetric(second.map(|s| -s)).add_diagonal(V3::new(trace, trace, trace));
     el.own_force = local_force;
-    el.own_mass_block = M3::from_cols(
-        V3::new(gram[0], gram[1], gram[2]),
-        V3::new(gram[1], gram[3], gram[4]),
-        V3::new(gram[2], gram[4], gram[5]),
-    );
+    el.own_mass_block = M3::symmetric(gram);
     if OFF_DIAGONAL {
         el.u = s.frame.mul_mat(&u_local);
         el.v = M3::cross_cols(s.point_m, &el.u) + s.frame.mul_mat(&v_local);

@@ -141,6 +141,17 @@ impl<T: Real> M3<T> {
         m.c2.z += d.z;
         m
     }
+    /// The symmetric matrix with upper triangle `upper` (entries 00, 01,
+    /// 02, 11, 12, 22).
+    #[inline(always)]
+    pub fn symmetric(upper: [T; 6]) -> Self {
+        let [m00, m01, m02, m11, m12, m22] = upper;
+        Self::from_cols(
+            V3::new(m00, m01, m02),
+            V3::new(m01, m11, m12),
+            V3::new(m02, m12, m22),
+        )
+    }
     /// The cross-product matrix [v]×.
     #[inline(always)]
     pub fn skew(v: V3<T>) -> Self {

@@ -12,7 +12,7 @@ use super::friction::grid_velocity;
 use super::pressure::{self, push_m_per_s2};
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
-use super::splat::{NODES_PER_TASK, NodeSums, SamplePoint, splat_pieces};
+use super::splat::{NODES_PER_TASK, NodeSums, SamplePoint, for_each_node_block, splat_pieces};
 use super::splat_lanes::{PointLanes, splat_lane_pieces};
 use rayon::prelude::*;
 
@@ -122,13 +122,7 @@ impl VolumeField {
                 *node = f64x4::new([u.x, u.y, u.z, flag]);
             }
         };
-        if parallel {
-            let chunks = self.velocity_excess.par_chunks_mut(NODES_PER_TASK);
-            chunks.enumerate().for_each(node_data);
-        } else {
-            let chunks = self.velocity_excess.chunks_mut(NODES_PER_TASK);
-            chunks.enumerate().for_each(node_data);
-        }
+        for_each_node_block(&mut self.velocity_excess, parallel, node_data);
     }
 
     /// What `point` reads from the field of the last [`Self::update`], on

@@ -191,12 +191,23 @@ pub(super) fn in_pieces<T: Send>(
                 .fold(f64x4::ZERO, |a, b| a + b);
         }
     };
+    for_each_node_block(&mut sums.nodes, parallel, add);
+}
+
+/// Runs `f` on each block of [`NODES_PER_TASK`] nodes of `nodes` with the
+/// block's number, in parallel when `parallel`: every node's numbers its
+/// own, so the same bits either way.
+pub(super) fn for_each_node_block<T: Send>(
+    nodes: &mut [T],
+    parallel: bool,
+    f: impl Fn((usize, &mut [T])) + Sync + Send,
+) {
     if parallel {
-        let chunks = sums.nodes.par_chunks_mut(NODES_PER_TASK);
-        chunks.enumerate().for_each(add);
+        let chunks = nodes.par_chunks_mut(NODES_PER_TASK);
+        chunks.enumerate().for_each(f);
     } else {
-        let chunks = sums.nodes.chunks_mut(NODES_PER_TASK);
-        chunks.enumerate().for_each(add);
+        let chunks = nodes.chunks_mut(NODES_PER_TASK);
+        chunks.enumerate().for_each(f);
     }
 }
 
