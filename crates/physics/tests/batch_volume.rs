@@ -376,3 +376,79 @@ fn serial_and_parallel_are_bit_identical_with_the_model() {
         assert_eq!(parallel.v(i), serial.v(i), "strand {i}");
     }
 }
+
+/// Steps `kept` and `swept` (the same system) over `heads` frame by frame,
+/// with `swept`'s state set to itself before each frame (exactly: f32 to
+/// f64 and back), which marks its measures and kept samples stale, so its
+/// gather sweeps every batch; returns, per frame, how many of `kept`'s
+/// batches its gather took from kept samples, and of how many.
+fn step_kept_and_swept(
+    kept: &mut BatchSystem,
+    swept: &mut BatchSystem,
+    heads: &[&dyn HeadTrajectory],
+) -> Vec<(usize, usize)> {
+    let mut from_kept = Vec::new();
+    for head in heads {
+        let (q, v) = (swept.q(0), swept.v(0));
+        swept.set_state(0, &q, &v);
+        kept.step_frame(*head);
+        swept.step_frame(*head);
+        let of = |s: &BatchSystem| s.volume().expect("model on").gathered_from_kept();
+        assert_eq!(of(swept).0, 0, "the swept system took kept samples");
+        from_kept.push(of(kept));
+    }
+    from_kept
+}
+
+/// The model's gather takes the samples the guard's end-of-frame measure
+/// kept instead of sweeping the strands again (`batch::volume::KeptSamples`):
+/// the same sweep on the same state, so the same bits. Under a shake, a
+/// system that takes them from the second frame on steps bit for bit as
+/// one that sweeps every frame. And a head that jumps between frames (each
+/// frame's trajectory starts where the last one's did not end: turned by
+/// 0.3 rad about the vertical, every other frame) is swept, since samples
+/// relative to their roots turn with the head: again the same bits.
+#[test]
+fn the_gather_takes_the_measures_samples_with_the_same_bits() {
+    let (params, roots) = small_head(12, 4);
+    let settings = SimSettings {
+        interaction: interaction(),
+        ..SimSettings::default()
+    };
+    let shake = shake();
+    let heads: Vec<&dyn HeadTrajectory> = vec![&shake; 30];
+    let mut kept = batch(&params, &roots, settings.clone());
+    let mut swept = batch(&params, &roots, settings.clone());
+    let from_kept = step_kept_and_swept(&mut kept, &mut swept, &heads);
+    assert_eq!(from_kept[0].0, 0, "nothing kept before the first frame");
+    assert!(from_kept[0].1 > 1, "more than one batch");
+    assert!(
+        from_kept[1..].iter().all(|(k, all)| k == all),
+        "kept samples not taken: {from_kept:?}"
+    );
+    let same = |a: &BatchSystem, b: &BatchSystem| {
+        for i in 0..roots.len() {
+            assert_eq!(a.q(i), b.q(i), "strand {i}");
+            assert_eq!(a.v(i), b.v(i), "strand {i}");
+        }
+        assert_eq!(a.guard_reset_count(), 0);
+        assert_eq!(b.guard_reset_count(), 0);
+    };
+    same(&kept, &swept);
+
+    let straight = RigidMotion::at_rest(DVec3::ZERO, DMat3::IDENTITY);
+    let turned = RigidMotion::at_rest(DVec3::ZERO, DMat3::from_rotation_y(0.3));
+    let heads: Vec<&dyn HeadTrajectory> = (0..20)
+        .map(|k| -> &dyn HeadTrajectory {
+            if k % 2 == 0 { &straight } else { &turned }
+        })
+        .collect();
+    let mut kept = batch(&params, &roots, settings.clone());
+    let mut swept = batch(&params, &roots, settings);
+    let from_kept = step_kept_and_swept(&mut kept, &mut swept, &heads);
+    assert!(
+        from_kept.iter().all(|(k, _)| *k == 0),
+        "samples kept at another head were taken: {from_kept:?}"
+    );
+    same(&kept, &swept);
+}

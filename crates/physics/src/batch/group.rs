@@ -9,12 +9,12 @@ use rayon::prelude::*;
 use super::batch_step::{BatchStep, Scratch, step_pulled};
 use super::contact::{LaneContact, NoContact, SkinTest};
 use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
-use super::lane_model::LaneModel;
+use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
 use super::pull::SamplePull;
 use super::vec::V3;
-use super::volume::{BatchVolume, GroupView};
+use super::volume::{BatchVolume, GroupView, KeptSamples};
 use crate::frame_balance::StrandMeasure;
 use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
 use crate::motion::{RigidMotion, RootPose};
@@ -42,6 +42,14 @@ pub(super) struct Group {
     pub(super) measured: bool,
     /// Per batch: its lanes' standing with the guard.
     standing: Vec<BatchStanding>,
+    /// Per batch: its quadrature samples (position relative to the root,
+    /// world velocity; N × nodes) as the guard's end-of-frame measure
+    /// found them, kept for the hair–hair model's next gather; empty where
+    /// the measure ran without the model.
+    kept_samples: Vec<Vec<[V3<Lanes>; 2]>>,
+    /// The head's motion `kept_samples` were taken at, if the last frame's
+    /// judgement kept them.
+    kept_at: Option<RigidMotion>,
 }
 
 /// One batch's standing with the guard.
@@ -91,12 +99,15 @@ type BatchView<'a> = (
 type BatchRef<'a> = (
     (
         (
-            ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]),
-            &'a Arc<LaneModel>,
+            (
+                ((&'a mut [V3<Lanes>], &'a mut [V3<Lanes>]), &'a [RootPose]),
+                &'a Arc<LaneModel>,
+            ),
+            &'a mut [StrandMeasure; LANES],
         ),
-        &'a mut [StrandMeasure; LANES],
+        &'a mut BatchStanding,
     ),
-    &'a mut BatchStanding,
+    &'a mut Vec<[V3<Lanes>; 2]>,
 );
 
 impl Group {
@@ -112,6 +123,8 @@ impl Group {
             measures: Vec::new(),
             measured: false,
             standing: Vec::new(),
+            kept_samples: Vec::new(),
+            kept_at: None,
         }
     }
 
@@ -136,6 +149,7 @@ impl Group {
             self.v.extend(std::iter::repeat_n(V3::zero(), n));
             self.measures.push(Default::default());
             self.standing.push(BatchStanding::default());
+            self.kept_samples.push(Vec::new());
         } else {
             // Batches of one call already hold `model` in every lane.
             if !Arc::ptr_eq(&self.models[batch], uniform) {
@@ -170,8 +184,17 @@ impl Group {
             let motions = carried(motion, roots);
             let root = RootMotion::<Lanes>::gather(&motions);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            let measured =
-                measure_lanes(&**model, env, &root, &motions, q, v, contact, pull.as_ref());
+            let measured = measure_lanes(
+                &**model,
+                env,
+                &root,
+                &motions,
+                q,
+                v,
+                contact,
+                pull.as_ref(),
+                None,
+            );
             for (lane, out) in out.iter_mut().enumerate() {
                 *out = measured.strand(lane);
             }
@@ -198,14 +221,23 @@ impl Group {
         self.measured = true;
     }
 
-    /// The group as the hair–hair model's gather reads it.
+    /// The group as the hair–hair model's gather reads it: with the
+    /// samples the last judgement kept, while they describe the state.
     pub(super) fn view(&self) -> GroupView<'_> {
+        let kept = self
+            .kept_at
+            .filter(|_| self.measured)
+            .map(|at| KeptSamples {
+                at,
+                batches: &self.kept_samples,
+            });
         GroupView {
             n: self.n,
             models: &self.models,
             roots: &self.roots,
             q: &self.q,
             v: &self.v,
+            kept,
         }
     }
 
@@ -268,8 +300,10 @@ impl Group {
         parallel: bool,
     ) {
         let n = self.n;
+        // Kept samples from the last frame describe the state no more.
+        self.kept_at = None;
         let step_batch = |scratch: &mut Scratch,
-                          (b, (((((q, v), roots), model), measures), standing)): (
+                          (b, ((((((q, v), roots), model), measures), standing), kept)): (
             usize,
             BatchRef<'_>,
         )| {
@@ -289,7 +323,8 @@ impl Group {
             }
             if let Some(check) = check {
                 let batch = BatchState { model, roots, q, v };
-                standing.failed = judge_batch(check, env, batch, measures, &standing.lanes, pull);
+                let judged = judge_batch(check, env, batch, measures, &standing.lanes, pull, kept);
+                standing.failed = judged;
             }
         };
         if parallel {
@@ -300,6 +335,7 @@ impl Group {
                 .zip(self.models.par_iter())
                 .zip(self.measures.par_iter_mut())
                 .zip(self.standing.par_iter_mut())
+                .zip(self.kept_samples.par_iter_mut())
                 .enumerate()
                 .for_each(|batch| {
                     Scratch::with_thread_scratch(n, step_kind.iterations(), |scratch| {
@@ -315,9 +351,13 @@ impl Group {
                     .zip(self.models.iter())
                     .zip(self.measures.iter_mut())
                     .zip(self.standing.iter_mut())
+                    .zip(self.kept_samples.iter_mut())
                     .enumerate()
                     .for_each(|batch| step_batch(scratch, batch))
             });
+        }
+        if let Some(check) = check.filter(|_| pulls.is_some()) {
+            self.kept_at = Some(*check.motion);
         }
     }
 }
@@ -339,7 +379,10 @@ struct BatchState<'a> {
 /// The guard's end of a frame for one batch that has just stepped: holds
 /// its pinned lanes at rest, measures every lane at the end of the frame,
 /// checks each against its start `measures` (which then become the end's)
-/// and resets the lanes that fail; returns, per lane, what failed. Not
+/// and resets the lanes that fail; returns, per lane, what failed. With the
+/// hair–hair model on (`pull`), the measure's samples are kept in `kept`
+/// for the model's next gather (emptied if a lane is reset: they no
+/// longer describe it, and the gather sweeps that batch itself). Not
 /// inlined: folded into the step's closure it made the whole step twice as
 /// slow (one function too large for the compiler to keep the step's lanes
 /// in registers), guard on or off.
@@ -351,6 +394,7 @@ fn judge_batch(
     measures: &mut [StrandMeasure; LANES],
     standing: &[LaneStanding; LANES],
     pull: Option<SamplePull<'_>>,
+    kept: &mut Vec<[V3<Lanes>; 2]>,
 ) -> [Option<GuardCause>; LANES] {
     let BatchState { model, roots, q, v } = batch;
     for (lane, _) in standing.iter().enumerate().filter(|(_, s)| s.pinned) {
@@ -359,6 +403,24 @@ fn judge_batch(
     let motions = carried(check.motion, roots);
     let root = RootMotion::<Lanes>::gather(&motions);
     let contact = check.contact.as_ref();
-    let end = measure_lanes(model, env, &root, &motions, q, v, contact, pull.as_ref());
-    check_and_reset(check.guard, model, q, v, measures, &end, check.dt_secs)
+    let samples = pull.is_some().then(|| {
+        kept.resize(q.len() * model.nodes().len(), [V3::zero(); 2]);
+        kept.as_mut_slice()
+    });
+    let end = measure_lanes(
+        model,
+        env,
+        &root,
+        &motions,
+        q,
+        v,
+        contact,
+        pull.as_ref(),
+        samples,
+    );
+    let failed = check_and_reset(check.guard, model, q, v, measures, &end, check.dt_secs);
+    if pull.is_none() || failed.iter().any(Option::is_some) {
+        kept.clear();
+    }
+    failed
 }

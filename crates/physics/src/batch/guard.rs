@@ -88,10 +88,15 @@ thread_local! {
 /// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
 /// moving as `root` (lanes) with root points at `root_positions_m`
 /// (world), under `env`'s gravity and air, with the head's `contact` if any
-/// and the hair–hair model's `pull` if on ([`super::pull`]).
+/// and the hair–hair model's `pull` if on ([`super::pull`]). With
+/// `samples` (N × nodes entries), each quadrature sample's position
+/// relative to its root and world velocity is kept there as the sweep
+/// finds it: the hair–hair model's gather of the next frame starts from
+/// the state this measure ends, and takes them instead of sweeping again
+/// ([`super::volume`]).
 #[expect(
     clippy::too_many_arguments,
-    reason = "the batch's state and every force the balance counts"
+    reason = "the batch's state, every force the balance counts, and where its samples go"
 )]
 pub fn measure_lanes<'a>(
     model: &impl Constants<Lanes>,
@@ -102,6 +107,7 @@ pub fn measure_lanes<'a>(
     v: &[V3<Lanes>],
     contact: Option<&SkinTest<'_>>,
     pull: Option<&SamplePull<'_>>,
+    mut samples: Option<&mut [[V3<Lanes>; 2]]>,
 ) -> LaneMeasures<'a> {
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
@@ -125,6 +131,9 @@ pub fn measure_lanes<'a>(
         for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
             let lp = local_point(Lanes::splat(*node) * length_m, q[e], v[e]);
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+            if let Some(kept) = samples.as_deref_mut() {
+                kept[e * model.nodes().len() + j] = [r, vel];
+            }
             let w_len = Lanes::splat(*weight) * length_m;
             let w_mass = w_len * rho_s;
             kinetic = (vel.dot(vel) * w_mass).mul_add(Lanes::splat(0.5), kinetic);

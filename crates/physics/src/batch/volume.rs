@@ -17,6 +17,20 @@
 //! calls. The reading becomes the sample's known force
 //! c = ρS (μ u + a) (world axes), rounded to f32 once.
 //!
+//! # The guard's samples
+//!
+//! The sweep the gather needs is the one the guard's end-of-frame measure
+//! made ([`super::guard::measure_lanes`]) at the state and head the next
+//! frame starts from. With the model on, that measure keeps each sample's
+//! position relative to its root and its velocity, and the gather takes
+//! them ([`KeptSamples`]) instead of sweeping the batch again, where they
+//! still describe it: not after a reset or any change from outside (the
+//! group's measures are stale then too), and not when the head is not
+//! where the last frame ended. The same sweep on the same state, so the
+//! same bits; at 3,000 strands it halved the gather's instructions (12.6
+//! to 5.3 M a frame; docs/RESULTS.md, section 10, "Fifth pass"). With the
+//! guard off nothing is kept and every frame sweeps.
+//!
 //! # Rest density
 //!
 //! Built on first use, as on the reference, from the rest pose: every
@@ -68,17 +82,53 @@ pub struct GroupView<'a> {
     pub q: &'a [V3<Lanes>],
     /// Strain rates, batch-major.
     pub v: &'a [V3<Lanes>],
+    /// The samples the guard's measure kept at the end of the last frame,
+    /// if they still describe the state ([`KeptSamples`]).
+    pub kept: Option<KeptSamples<'a>>,
 }
 
-/// One batch's outputs of the gather.
-type BatchOut<'a> = (&'a mut [PointLanes], &'a mut [[V3<Lanes>; 2]]);
+/// Each batch's quadrature samples (position relative to the root, world
+/// velocity: what the gather's sweep finds) as the guard's end-of-frame
+/// measure found them, with the head's motion then. The frame that follows
+/// starts from that state, so where the head is where it was and a batch's
+/// samples are all there (none where a lane was reset), the gather takes
+/// them instead of sweeping the batch again: the same sweep on the same
+/// state, so the same bits.
+#[derive(Clone, Copy, Debug)]
+pub struct KeptSamples<'a> {
+    /// The head's motion the samples were taken at.
+    pub at: RigidMotion,
+    /// Per batch, its N × nodes samples, or none.
+    pub batches: &'a [Vec<[V3<Lanes>; 2]>],
+}
+
+impl<'a> KeptSamples<'a> {
+    /// Batch `batch`'s samples if they were kept with the head at `head`
+    /// and are all there (`samples` of them).
+    fn batch(
+        &self,
+        batch: usize,
+        head: &RigidMotion,
+        samples: usize,
+    ) -> Option<&'a [[V3<Lanes>; 2]]> {
+        let kept = self.batches.get(batch)?;
+        (self.at == *head && kept.len() == samples).then_some(kept.as_slice())
+    }
+}
+
+/// One batch's outputs of the gather: its points, its samples (where it
+/// swept them itself), and whether it took the kept samples instead.
+type BatchOut<'a> = (
+    (&'a mut [PointLanes], &'a mut [[V3<Lanes>; 2]]),
+    &'a mut bool,
+);
 
 /// One batch's read-back: its c, points and their cells, motion and work
 /// exchange.
 type BatchRead<'a> = (
     (
         (&'a mut [V3<Lanes>], (&'a [PointLanes], &'a [CellLanes])),
-        &'a [[V3<Lanes>; 2]],
+        (&'a [[V3<Lanes>; 2]], &'a bool),
     ),
     &'a mut [Exchange; LANES],
 );
@@ -90,8 +140,11 @@ struct GroupPulls {
     /// (b·S + i)·2 + h.
     points: Vec<PointLanes>,
     /// Batch b's sample i's position relative to its root and velocity
-    /// (world, f32 lanes) at b·S + i.
+    /// (world, f32 lanes) at b·S + i, where the gather swept batch b.
     motion: Vec<[V3<Lanes>; 2]>,
+    /// Per batch, whether the gather took its kept samples
+    /// ([`KeptSamples`]) rather than sweeping it into `motion`.
+    from_kept: Vec<bool>,
     /// Batch b's sample i's known force c at b·S + i, N/m.
     known: Vec<V3<Lanes>>,
     /// Per batch, μρS lane by lane, kg/(m·s).
@@ -141,6 +194,16 @@ impl BatchVolume {
             rate: *g.rate.get(batch)?,
             known,
             nodes: g.nodes,
+        })
+    }
+
+    /// Of the batches the last frame's gather read, how many took the
+    /// samples the guard's measure kept ([`KeptSamples`]) and how many
+    /// there were: (kept, all).
+    pub fn gathered_from_kept(&self) -> (usize, usize) {
+        self.groups.iter().fold((0, 0), |(kept, all), g| {
+            let from_kept = g.from_kept.iter().filter(|k| **k).count();
+            (kept + from_kept, all + g.from_kept.len())
         })
     }
 
@@ -198,14 +261,17 @@ impl BatchVolume {
             pulls.exchange.resize(batches, [none; LANES]);
             let (group_cells, after) = cells.split_at(pulls.points.len());
             cells = after;
-            let read = |(b, (((known, points), motion), exchange)): (usize, BatchRead<'_>)| {
-                let rates = BatchRates {
-                    model: &view.models[b],
-                    old: had_old.then(|| old_rates[b]),
-                    new: pulls.rate[b],
+            let read =
+                |(b, (((known, points), (swept, from_kept)), exchange)): (usize, BatchRead<'_>)| {
+                    let rates = BatchRates {
+                        model: &view.models[b],
+                        old: had_old.then(|| old_rates[b]),
+                        new: pulls.rate[b],
+                    };
+                    let kept = view.kept.as_ref().filter(|_| *from_kept);
+                    let motion = kept.map_or(swept, |k| k.batches[b].as_slice());
+                    read_batch(&inputs, &rates, points, motion, known, exchange);
                 };
-                read_batch(&inputs, &rates, points, motion, known, exchange);
-            };
             if parallel {
                 let known = pulls.known.par_chunks_mut(pulls.samples);
                 known
@@ -215,7 +281,12 @@ impl BatchVolume {
                             .par_chunks(lanes)
                             .zip(group_cells.par_chunks(lanes)),
                     )
-                    .zip(pulls.motion.par_chunks(pulls.samples))
+                    .zip(
+                        pulls
+                            .motion
+                            .par_chunks(pulls.samples)
+                            .zip(pulls.from_kept.par_iter()),
+                    )
                     .zip(pulls.exchange.par_iter_mut())
                     .enumerate()
                     .for_each(read);
@@ -223,7 +294,7 @@ impl BatchVolume {
                 let known = pulls.known.chunks_mut(pulls.samples);
                 known
                     .zip(pulls.points.chunks(lanes).zip(group_cells.chunks(lanes)))
-                    .zip(pulls.motion.chunks(pulls.samples))
+                    .zip(pulls.motion.chunks(pulls.samples).zip(&pulls.from_kept))
                     .zip(pulls.exchange.iter_mut())
                     .enumerate()
                     .for_each(read);
@@ -234,7 +305,8 @@ impl BatchVolume {
 }
 
 /// Every batch of `view` gathered into `out.points` (parallel over
-/// batches when `parallel`).
+/// batches when `parallel`): from the kept samples where they serve
+/// ([`KeptSamples`]), else swept.
 fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &mut GroupPulls) {
     let n = view.n;
     out.nodes = view.models.first().map_or(0, |m| m.nodes().len());
@@ -243,28 +315,38 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     out.points
         .resize(batches * out.samples * HALVES, PointLanes::default());
     out.motion.resize(batches * out.samples, [V3::zero(); 2]);
+    out.from_kept.resize(batches, false);
     let (lanes, samples) = (out.samples * HALVES, out.samples);
-    let one = |(((out, (q, v)), roots), model): (((BatchOut<'_>, _), _), &Arc<LaneModel>)| {
-        let (points, motion) = out;
-        gather_batch(model, roots, head, (q, v), points, motion);
+    let one = |(b, (((out, (q, v)), roots), model)): (
+        usize,
+        (((BatchOut<'_>, _), _), &Arc<LaneModel>),
+    )| {
+        let ((points, motion), from_kept) = out;
+        let kept = view.kept.and_then(|k| k.batch(b, head, samples));
+        *from_kept = kept.is_some();
+        gather_batch(model, roots, head, (q, v), kept, points, motion);
     };
     if parallel {
         let state = view.q.par_chunks(n).zip(view.v.par_chunks(n));
         out.points
             .par_chunks_mut(lanes)
             .zip(out.motion.par_chunks_mut(samples))
+            .zip(out.from_kept.par_iter_mut())
             .zip(state)
             .zip(view.roots.par_chunks(LANES))
             .zip(view.models.par_iter())
+            .enumerate()
             .for_each(one);
     } else {
         let state = view.q.chunks(n).zip(view.v.chunks(n));
         out.points
             .chunks_mut(lanes)
             .zip(out.motion.chunks_mut(samples))
+            .zip(out.from_kept.iter_mut())
             .zip(state)
             .zip(view.roots.chunks(LANES))
             .zip(view.models.iter())
+            .enumerate()
             .for_each(one);
     }
 }
@@ -274,61 +356,127 @@ pub(super) const HALVES: usize = LANES / 4;
 
 /// One batch's samples (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
 /// at `head`) as points in head coordinates, written to `out` (sample i,
-/// lanes 4h..4h + 4 at i·2 + h; padding lanes get zero mass), and as f32
-/// lanes of position relative to the root and velocity, world, to
-/// `motion` (sample i at i).
+/// lanes 4h..4h + 4 at i·2 + h; padding lanes get zero mass). The samples'
+/// f32 lanes of position relative to the root and world velocity are
+/// `kept` if given (the guard's measure found them at this state), else
+/// swept root to tip here and written to `motion` (sample i at i).
 pub fn gather_batch(
     model: &LaneModel,
     roots: &[RootPose],
     head: &RigidMotion,
     (q, v): (&[V3<Lanes>], &[V3<Lanes>]),
+    kept: Option<&[[V3<Lanes>; 2]]>,
     out: &mut [PointLanes],
     motion: &mut [[V3<Lanes>; 2]],
 ) {
     let motions: [RigidMotion; LANES] =
         std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
-    let root = RootMotion::<Lanes>::gather(&motions);
-    // The f64 part in four lanes at a time (half a batch), each lane's
-    // arithmetic that of a DVec3 (`root + r - head`, then glam's
-    // `body_from_world * d`: ((X d_x) + (Y d_y)) + (Z d_z) per component).
-    let turn = head.world_from_body.transpose();
-    let columns = [turn.x_axis, turn.y_axis, turn.z_axis].map(|c| c.to_array().map(f64x4::splat));
-    let head_at = head.position_m.to_array().map(f64x4::splat);
-    let root_at: [[f64x4; 3]; 2] = std::array::from_fn(|h| {
-        std::array::from_fn(|a| {
-            f64x4::new(std::array::from_fn(|k| motions[4 * h + k].position_m[a]))
-        })
-    });
-    let rho_s = model.mass_per_length();
-    // Padding lanes (past the batch's strands) weigh nothing: a mask of
-    // the real lanes.
-    let real: [f64x4; HALVES] = std::array::from_fn(|h| {
-        let lane = f64x4::new(std::array::from_fn(|k| (4 * h + k) as f64));
-        lane.simd_lt(f64x4::splat(roots.len() as f64))
-    });
-    let mut s = FrameState::at_root(&root);
-    let mut i = 0;
-    for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
-        let length_m = model.length_m(e);
-        for (node, weight) in model.nodes().iter().zip(model.weights()) {
-            let lp = local_point(Lanes::splat(*node) * length_m, *k, *k_dot);
-            let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
-            motion[i] = [r, vel];
-            let w = f64x4::splat(f64::from(*weight));
-            for (h, root_h) in root_at.iter().enumerate() {
-                let rel = [r.x, r.y, r.z].map(|x| widen(x, h));
-                let d: [f64x4; 3] = std::array::from_fn(|a| root_h[a] + rel[a] - head_at[a]);
-                out[i * HALVES + h] = PointLanes {
-                    position_m: std::array::from_fn(|c| {
-                        columns[0][c] * d[0] + columns[1][c] * d[1] + columns[2][c] * d[2]
-                    }),
-                    velocity_m_per_s: [vel.x, vel.y, vel.z].map(|x| widen(x, h)),
-                    mass_kg: (widen(rho_s, h) * w * widen(length_m, h)) & real[h],
-                };
+    let place = Placement::new(model, roots, &motions, head);
+    let Some(kept) = kept else {
+        let root = RootMotion::<Lanes>::gather(&motions);
+        let mut s = FrameState::at_root(&root);
+        let mut i = 0;
+        for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
+            let length_m = model.length_m(e);
+            for (node, weight) in model.nodes().iter().zip(model.weights()) {
+                let lp = local_point(Lanes::splat(*node) * length_m, *k, *k_dot);
+                let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+                motion[i] = [r, vel];
+                place.write(
+                    r,
+                    vel,
+                    *weight,
+                    length_m,
+                    &mut out[i * HALVES..(i + 1) * HALVES],
+                );
+                i += 1;
             }
-            i += 1;
+            s = advance(&s, length_m, *k, *k_dot).0;
         }
-        s = advance(&s, length_m, *k, *k_dot).0;
+        return;
+    };
+    let nodes = model.nodes().len();
+    for (i, [r, vel]) in kept.iter().enumerate() {
+        let e = i / nodes;
+        let weight = model.weights()[i % nodes];
+        let length_m = model.length_m(e);
+        place.write(
+            *r,
+            *vel,
+            weight,
+            length_m,
+            &mut out[i * HALVES..(i + 1) * HALVES],
+        );
+    }
+}
+
+/// What turns a batch's samples (f32 lanes: position relative to the root,
+/// world velocity) into points in head coordinates, four lanes at a time
+/// in f64x4, each lane's arithmetic that of a DVec3 (`root + r - head`,
+/// then glam's `body_from_world * d`: ((X d_x) + (Y d_y)) + (Z d_z) per
+/// component), as the reference's
+/// [`crate::volume::reference::head_points`] does.
+struct Placement {
+    columns: [[f64x4; 3]; 3],
+    head_at: [f64x4; 3],
+    root_at: [[f64x4; 3]; HALVES],
+    rho_s: Lanes,
+    /// Padding lanes (past the batch's strands) weigh nothing: a mask of
+    /// the real lanes.
+    real: [f64x4; HALVES],
+}
+
+impl Placement {
+    fn new(
+        model: &LaneModel,
+        roots: &[RootPose],
+        motions: &[RigidMotion; LANES],
+        head: &RigidMotion,
+    ) -> Self {
+        let turn = head.world_from_body.transpose();
+        let columns =
+            [turn.x_axis, turn.y_axis, turn.z_axis].map(|c| c.to_array().map(f64x4::splat));
+        Self {
+            columns,
+            head_at: head.position_m.to_array().map(f64x4::splat),
+            root_at: std::array::from_fn(|h| {
+                std::array::from_fn(|a| {
+                    f64x4::new(std::array::from_fn(|k| motions[4 * h + k].position_m[a]))
+                })
+            }),
+            rho_s: model.mass_per_length(),
+            real: std::array::from_fn(|h| {
+                let lane = f64x4::new(std::array::from_fn(|k| (4 * h + k) as f64));
+                lane.simd_lt(f64x4::splat(roots.len() as f64))
+            }),
+        }
+    }
+
+    /// One sample at `r` (relative to its root) moving at `vel`, of
+    /// quadrature weight `weight` on an element `length_m` long, into its
+    /// [`HALVES`] groups of four lanes.
+    #[inline(always)]
+    fn write(
+        &self,
+        r: V3<Lanes>,
+        vel: V3<Lanes>,
+        weight: f32,
+        length_m: Lanes,
+        out: &mut [PointLanes],
+    ) {
+        let w = f64x4::splat(f64::from(weight));
+        for (h, (root_h, out)) in self.root_at.iter().zip(out).enumerate() {
+            let rel = [r.x, r.y, r.z].map(|x| widen(x, h));
+            let d: [f64x4; 3] = std::array::from_fn(|a| root_h[a] + rel[a] - self.head_at[a]);
+            let columns = &self.columns;
+            *out = PointLanes {
+                position_m: std::array::from_fn(|c| {
+                    columns[0][c] * d[0] + columns[1][c] * d[1] + columns[2][c] * d[2]
+                }),
+                velocity_m_per_s: [vel.x, vel.y, vel.z].map(|x| widen(x, h)),
+                mass_kg: (widen(self.rho_s, h) * w * widen(length_m, h)) & self.real[h],
+            };
+        }
     }
 }
 
@@ -355,7 +503,7 @@ pub fn rest_density(
             let samples = q.len() * model.nodes().len();
             let mut batch = vec![PointLanes::default(); samples * HALVES];
             let mut motion = vec![[V3::zero(); 2]; samples];
-            gather_batch(model, roots, &head, (&q, &v), &mut batch, &mut motion);
+            gather_batch(model, roots, &head, (&q, &v), None, &mut batch, &mut motion);
             let lanes = batch.iter().flat_map(|p| (0..4).map(|k| p.lane(k)));
             points.extend(lanes.filter(|p| p.mass_kg > 0.0));
             let length_m = (0..view.n).fold(Lanes::splat(0.0), |sum, e| sum + model.length_m(e));
