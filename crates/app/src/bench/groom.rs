@@ -7,9 +7,17 @@
 //! writes) with the head's collider (`--head`, else the `head` an imported
 //! group names, else the default head), and steps it on a still head:
 //! [`WARM_UP_FRAMES`] frames, then [`FRAMES`] frames each timed alone, on
-//! one thread and on all threads. Each figure is the median (and 90th
-//! percentile) of those frames; the load average is read before each run
-//! (`/proc/loadavg`), since the machine may be shared. On one thread the
+//! one thread and on all threads. That run is made [`RUNS`] times, every
+//! variant in turn each time, and each figure is the median over the runs
+//! of each run's median frame, with the runs' lowest and highest median
+//! beside it: a shared machine slows down for seconds at a time (measured
+//! on the 2-core development machine at a load average under 1: of 13
+//! single runs, 4 read 23–25 ms a frame on one thread against 15–16 ms in
+//! the rest), so one run's median can be a slow second's, and the median
+//! of several is the figure that does not move from one try to the next.
+//! The 90th percentile is over every timed frame of every run; the load
+//! average is read before each run (`/proc/loadavg`) and the highest
+//! kept. On one thread the
 //! row also gives the thread's own CPU time per frame
 //! (`/proc/thread-self/schedstat`: time on a core, not waiting for one),
 //! which a busy machine inflates far less than the wall time: the work a
@@ -27,7 +35,8 @@
 //! shared machine; each variant is timed on both thread counts in turn.
 //!
 //! Files: `groom.csv` (one row per variant and thread count) and
-//! `groom.svg` (the full variant's frame times against the 8 ms target).
+//! `groom.svg` (the full variant's frame times, every run's in turn,
+//! against the 8 ms target).
 //! The log gives the lanes used and padded.
 
 use std::path::{Path, PathBuf};
@@ -55,6 +64,8 @@ pub const FRAME_BUDGET_MS: f64 = 8.0;
 pub const WARM_UP_FRAMES: usize = 10;
 /// Timed frames per run (full, quick): one second of simulated time.
 pub const FRAMES: (usize, usize) = (60, 5);
+/// Runs of every variant (full, quick); see the module docs.
+pub const RUNS: (usize, usize) = (5, 1);
 
 /// What to time: the style and its head.
 #[derive(Clone, Debug)]
@@ -73,22 +84,30 @@ pub struct GroomRow {
     pub variant: String,
     /// Worker threads: 1, or every core.
     pub threads: usize,
-    /// Timed frames.
+    /// Timed frames per run.
     pub frames: usize,
-    /// Median physics time of a frame, milliseconds.
+    /// Runs (module docs).
+    pub runs: usize,
+    /// Physics time of a frame, milliseconds: the median over the runs of
+    /// each run's median frame.
     pub median_ms: f64,
-    /// 90th percentile, milliseconds.
+    /// The lowest of the runs' medians, milliseconds.
+    pub run_median_low_ms: f64,
+    /// The highest of the runs' medians, milliseconds.
+    pub run_median_high_ms: f64,
+    /// 90th percentile of every timed frame of every run, milliseconds.
     pub p90_ms: f64,
     /// Fastest frame, milliseconds.
     pub min_ms: f64,
     /// One thread only: the thread's CPU time per frame, milliseconds, the
-    /// mean over the timed frames (NaN on several threads, whose work is
-    /// spread over rayon's workers, or without `/proc/thread-self`).
+    /// median over the runs of each run's mean over its timed frames (NaN
+    /// on several threads, whose work is spread over rayon's workers, or
+    /// without `/proc/thread-self`).
     pub cpu_ms: f64,
     /// One thread only: time per frame spent ready but waiting for a core,
-    /// milliseconds (what the machine's other work took).
+    /// milliseconds (what the machine's other work took), as `cpu_ms`.
     pub waiting_ms: f64,
-    /// One-minute load average when the run started (NaN where
+    /// The highest one-minute load average at a run's start (NaN where
     /// `/proc/loadavg` cannot be read).
     pub load_1min: f64,
     /// Strands simulated.
@@ -195,10 +214,10 @@ pub fn run(ctx: &mut BenchContext<'_>, input: &GroomInput) -> anyhow::Result<()>
         head_path.map_or("the default head".into(), |p| p.display().to_string())
     )?;
     let frames = if ctx.quick { FRAMES.1 } else { FRAMES.0 };
+    let runs = if ctx.quick { RUNS.1 } else { RUNS.0 };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let still = RigidMotion::default();
-    let mut rows = Vec::new();
-    let mut traces = Vec::new();
+    let mut bases = Vec::new();
     for variant in VARIANTS {
         let overrides = SimOverrides {
             engine: Some(EngineKind::Batch),
@@ -217,10 +236,24 @@ pub fn run(ctx: &mut BenchContext<'_>, input: &GroomInput) -> anyhow::Result<()>
         if !variant.guard {
             base.set_guard(None);
         }
-        for t in [1, threads] {
-            let mut system = base.clone();
-            system.set_parallel(t > 1);
-            let (row, trace) = time_frames(&mut system, &still, variant.name, t, frames);
+        bases.push((variant, base));
+    }
+    // Per variant and thread count, every run's timing, runs interleaved.
+    let mut timings: Vec<Vec<RunTiming>> = vec![Vec::new(); bases.len() * 2];
+    for _ in 0..runs {
+        for (v, (_, base)) in bases.iter().enumerate() {
+            for (i, t) in [1, threads].into_iter().enumerate() {
+                let mut system = base.clone();
+                system.set_parallel(t > 1);
+                timings[2 * v + i].push(time_frames(&mut system, &still, t, frames));
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    let mut traces = Vec::new();
+    for (v, (variant, base)) in bases.iter().enumerate() {
+        for (i, t) in [1, threads].into_iter().enumerate() {
+            let row = summarize(&timings[2 * v + i], base, variant.name, t, frames);
             // Thread times are read on one thread only (NaN otherwise).
             let cpu = if row.cpu_ms.is_finite() {
                 format!(
@@ -232,12 +265,22 @@ pub fn run(ctx: &mut BenchContext<'_>, input: &GroomInput) -> anyhow::Result<()>
             };
             writeln!(
                 ctx.log,
-                "   {}, {t} thread(s): median {:.1} ms, p90 {:.1} ms per frame (load {:.2}){cpu}; \
-                 {} guard losses",
-                variant.name, row.median_ms, row.p90_ms, row.load_1min, row.guard_losses
+                "   {}, {t} thread(s): median {:.1} ms (runs {:.1}-{:.1}), p90 {:.1} ms per frame \
+                 (load up to {:.2}){cpu}; {} guard losses",
+                variant.name,
+                row.median_ms,
+                row.run_median_low_ms,
+                row.run_median_high_ms,
+                row.p90_ms,
+                row.load_1min,
+                row.guard_losses
             )?;
             if variant.name == FULL.name {
-                traces.push((t, trace));
+                let all: Vec<f64> = timings[2 * v + i]
+                    .iter()
+                    .flat_map(|r| r.ms.clone())
+                    .collect();
+                traces.push((t, all));
             }
             rows.push(row);
         }
@@ -258,19 +301,29 @@ pub fn run(ctx: &mut BenchContext<'_>, input: &GroomInput) -> anyhow::Result<()>
     draw(ctx, &traces)
 }
 
-/// Warms `system` up, then times `frames` frames one by one: the row and
-/// each frame's milliseconds.
+/// One run of one variant on one thread count: each timed frame's
+/// milliseconds, the thread's CPU and waiting time per frame (one thread
+/// only, else NaN), the load at its start and the guard's losses.
+#[derive(Clone, Debug)]
+struct RunTiming {
+    ms: Vec<f64>,
+    cpu_ms: f64,
+    waiting_ms: f64,
+    load_1min: f64,
+    guard_losses: usize,
+}
+
+/// Warms `system` up, then times `frames` frames one by one.
 fn time_frames(
     system: &mut BatchSystem,
     head: &RigidMotion,
-    variant: &str,
     threads: usize,
     frames: usize,
-) -> (GroomRow, Vec<f64>) {
+) -> RunTiming {
     for _ in 0..WARM_UP_FRAMES {
         system.step_frame(head);
     }
-    let load = load_1min();
+    let load_1min = load_1min();
     let losses_before = system.guard_reset_count();
     let times_before = thread_times_ns();
     let ms: Vec<f64> = (0..frames)
@@ -287,26 +340,48 @@ fn time_frames(
         }
         _ => (f64::NAN, f64::NAN),
     };
-    let mut sorted = ms.clone();
-    sorted.sort_by(f64::total_cmp);
+    RunTiming {
+        ms,
+        cpu_ms,
+        waiting_ms,
+        load_1min,
+        guard_losses: system.guard_reset_count() - losses_before,
+    }
+}
+
+/// The row of a variant's `runs` on `threads` threads (module docs).
+fn summarize(
+    runs: &[RunTiming],
+    system: &BatchSystem,
+    variant: &str,
+    threads: usize,
+    frames: usize,
+) -> GroomRow {
+    let medians: Vec<f64> = runs.iter().map(|r| median(&r.ms)).collect();
+    let mut all: Vec<f64> = runs.iter().flat_map(|r| r.ms.iter().copied()).collect();
+    all.sort_by(f64::total_cmp);
+    let at = |q: f64| all[((q * all.len() as f64) as usize).min(all.len() - 1)];
+    let of_runs = |f: fn(&RunTiming) -> f64| median(&runs.iter().map(f).collect::<Vec<_>>());
     let lanes = system.lanes_used();
-    let row = GroomRow {
+    GroomRow {
         variant: variant.into(),
         threads,
         frames,
-        median_ms: median(&ms),
-        p90_ms: sorted[((0.9 * frames as f64) as usize).min(frames - 1)],
-        min_ms: sorted[0],
-        cpu_ms,
-        waiting_ms,
-        load_1min: load,
+        runs: runs.len(),
+        median_ms: median(&medians),
+        run_median_low_ms: medians.iter().copied().fold(f64::INFINITY, f64::min),
+        run_median_high_ms: medians.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        p90_ms: at(0.9),
+        min_ms: at(0.0),
+        cpu_ms: of_runs(|r| r.cpu_ms),
+        waiting_ms: of_runs(|r| r.waiting_ms),
+        load_1min: runs.iter().map(|r| r.load_1min).fold(f64::NAN, f64::max),
         strands: system.strand_count(),
         elements: system.element_count(),
         batches: lanes.batches,
         padding_lanes: lanes.padding,
-        guard_losses: system.guard_reset_count() - losses_before,
-    };
-    (row, ms)
+        guard_losses: runs.iter().map(|r| r.guard_losses).sum(),
+    }
 }
 
 fn draw(ctx: &BenchContext<'_>, traces: &[(usize, Vec<f64>)]) -> anyhow::Result<()> {
@@ -341,7 +416,7 @@ fn draw(ctx: &BenchContext<'_>, traces: &[(usize, Vec<f64>)]) -> anyhow::Result<
         &LineChart {
             title: "Physics time per 60 Hz frame, whole groom, batch engine, still head".into(),
             x: Axis {
-                label: "frame".into(),
+                label: "timed frame (the runs one after another)".into(),
                 log: false,
             },
             y: Axis {
