@@ -18,7 +18,9 @@
 //! matrix-free product M q̇ (one sweep fewer).
 
 use super::contact::{EndPointForce, NoContact};
-use super::geometry::{Coefficients, coefficients_at, local_end_with, local_point_with};
+use super::geometry::{
+    Coefficients, coefficients_at, local_end_with, local_point, local_point_with,
+};
 use super::lane_model::Constants;
 use super::lanes::Real;
 use super::layout::{ElementData, RootMotion, StepEnv};
@@ -74,6 +76,35 @@ impl<T: Real> FrameState<T> {
                     + w_rel_v,
             ),
         ]
+    }
+}
+
+/// The quadrature samples of strands in state (`q`, `v`) with roots moving
+/// as `root`, root to tip: for each element e, `sample(e, j, r, ṙ)` at its
+/// node j (r relative to the root, ṙ world velocity), then
+/// `element_end(e, s)` with the state at its end point. The guard's
+/// measure ([`super::guard::measure_lanes`]) and the hair–hair model's
+/// gather ([`super::volume::gather_batch`]) both sweep with it, so the
+/// samples the measure keeps for the gather are the gather's own bits.
+#[inline(always)]
+pub fn sweep_samples<T: Real>(
+    model: &impl Constants<T>,
+    root: &RootMotion<T>,
+    q: &[V3<T>],
+    v: &[V3<T>],
+    mut sample: impl FnMut(usize, usize, V3<T>, V3<T>),
+    mut element_end: impl FnMut(usize, &FrameState<T>),
+) {
+    let mut s = FrameState::at_root(root);
+    for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
+        let length_m = model.length_m(e);
+        for (j, node) in model.nodes().iter().enumerate() {
+            let lp = local_point(T::splat(*node) * length_m, *k, *k_dot);
+            let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
+            sample(e, j, r, vel);
+        }
+        s = advance(&s, length_m, *k, *k_dot).0;
+        element_end(e, &s);
     }
 }
 

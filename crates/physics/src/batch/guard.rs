@@ -39,8 +39,7 @@ use std::cell::RefCell;
 
 use glam::DVec3;
 
-use super::forward::{FrameState, advance};
-use super::geometry::local_point;
+use super::forward::{FrameState, sweep_samples};
 use super::lane_model::{Constants, LaneModel};
 use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Lanes, Real};
@@ -118,48 +117,44 @@ pub fn measure_lanes<'a>(
     let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
         (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
     let (mut mass, mut second_moment) = (zero, zero);
-    let mut s = FrameState::at_root(root);
-    let n = q.len();
+    let nodes = model.nodes().len();
     // Element end points (relative to the root) and their velocities, for
     // the contact's terms after the sweep: kept out of the SIMD loop, whose
     // state would otherwise be spilled for the per-lane lookups.
     // The thread's buffer, kept: a batch's measure allocates nothing.
     let mut ends = KEPT_ENDS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
     ends.clear();
-    for e in 0..n {
-        let length_m = model.length_m(e);
-        for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
-            let lp = local_point(Lanes::splat(*node) * length_m, q[e], v[e]);
-            let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
-            if let Some(kept) = samples.as_deref_mut() {
-                kept[e * model.nodes().len() + j] = [r, vel];
-            }
-            let w_len = Lanes::splat(*weight) * length_m;
-            let w_mass = w_len * rho_s;
-            kinetic = (vel.dot(vel) * w_mass).mul_add(Lanes::splat(0.5), kinetic);
-            momentum = vel.scale_add(w_mass, momentum);
-            angular = r.cross(vel).scale_add(w_mass, angular);
-            first_moment = r.scale_add(w_mass, first_moment);
-            mass += w_mass;
-            second_moment = r.dot(r).mul_add(w_mass, second_moment);
-            if let Some(pull) = pull {
-                let sums = (&mut force, &mut torque, &mut power);
-                add_pull_work(pull, e, j, r, vel, w_len, sums);
-            }
-            let carried = s_root_velocity(root, r);
-            let rel = vel - carried;
-            // Squares here, one root at the end: the root is monotone and
-            // correctly rounded, so the same bits (NaN stays NaN).
-            fastest_squared = fastest_squared.max(rel.dot(rel));
+    let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
+        if let Some(kept) = samples.as_deref_mut() {
+            kept[e * nodes + j] = [r, vel];
         }
+        let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
+        let w_mass = w_len * rho_s;
+        kinetic = (vel.dot(vel) * w_mass).mul_add(Lanes::splat(0.5), kinetic);
+        momentum = vel.scale_add(w_mass, momentum);
+        angular = r.cross(vel).scale_add(w_mass, angular);
+        first_moment = r.scale_add(w_mass, first_moment);
+        mass += w_mass;
+        second_moment = r.dot(r).mul_add(w_mass, second_moment);
+        if let Some(pull) = pull {
+            let sums = (&mut force, &mut torque, &mut power);
+            add_pull_work(pull, e, j, r, vel, w_len, sums);
+        }
+        let carried = s_root_velocity(root, r);
+        let rel = vel - carried;
+        // Squares here, one root at the end: the root is monotone and
+        // correctly rounded, so the same bits (NaN stays NaN).
+        fastest_squared = fastest_squared.max(rel.dot(rel));
+    };
+    let element_end = |e: usize, s: &FrameState<Lanes>| {
         let d = q[e] - model.natural(e);
         let k = model.stiffness(e);
         elastic += (d.x * d.x * k.x + d.y * d.y * k.y + d.z * d.z * k.z) * Lanes::splat(0.5);
-        s = advance(&s, length_m, q[e], v[e]).0;
         if contact.is_some() {
             ends.push((s.point_m, s.point_velocity));
         }
-    }
+    };
+    sweep_samples(model, root, q, v, sample, element_end);
     // Gravity and drag, summed from the sums above: the drag per unit
     // length is ν (ṙ − v_air) = (ν/ρS) ρS (ṙ − v_air), so its force,
     // torque and power over the samples are (ν/ρS) times those of the

@@ -54,8 +54,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use wide::f64x4;
 
-use super::forward::{FrameState, advance};
-use super::geometry::local_point;
+use super::forward::sweep_samples;
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::RootMotion;
@@ -373,30 +372,24 @@ pub fn gather_batch(
     let motions: [RigidMotion; LANES] =
         std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
     let place = Placement::new(model, roots, &motions, head);
+    let nodes = model.nodes().len();
     let Some(kept) = kept else {
         let root = RootMotion::<Lanes>::gather(&motions);
-        let mut s = FrameState::at_root(&root);
-        let mut i = 0;
-        for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
-            let length_m = model.length_m(e);
-            for (node, weight) in model.nodes().iter().zip(model.weights()) {
-                let lp = local_point(Lanes::splat(*node) * length_m, *k, *k_dot);
-                let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
-                motion[i] = [r, vel];
-                place.write(
-                    r,
-                    vel,
-                    *weight,
-                    length_m,
-                    &mut out[i * HALVES..(i + 1) * HALVES],
-                );
-                i += 1;
-            }
-            s = advance(&s, length_m, *k, *k_dot).0;
-        }
+        let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
+            let i = e * nodes + j;
+            motion[i] = [r, vel];
+            let (weight, length_m) = (model.weights()[j], model.length_m(e));
+            place.write(
+                r,
+                vel,
+                weight,
+                length_m,
+                &mut out[i * HALVES..(i + 1) * HALVES],
+            );
+        };
+        sweep_samples(model, &root, q, v, sample, |_, _| {});
         return;
     };
-    let nodes = model.nodes().len();
     for (i, [r, vel]) in kept.iter().enumerate() {
         let e = i / nodes;
         let weight = model.weights()[i % nodes];
