@@ -7,7 +7,9 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use helixhair_physics::frame_balance::{MeasureInputs, measure, unexplained_energy_j};
+use helixhair_physics::frame_balance::{
+    MeasureInputs, SteppedFrame, measure, unexplained_energy_j,
+};
 use helixhair_physics::motion::HeadTrajectory;
 use helixhair_physics::{
     ElementLayout, Method, Oscillation, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
@@ -96,7 +98,14 @@ fn main() {
             &motion,
             &inputs,
         );
-        let gain = unexplained_energy_j(&last, &now, h);
+        let gain = unexplained_energy_j(
+            &last,
+            &now,
+            SteppedFrame {
+                dt_secs: h,
+                substeps: 1,
+            },
+        );
         let scale = last.kinetic_j + now.kinetic_j;
         worst_abs = worst_abs.max(gain);
         if scale > 0.0 {

@@ -6,7 +6,9 @@
 //! inertial term to the right-hand side is what Lagrange's equations give)
 //! and ṙ_carried = v_root + ω_root × r is the velocity the root's motion
 //! alone gives the point. The drag on the strain rates, −ν J q̇, is treated
-//! implicitly by the step (it is (ν/ρS) M q̇), so it is not counted here.
+//! implicitly by the step (it is (ν/ρS) M q̇), so it is not counted here;
+//! the hair–hair model's friction likewise adds only its known part
+//! ([`VolumePull::known_n_per_m`]).
 //!
 //! For element Q, Q_Q = Σ_{own samples} w Gᵀ F + A_Qᵀ F_beyond + B_Qᵀ τ_beyond
 //! with F_beyond = Σ w F and τ_beyond = Σ w r × F over all later samples:
@@ -55,7 +57,7 @@ pub fn sample_force(
         f += *extra;
     }
     if let Some(volume) = &inputs.volume {
-        f += volume.force_n_per_m(i, carried, model.mass_per_length);
+        f += volume.known_n_per_m(i, model.mass_per_length);
     }
     if let Some(contact) = &inputs.contact {
         // Implicit contact: the predicted push; its Δv term is in the step

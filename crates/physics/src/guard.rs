@@ -10,7 +10,8 @@
 //!
 //! - **finite**: every strain and strain rate is a number;
 //! - **energy**: the energy the frame gained beyond the work of the root
-//!   and of the external forces (drag, contact) must stay below
+//!   and of the external forces (drag, contact, the hair–hair model;
+//!   summed by the step's own rule, [`crate::frame_balance`]) must stay below
 //!   [`Guard::energy_tolerance`] times the frame's kinetic energy (start
 //!   plus end), plus round-off. Frames in which any sample touches the
 //!   head are not judged by energy: contact starts and stops within a
@@ -21,7 +22,7 @@
 //!   acceleration over a step can add where that acceleration jumps
 //!   ([`crate::frame_balance::root_sampling_uncertainty_j`]). Measured on healthy frames (Exact and Dense, a 30 cm
 //!   strand under a head shake at 1/60 s): at most 2% of the kinetic
-//!   energy, the trapezoid rule's error;
+//!   energy, the estimate's error on the root's work;
 //! - **speed**: the true speed of every quadrature sample relative to the
 //!   root's rigid motion must stay below [`Guard::speed_limit_m_per_s`]. Not
 //!   a bound: the old bound Σ ℓ|q̇|(L − s) read 50 m/s on coiled strands
@@ -47,7 +48,8 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::frame_balance::{
-    StrandMeasure, root_sampling_uncertainty_j, unexplained_energy_j, work_uncertainty_j,
+    SteppedFrame, StrandMeasure, root_sampling_uncertainty_j, unexplained_energy_j,
+    work_uncertainty_j,
 };
 use crate::model::StrandModel;
 use crate::settings::Method;
@@ -62,7 +64,7 @@ pub struct Guard {
     pub speed_limit_m_per_s: f64,
     /// Largest unexplained energy gain of a frame, as a fraction of its
     /// kinetic energy (start plus end). Default 0.25: healthy frames
-    /// measure at most 0.02 (the trapezoid rule's error on the root's
+    /// measure at most 0.02 (the rule's error on the root's
     /// work), a blow-up more than 1, and Block-diagonal's gain on a
     /// released strand up to 12.
     pub energy_tolerance: f64,
@@ -217,7 +219,7 @@ pub fn speed_bound_m_per_s(model: &StrandModel, v: &[DVec3]) -> f64 {
 }
 
 impl Guard {
-    /// What is wrong with a frame of `dt_secs` that took a strand with
+    /// What is wrong with a frame `frame` that took a strand with
     /// strains `q` and rates `v` from the measure `start` to `end`.
     pub fn check(
         &self,
@@ -225,9 +227,9 @@ impl Guard {
         v: &[DVec3],
         start: &StrandMeasure,
         end: &StrandMeasure,
-        dt_secs: f64,
+        frame: SteppedFrame,
     ) -> Option<GuardCause> {
-        self.check_with_round_off(q, v, start, end, dt_secs, ENERGY_ROUND_OFF)
+        self.check_with_round_off(q, v, start, end, frame, ENERGY_ROUND_OFF)
     }
 
     /// [`Guard::check`] with a relative round-off allowance on the energy
@@ -239,7 +241,7 @@ impl Guard {
         v: &[DVec3],
         start: &StrandMeasure,
         end: &StrandMeasure,
-        dt_secs: f64,
+        frame: SteppedFrame,
         round_off: f64,
     ) -> Option<GuardCause> {
         if !q.iter().chain(v).all(|x| x.is_finite()) || !end.energy_j.is_finite() {
@@ -258,7 +260,7 @@ impl Guard {
             // finiteness and true speed only.
             return None;
         }
-        let gained_j = unexplained_energy_j(start, end, dt_secs);
+        let gained_j = unexplained_energy_j(start, end, frame);
         let allowed_j = self.energy_tolerance * (start.kinetic_j + end.kinetic_j)
             + round_off * (start.size_j + end.size_j);
         // The uncertainties below are never negative: a gain within the
@@ -268,8 +270,8 @@ impl Guard {
             return None;
         }
         let allowed_j = allowed_j
-            + work_uncertainty_j(start, end, dt_secs)
-            + root_sampling_uncertainty_j(start, end, dt_secs);
+            + work_uncertainty_j(start, end, frame.dt_secs)
+            + root_sampling_uncertainty_j(start, end, frame);
         (gained_j > allowed_j).then_some(GuardCause::EnergyGain {
             gained_j,
             allowed_j,

@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::energy::Energies;
 use crate::error::ParamError;
-use crate::frame_balance::{MeasureInputs, StrandMeasure};
+use crate::frame_balance::{MeasureInputs, SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardAction, GuardEvent, GuardState};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -379,7 +379,11 @@ fn guarded_frame(
     s.checkpoint();
     let mut times = plain_frame(s, frame, own);
     let end = end_measure(s, frame);
-    let Some(cause) = guard.check(s.q(), s.v(), &start, &end, frame.dt_secs) else {
+    let stepped = |substeps| SteppedFrame {
+        dt_secs: frame.dt_secs,
+        substeps,
+    };
+    let Some(cause) = guard.check(s.q(), s.v(), &start, &end, stepped(own)) else {
         s.set_cached_measure(Some(end));
         s.set_guard_state(state);
         return FrameOutcome {
@@ -411,7 +415,7 @@ fn guarded_frame(
         times.accumulate(&plain_frame(s, frame, substeps));
         let end = end_measure(s, frame);
         if guard
-            .check(s.q(), s.v(), &start, &end, frame.dt_secs)
+            .check(s.q(), s.v(), &start, &end, stepped(substeps))
             .is_none()
         {
             s.set_cached_measure(Some(end));

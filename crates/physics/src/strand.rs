@@ -95,7 +95,7 @@ impl Strand {
         );
         let mut out = measure(&self.model, &self.q, &self.measure_kinematics, root, inputs);
         if let Some(pull) = self.volume.pull() {
-            add_pull(&mut out, &self.model, &self.measure_kinematics, &pull);
+            add_pull(&mut out, &self.model, &self.measure_kinematics, root, &pull);
         }
         out
     }
@@ -120,16 +120,21 @@ impl Strand {
     }
 
     /// Sets the hair–hair model's pull for the coming steps: friction
-    /// rate μ (1/s), and per quadrature sample the grid velocity (m/s) and
-    /// pressure acceleration (m/s²), world coordinates
-    /// ([`crate::volume::friction`]).
-    pub fn set_volume_pull(&mut self, friction_per_s: f64, target: Vec<DVec3>, push: Vec<DVec3>) {
+    /// rate μ (1/s), and per quadrature sample the grid velocity relative
+    /// to the head's rigid motion there (m/s) and the pressure
+    /// acceleration (m/s²), world axes ([`crate::volume::friction`]).
+    pub fn set_volume_pull(
+        &mut self,
+        friction_per_s: f64,
+        relative_target: Vec<DVec3>,
+        push: Vec<DVec3>,
+    ) {
         // The cached measure counted the old pull's work.
         self.cached_measure = None;
         self.volume = VolumeState {
             on: true,
             friction_per_s,
-            target,
+            relative_target,
             push,
         };
     }
@@ -147,19 +152,19 @@ impl Strand {
         head: &RigidMotion,
     ) {
         let cached = self.cached_measure.take();
-        let root_m = head.carry(&self.root).position_m;
+        let root = head.carry(&self.root);
         let rho_s = self.model.mass_per_length;
         let work = |state: &VolumeState| {
             state.pull().map_or_else(PullWork::default, |p| {
-                pull_work(points, head, root_m, &p, rho_s)
+                pull_work(points, head, &root, &p, rho_s)
             })
         };
         let old = work(&self.volume);
-        let (friction_per_s, target, push) = pull;
+        let (friction_per_s, relative_target, push) = pull;
         self.volume = VolumeState {
             on: true,
             friction_per_s,
-            target,
+            relative_target,
             push,
         };
         let new = work(&self.volume);
@@ -311,7 +316,7 @@ impl Strand {
 struct VolumeState {
     on: bool,
     friction_per_s: f64,
-    target: Vec<DVec3>,
+    relative_target: Vec<DVec3>,
     push: Vec<DVec3>,
 }
 
@@ -319,7 +324,7 @@ impl VolumeState {
     fn pull(&self) -> Option<VolumePull<'_>> {
         self.on.then_some(VolumePull {
             friction_per_s: self.friction_per_s,
-            target_m_per_s: &self.target,
+            relative_target_m_per_s: &self.relative_target,
             push_m_per_s2: &self.push,
         })
     }

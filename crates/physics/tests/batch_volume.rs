@@ -36,7 +36,7 @@ fn lane(x: V3<Lanes>, l: usize) -> DVec3 {
     DVec3::new(x.x.lane(l).into(), x.y.lane(l).into(), x.z.lane(l).into())
 }
 
-/// Two f32 computations of one step, the pull's c − μρS ṙ against the
+/// Two f32 computations of one step, the pull's k − μρS (ṙ − c) against the
 /// drag's −ν'(ṙ − v_air'), differ by the rounding of their terms: after
 /// a second (60 steps), max |q_pull − q_drag| over the strain scale, and
 /// the same for q̇ over max |q̇|. `batch_parity.rs` pins f32 against f64
@@ -45,11 +45,13 @@ fn lane(x: V3<Lanes>, l: usize) -> DVec3 {
 const SAME_EQUATION_TOL: f64 = 2e-5;
 
 /// The friction in a batch step is exactly air drag toward the grid
-/// velocity: 8 strands (one batch, each lane its own random state) pulled
-/// with rate μ toward a uniform u step like the same strands with drag
-/// ν' = ν + μρS toward air of (ν v_air + μρS u)/ν'. With it, the model's
-/// relative motion decays as drag's does, (1 + hμ) per step, time
-/// constant 1/μ (`tests/volume.rs` pins that law on the grid).
+/// velocity: 8 strands (one batch, each lane its own random state) on a
+/// head that translates (so the head's velocity c is the same at every
+/// sample), pulled with rate μ toward a uniform u_rel relative to the
+/// head, step like the same strands with drag ν' = ν + μρS toward air of
+/// (ν v_air + μρS (u_rel + c))/ν'. With it, the model's relative motion
+/// decays as drag's does, (1 + hμ) per step, time constant 1/μ
+/// (`tests/volume.rs` pins that law on the grid).
 #[test]
 fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
     let mut params = common::curl(8);
@@ -59,7 +61,8 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
     let rho_s = model.mass_per_length;
     let mut dragged = params.clone();
     dragged.air_drag = params.air_drag + mu * rho_s;
-    let air_dragged = (params.air_drag * air + mu * rho_s * u) / dragged.air_drag;
+    let air_dragged =
+        |head: DVec3| (params.air_drag * air + mu * rho_s * (u + head)) / dragged.air_drag;
     let pulled_model = BatchModel::new(&model);
     let dragged_model = BatchModel::new(&StrandModel::new(&dragged, 4).unwrap());
     let n = pulled_model.elements();
@@ -89,14 +92,14 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
     let mut scratch = vec![ElementData::<Lanes>::zero(); n];
     let mut elimination = vec![Elimination::<Lanes>::zero(); n];
     let roots: Vec<RootPose> = (0..LANES).map(|_| common::horizontal_root()).collect();
-    let head = shake();
     for k in 0..60 {
-        let motion = head.motion_at(k as f64 / 60.0);
+        let motion = common::side_to_side(k as f64 / 60.0);
         let motions: Vec<RigidMotion> = roots.iter().map(|r| motion.carry(r)).collect();
         let root = RootMotion::<Lanes>::gather(&motions);
         let mut hook = WithPull {
             inner: NoContact,
             pull,
+            root: &root,
         };
         step_exact_with::<_, true, _>(
             &pulled_model,
@@ -110,7 +113,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
         );
         step_exact_with::<_, true, _>(
             &dragged_model,
-            &env(air_dragged),
+            &env(air_dragged(motion.velocity_m_per_s)),
             &root,
             &mut q_drag,
             &mut v_drag,

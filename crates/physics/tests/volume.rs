@@ -97,8 +97,10 @@ fn friction_damps_relative_motion_with_time_constant_one_over_mu() {
 }
 
 /// The friction in a strand's step is exactly air drag toward the grid
-/// velocity: a strand pulled with rate μ toward a uniform u steps like the
-/// same strand with drag ν' = ν + μρS toward air of (ν v_air + μρS u)/ν'.
+/// velocity: a strand on a head that translates (the head's velocity c the
+/// same at every sample) pulled with rate μ toward a uniform u_rel
+/// relative to the head steps like the same strand with drag
+/// ν' = ν + μρS toward air of (ν v_air + μρS (u_rel + c))/ν'.
 #[test]
 fn friction_in_the_step_is_air_drag_toward_the_target() {
     let mut params = common::curl(8);
@@ -108,20 +110,21 @@ fn friction_in_the_step_is_air_drag_toward_the_target() {
     let rho_s = model.mass_per_length;
     let mut dragged = params.clone();
     dragged.air_drag = params.air_drag + mu * rho_s;
-    let air_dragged = (params.air_drag * air + mu * rho_s * u) / dragged.air_drag;
+    let air_dragged =
+        |head: DVec3| (params.air_drag * air + mu * rho_s * (u + head)) / dragged.air_drag;
     let dragged_model = Arc::new(StrandModel::new(&dragged, 4).unwrap());
     let root = common::horizontal_root();
     let mut pulled = Strand::new(model.clone(), root, Method::Exact);
     let mut reference = Strand::new(dragged_model, root, Method::Exact);
     let samples = model.samples();
     pulled.set_volume_pull(mu, vec![u; samples], vec![DVec3::ZERO; samples]);
-    let head = common::shake();
     let gravity = DVec3::new(0.0, -9.81, 0.0);
-    use helixhair_physics::HeadTrajectory;
     for k in 0..60 {
-        let motion = head.motion_at(k as f64 / 60.0).carry(&root);
+        let head = common::side_to_side(k as f64 / 60.0);
+        let motion = head.carry(&root);
         pulled.step(&motion, gravity, air, 1.0 / 60.0);
-        reference.step(&motion, gravity, air_dragged, 1.0 / 60.0);
+        let wind = air_dragged(head.velocity_m_per_s);
+        reference.step(&motion, gravity, wind, 1.0 / 60.0);
     }
     let scale = reference.v().iter().map(|v| v.length()).fold(0.0, f64::max);
     assert!(scale > 0.1, "the strand moved: |v| = {scale}");

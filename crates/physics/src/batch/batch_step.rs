@@ -179,6 +179,7 @@ pub(super) fn step_pulled<H: EndPointForce<Lanes>>(
             let mut hook = WithPull {
                 inner: end_force,
                 pull,
+                root,
             };
             step_batch_with(model, env, root, step, q, v, scratch, &mut hook);
         }

@@ -112,10 +112,10 @@ pub trait EndPointForce<T> {
     }
 
     /// An extra force per unit length on quadrature node `j` of element
-    /// `e` moving at `velocity` (world, m/s), N/m; read only when
-    /// [`Self::SAMPLE_FORCES`].
+    /// `e` at `r` (relative to the root point, m) moving at `velocity`
+    /// (world, m/s), N/m; read only when [`Self::SAMPLE_FORCES`].
     #[inline(always)]
-    fn sample_force(&self, _e: usize, _j: usize, _velocity: V3<T>) -> V3<T>
+    fn sample_force(&self, _e: usize, _j: usize, _r: V3<T>, _velocity: V3<T>) -> V3<T>
     where
         T: Real,
     {

@@ -192,13 +192,26 @@ pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
     k_dot: V3<T>,
 ) -> ElementData<T> {
     let mut el = ElementData::zero();
-    own_sums_into::<T, OFF_DIAGONAL, _>(model, env, e, s, k, k_dot, &mut el, &NoContact, None);
+    own_sums_into::<T, OFF_DIAGONAL, _>(
+        model,
+        env,
+        e,
+        s,
+        k,
+        k_dot,
+        &mut el,
+        (&NoContact, V3::zero()),
+        None,
+    );
     el
 }
 
 /// [`own_sums`] written into `el` in place, with `hook`'s force at each
 /// quadrature sample (the hair–hair model's pull, [`super::pull`];
-/// nothing unless `H::SAMPLE_FORCES`): every field but `a` and `b` (and
+/// nothing unless `H::SAMPLE_FORCES`; the hook sees each sample's place
+/// relative to the root, `hook_origin_m` being where `s`'s point lies
+/// relative to it: the element's start when `s` was moved there for local
+/// moments, else zero): every field but `a` and `b` (and
 /// `u`, `v` without `OFF_DIAGONAL`) is overwritten. The sweep uses this
 /// form: an 8-lane [`ElementData`] is about 1.9 KB, and returning it by
 /// value cost a copy and a zero fill per element (measured: 15% of a
@@ -216,7 +229,7 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     k: V3<T>,
     k_dot: V3<T>,
     el: &mut ElementData<T>,
-    hook: &H,
+    (hook, hook_origin_m): (&H, V3<T>),
     coefficients: Option<&[Coefficients<T>]>,
 ) {
     let length_m = model.length_m(e);
@@ -245,7 +258,7 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
         let w_mass = w_len * rho_s;
         let mut per_length = (g - acc).scale_add(rho_s, (air - vel).scale(nu));
         if H::SAMPLE_FORCES {
-            per_length += hook.sample_force(e, j, vel);
+            per_length += hook.sample_force(e, j, hook_origin_m + r, vel);
         }
         let force = per_length.scale(w_len);
         let jac = &lp.jacobian;
@@ -360,7 +373,7 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
             q[e],
             v[e],
             el,
-            end_force,
+            (end_force, s.point_m - moments_origin.point_m),
             co.map(|(nodes, _)| nodes),
         );
         let length_m = model.length_m(e);

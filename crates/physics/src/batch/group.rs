@@ -14,8 +14,8 @@ use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
 use super::pull::SamplePull;
 use super::vec::V3;
-use super::volume::{BatchVolume, GroupView, KeptSamples};
-use crate::frame_balance::StrandMeasure;
+use super::volume::{BatchVolume, GroupView, KeptSamples, carried};
+use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
 use crate::motion::{RigidMotion, RootPose};
 
@@ -80,8 +80,8 @@ pub(super) struct FrameCheck<'a> {
     pub(super) motion: &'a RigidMotion,
     /// The contact test with the head there, if a collider is set.
     pub(super) contact: Option<SkinTest<'a>>,
-    /// The frame's length, s.
-    pub(super) dt_secs: f64,
+    /// The frame's length and substeps.
+    pub(super) frame: SteppedFrame,
 }
 
 /// One batch's state, roots and constants, read only, with where its
@@ -362,12 +362,6 @@ impl Group {
     }
 }
 
-/// Each lane's root motion for the head moving as `head` (padding lanes
-/// copy the batch's last root).
-fn carried(head: &RigidMotion, roots: &[RootPose]) -> [RigidMotion; LANES] {
-    std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]))
-}
-
 /// One batch as the guard's end-of-frame judgement takes it.
 struct BatchState<'a> {
     model: &'a LaneModel,
@@ -418,7 +412,7 @@ fn judge_batch(
         pull.as_ref(),
         samples,
     );
-    let failed = check_and_reset(check.guard, model, q, v, measures, &end, check.dt_secs);
+    let failed = check_and_reset(check.guard, model, q, v, measures, &end, check.frame);
     if pull.is_none() || failed.iter().any(Option::is_some) {
         kept.clear();
     }

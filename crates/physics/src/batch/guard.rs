@@ -45,9 +45,9 @@ use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
 use super::near_cells::SkinTest;
-use super::pull::{SamplePull, add_pull_work};
+use super::pull::{SamplePull, add_pull_work, carried_velocity};
 use super::vec::V3;
-use crate::frame_balance::StrandMeasure;
+use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
 
@@ -136,11 +136,11 @@ pub fn measure_lanes<'a>(
         first_moment = r.scale_add(w_mass, first_moment);
         mass += w_mass;
         second_moment = r.dot(r).mul_add(w_mass, second_moment);
+        let carried = carried_velocity(root, r);
         if let Some(pull) = pull {
             let sums = (&mut force, &mut torque, &mut power);
-            add_pull_work(pull, e, j, r, vel, w_len, sums);
+            add_pull_work(pull, e, j, r, (vel, carried), w_len, sums);
         }
-        let carried = s_root_velocity(root, r);
         let rel = vel - carried;
         // Squares here, one root at the end: the root is monotone and
         // correctly rounded, so the same bits (NaN stays NaN).
@@ -307,12 +307,6 @@ fn lanes_in_contact(
     found
 }
 
-/// The velocity the root's rigid motion gives a point `r` (relative to the
-/// root point).
-fn s_root_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
-    root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r)
-}
-
 /// Checks one batch (`q`, `v`: N triples each) whose lanes started the
 /// frame measured as `measures` and ended it as `end`, and leaves the end's
 /// measures in `measures`; resets each failing lane to `model`'s natural
@@ -325,7 +319,7 @@ pub fn check_and_reset(
     v: &mut [V3<Lanes>],
     measures: &mut [StrandMeasure; LANES],
     end: &LaneMeasures<'_>,
-    dt_secs: f64,
+    frame: SteppedFrame,
 ) -> [Option<GuardCause>; LANES] {
     let finite_q = finite_lanes(q);
     let finite_v = finite_lanes(v);
@@ -333,7 +327,7 @@ pub fn check_and_reset(
     for (lane, (start, failed)) in measures.iter_mut().zip(&mut failed).enumerate() {
         let end = end.strand(lane);
         *failed = if finite_q[lane] && finite_v[lane] {
-            guard.check_with_round_off(&[], &[], start, &end, dt_secs, F32_ENERGY_ROUND_OFF)
+            guard.check_with_round_off(&[], &[], start, &end, frame, F32_ENERGY_ROUND_OFF)
         } else {
             Some(GuardCause::NotFinite)
         };

@@ -73,8 +73,9 @@
 //!   (position, velocity, mass), the shared f64 code of
 //!   [`crate::volume::field`] splats them on the head-fixed grid and reads
 //!   back each sample's grid velocity and pressure push, and each batch
-//!   gets per sample the known force c = ρS(μu + a). The step takes the
-//!   friction as it takes air drag: the force c − μρS ṙ at each sample
+//!   gets per sample the known force k = ρS(μu_rel + a) (u_rel relative
+//!   to the head). The step takes the friction as it takes air drag: the
+//!   force k − μρS (ṙ − c) at each sample (c the root's rigid velocity there)
 //!   and hμ in the mass scale, through the step hook
 //!   ([`contact::EndPointForce::sample_force`]); without the model the
 //!   sample loop compiles as before. The guard counts the pull's work

@@ -5,23 +5,23 @@
 //! # The force, as the batch step takes it
 //!
 //! Per unit length, the model's force on a sample is
-//! F = μρS (u − ṙ) + ρS a ([`crate::volume::friction`]): friction toward
-//! the grid velocity u, a drag exactly like air drag toward the wind, and
-//! the pressure's push a; u and a are frozen over the frame. The batch
-//! step takes air drag on the full velocity, −ν(ṙ − v_air), with its
-//! implicit part (ν/ρS) M in the mass scale s = 1 + hν/ρS
-//! ([`super::forward`], [`super::suffix::mass_scale`]); the friction goes
-//! the same way: s gains hμ ([`EndPointForce::drag_rate_per_s`]) and each
-//! sample's force gains μρS (u − ṙ) + ρS a
-//! ([`EndPointForce::sample_force`]). The f64 reference splits the same
-//! force into a root-carried part and (μ) M q̇ on the right-hand side
-//! ([`crate::step`]); since J q̇ = ṙ − ṙ_carried at every sample, the two
-//! are one arithmetic up to round-off, as for air drag.
+//! F = μρS (u_rel − (ṙ − c)) + ρS a ([`crate::volume::friction`]):
+//! friction toward the grid velocity relative to the head, u_rel, a drag
+//! on the sample's velocity relative to the root's rigid motion,
+//! ṙ − c = J q̇ (c = v_root + ω × r), and the pressure's push a; u_rel and
+//! a are frozen over the frame. The batch step takes air drag on the full
+//! velocity, −ν(ṙ − v_air), with its implicit part (ν/ρS) M in the mass
+//! scale s = 1 + hν/ρS ([`super::forward`], [`super::suffix::mass_scale`]);
+//! the friction goes the same way: s gains hμ
+//! ([`EndPointForce::drag_rate_per_s`]) and each sample's force gains
+//! μρS (u_rel − (ṙ − c)) + ρS a ([`EndPointForce::sample_force`]). The f64
+//! reference splits the same force into its known part and (μ) M q̇ on
+//! the right-hand side ([`crate::step`]); since J q̇ = ṙ − c at every
+//! sample, the two are one arithmetic up to round-off, as for air drag.
 //!
 //! Per sample the pull keeps one vector, the known part
-//! c = ρS (μ u + a) (computed in f64, stored in f32), and per lane the rate
-//! μρS, so the force at velocity ṙ is c − μρS ṙ: one multiply-add per
-//! sample on top of the step's own force.
+//! k = ρS (μ u_rel + a) (computed in f64, stored in f32), and per lane the
+//! rate μρS, so the force at relative velocity ṙ − c is k − μρS (ṙ − c).
 //!
 //! # The hook
 //!
@@ -36,7 +36,7 @@ use super::contact::EndPointForce;
 use super::forward::FrameState;
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{Lanes, Real};
-use super::layout::ElementData;
+use super::layout::{ElementData, RootMotion};
 use super::vec::V3;
 
 /// One batch's pull for a frame: what [`super::volume::BatchVolume`]
@@ -48,7 +48,7 @@ pub struct SamplePull<'a> {
     /// μρS per lane, kg/(m·s).
     pub rate: Lanes,
     /// Per quadrature sample (element by element, the element's nodes in
-    /// order), the known part c = ρS (μ u + a), N/m, world axes.
+    /// order), the known part k = ρS (μ u_rel + a), N/m, world axes.
     pub known: &'a [V3<Lanes>],
     /// Quadrature nodes per element.
     pub nodes: usize,
@@ -56,10 +56,11 @@ pub struct SamplePull<'a> {
 
 impl SamplePull<'_> {
     /// The model's force per unit length on node `j` of element `e` moving
-    /// at `velocity` (world, m/s): c − μρS ṙ, N/m.
+    /// at `relative` (m/s) relative to the root's rigid motion, ṙ − c:
+    /// k − μρS (ṙ − c), N/m.
     #[inline(always)]
-    pub fn force(&self, e: usize, j: usize, velocity: V3<Lanes>) -> V3<Lanes> {
-        self.known[e * self.nodes + j] - velocity.scale(self.rate)
+    pub fn force(&self, e: usize, j: usize, relative: V3<Lanes>) -> V3<Lanes> {
+        self.known[e * self.nodes + j] - relative.scale(self.rate)
     }
 }
 
@@ -70,6 +71,9 @@ pub struct WithPull<'a, H> {
     pub inner: H,
     /// The pull.
     pub pull: SamplePull<'a>,
+    /// The batch's roots' motion over the step, whose rigid velocity at a
+    /// sample the friction's drag is relative to.
+    pub root: &'a RootMotion<Lanes>,
 }
 
 impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
@@ -91,14 +95,23 @@ impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
     }
 
     #[inline(always)]
-    fn sample_force(&self, e: usize, j: usize, velocity: V3<Lanes>) -> V3<Lanes> {
-        self.pull.force(e, j, velocity)
+    fn sample_force(&self, e: usize, j: usize, r: V3<Lanes>, velocity: V3<Lanes>) -> V3<Lanes> {
+        self.pull
+            .force(e, j, velocity - carried_velocity(self.root, r))
     }
 }
 
+/// The velocity the root's rigid motion `root` gives a point `r`
+/// (relative to the root point), m/s.
+#[inline(always)]
+pub fn carried_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
+    root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r)
+}
+
 /// Per lane, the pull's work terms at a sample of quadrature length
-/// `w_len` (m) at `r` (relative to the root point) moving at `velocity`:
-/// adds its force, torque and power to the guard's sums, as
+/// `w_len` (m) at `r` (relative to the root point) moving at `velocity`
+/// (world) where the root's rigid motion moves at `carried`: adds its
+/// force, torque and power to the guard's sums, as
 /// [`crate::volume::balance`] does on the reference.
 #[inline(always)]
 pub fn add_pull_work(
@@ -106,11 +119,11 @@ pub fn add_pull_work(
     e: usize,
     j: usize,
     r: V3<Lanes>,
-    velocity: V3<Lanes>,
+    (velocity, carried): (V3<Lanes>, V3<Lanes>),
     w_len: Lanes,
     sums: (&mut V3<Lanes>, &mut V3<Lanes>, &mut Lanes),
 ) {
-    let f = pull.force(e, j, velocity).scale(w_len);
+    let f = pull.force(e, j, velocity - carried).scale(w_len);
     let (force, torque, power) = sums;
     *force += f;
     *torque += r.cross(f);

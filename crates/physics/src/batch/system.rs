@@ -33,6 +33,7 @@ use super::vec::V3;
 use super::volume::{BatchVolume, GroupView};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
+use crate::frame_balance::SteppedFrame;
 use crate::guard::{Guard, GuardAction, GuardEvent};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -309,7 +310,10 @@ impl BatchSystem {
                 guard,
                 motion,
                 contact: contact_test(&self.collider, self.contact, motion, h),
-                dt_secs: self.settings.dt_secs,
+                frame: SteppedFrame {
+                    dt_secs: self.settings.dt_secs,
+                    substeps: self.settings.substeps,
+                },
             });
             for (i, group) in self.groups.iter_mut().enumerate() {
                 let pulls = volume.map(|v| (v, i));

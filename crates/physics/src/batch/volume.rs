@@ -15,7 +15,8 @@
 //! the reference's DVec3 arithmetic, in the same order). The splat, the density excess and what each sample reads back
 //! (grid velocity, pressure push) are the same functions the reference
 //! calls. The reading becomes the sample's known force
-//! c = ρS (μ u + a) (world axes), rounded to f32 once.
+//! k = ρS (μ u_rel + a) (world axes; u_rel the grid velocity relative to
+//! the head, [`crate::volume::friction`]), rounded to f32 once.
 //!
 //! # The guard's samples
 //!
@@ -65,6 +66,7 @@ use crate::frame_balance::StrandMeasure;
 use crate::motion::{RigidMotion, RootPose};
 use crate::volume::balance::PullWork;
 use crate::volume::cell::CellLanes;
+use crate::volume::friction::HeadVelocity;
 use crate::volume::splat_lanes::PointLanes;
 use crate::volume::{InteractionSettings, ModelState, RestDensity};
 
@@ -242,6 +244,7 @@ impl BatchVolume {
             return;
         };
         let mut cells = field.cell_lanes();
+        let head_velocity = HeadVelocity::of(head);
         let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
             let lanes = pulls.samples * HALVES;
@@ -255,6 +258,7 @@ impl BatchVolume {
                 field,
                 settings,
                 head,
+                head_velocity: &head_velocity,
             };
             pulls.known.resize(batches * pulls.samples, V3::zero());
             let none = (PullWork::default(), PullWork::default());
@@ -270,7 +274,9 @@ impl BatchVolume {
                     };
                     let kept = view.kept.as_ref().filter(|_| *from_kept);
                     let motion = kept.map_or(swept, |k| k.batches[b].as_slice());
-                    read_batch(&inputs, &rates, points, motion, known, exchange);
+                    let roots = &view.roots[b * LANES..((b + 1) * LANES).min(view.roots.len())];
+                    let root = RootMotion::<Lanes>::gather(&carried(head, roots));
+                    read_batch(&inputs, &rates, points, (motion, &root), known, exchange);
                 };
             if parallel {
                 let known = pulls.known.par_chunks_mut(pulls.samples);
@@ -369,8 +375,7 @@ pub fn gather_batch(
     out: &mut [PointLanes],
     motion: &mut [[V3<Lanes>; 2]],
 ) {
-    let motions: [RigidMotion; LANES] =
-        std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]));
+    let motions = carried(head, roots);
     let place = Placement::new(model, roots, &motions, head);
     let nodes = model.nodes().len();
     let Some(kept) = kept else {
@@ -402,6 +407,12 @@ pub fn gather_batch(
             &mut out[i * HALVES..(i + 1) * HALVES],
         );
     }
+}
+
+/// Each lane's root motion for the head moving as `head` (padding lanes
+/// copy the batch's last root).
+pub(super) fn carried(head: &RigidMotion, roots: &[RootPose]) -> [RigidMotion; LANES] {
+    std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]))
 }
 
 /// What turns a batch's samples (f32 lanes: position relative to the root,

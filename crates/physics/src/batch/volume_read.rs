@@ -5,7 +5,9 @@
 //! push a: [`crate::volume::VolumeField::read_in`], the reference's
 //! [`crate::volume::VolumeField::read`] in the cell the splat found for
 //! the sample, [`crate::volume::VolumeField::cells`]) and keeps
-//! c = ρS (μ u + a) in f32. While it is at it, it sums, per lane, the old
+//! k = ρS (μ u_rel + a) in f32, u_rel = u − c the grid velocity relative
+//! to the head's rigid motion at the sample
+//! ([`crate::volume::friction`]). While it is at it, it sums, per lane, the old
 //! pull's work and the new one's at the state just gathered
 //! ([`crate::volume::balance::PullWork`]): the guard's start measure is the
 //! last frame's end measure, which counted the old pull, and exchanging
@@ -20,12 +22,14 @@ use wide::f64x4;
 
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
-use super::pull::{SamplePull, add_pull_work};
+use super::layout::RootMotion;
+use super::pull::{SamplePull, add_pull_work, carried_velocity};
 use super::vec::V3;
 use super::volume::HALVES;
 use crate::motion::RigidMotion;
 use crate::volume::balance::PullWork;
 use crate::volume::cell::CellLanes;
+use crate::volume::friction::HeadVelocity;
 use crate::volume::splat_lanes::PointLanes;
 use crate::volume::{InteractionSettings, VolumeField};
 
@@ -38,6 +42,9 @@ pub struct ReadInputs<'a> {
     pub settings: &'a InteractionSettings,
     /// The head at the frame's start.
     pub head: &'a RigidMotion,
+    /// Its rigid velocity field, which the grid velocity is taken
+    /// relative to ([`crate::volume::friction`]).
+    pub head_velocity: &'a HeadVelocity,
 }
 
 /// One batch's constants and its pull's μρS, old and new, lane by lane.
@@ -57,15 +64,15 @@ pub type Exchange = (PullWork, PullWork);
 /// Reads batch `points` (sample i, lanes 4h..4h + 4 at 2i + h; in
 /// `cells`, the field's [`VolumeField::cell_lanes`] of these points) into
 /// `known`
-/// (its old c on entry, the new c on return) and sums each lane's old and
+/// (its old k on entry, the new k on return) and sums each lane's old and
 /// new pull work into `exchange`, at the samples' positions relative to
 /// their roots and velocities `motion` (f32 lanes, from the gather: the
-/// numbers the guard's measure sweeps).
+/// numbers the guard's measure sweeps), the roots moving as `root`.
 pub fn read_batch(
     inputs: &ReadInputs<'_>,
     rates: &BatchRates<'_>,
     (points, cells): (&[PointLanes], &[CellLanes]),
-    motion: &[[V3<Lanes>; 2]],
+    (motion, root): (&[[V3<Lanes>; 2]], &RootMotion<Lanes>),
     known: &mut [V3<Lanes>],
     exchange: &mut [Exchange; LANES],
 ) {
@@ -73,6 +80,7 @@ pub fn read_batch(
         field,
         settings,
         head,
+        head_velocity,
     } = *inputs;
     let model = rates.model;
     let nodes = model.nodes().len();
@@ -92,7 +100,7 @@ pub fn read_batch(
                 e,
                 j,
                 *r,
-                *v,
+                (*v, carried_velocity(root, *r)),
                 w_len,
                 (&mut force, &mut torque, &mut power),
             );
@@ -125,6 +133,7 @@ pub fn read_batch(
     for (c, (points, cells)) in known.iter_mut().zip(groups) {
         let mut value = [[0.0_f32; 3]; LANES];
         for (h, (point, cells)) in points.iter().zip(cells).enumerate() {
+            let carried = head_velocity_lanes(head_velocity, &point.position_m);
             let read = |k: usize, target: f64x4, push: Option<DVec3>| {
                 let l = 4 * h + k;
                 let push = match push {
@@ -134,8 +143,9 @@ pub fn read_batch(
                     }
                     _ => no_push,
                 };
-                // ρS (μ u + a), axis by axis as in DVec3 arithmetic.
-                let [x, y, z, _] = (f64x4::splat(rho_s[l]) * (mu * target + push)).to_array();
+                let relative = target - carried[k];
+                // ρS (μ u_rel + a), axis by axis as in DVec3 arithmetic.
+                let [x, y, z, _] = (f64x4::splat(rho_s[l]) * (mu * relative + push)).to_array();
                 value[l] = [x as f32, y as f32, z as f32];
             };
             field.read_lanes(settings, cells, &point.velocity_m_per_s, read);
@@ -148,4 +158,22 @@ pub fn read_batch(
     }
     let new = work(known, rates.new);
     *exchange = std::array::from_fn(|l| (old[l], new[l]));
+}
+
+/// The head's rigid velocity at four points in head coordinates
+/// (`position_m`: x, y and z, lane by lane), one per lane, each in the
+/// first three lanes of an f64x4 (the fourth zero): [`HeadVelocity::at`]'s
+/// products in its order (glam's `W * p`: ((X p_x) + (Y p_y)) + (Z p_z),
+/// then v +), four points at once.
+fn head_velocity_lanes(field: &HeadVelocity, position_m: &[f64x4; 3]) -> [f64x4; 4] {
+    let w = field.per_body_m;
+    let v = field.origin_m_per_s;
+    let [px, py, pz] = *position_m;
+    let axis = |a: usize, origin: f64| {
+        let column = |c: glam::DVec3| f64x4::splat(c[a]);
+        f64x4::splat(origin)
+            + ((column(w.x_axis) * px + column(w.y_axis) * py) + column(w.z_axis) * pz)
+    };
+    let [x, y, z] = [axis(0, v.x), axis(1, v.y), axis(2, v.z)].map(|a| *a.as_array());
+    std::array::from_fn(|k| f64x4::new([x[k], y[k], z[k], 0.0]))
 }

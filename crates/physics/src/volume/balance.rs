@@ -9,7 +9,9 @@
 //! of the window's curly style, 1.3e-9 J against 6.1e-10 J allowed, reset
 //! at t = 0.4 s). So the measure counts the model's force like drag's:
 //! its sum, its torque about the root point and its power ∫ f · ṙ ds, with
-//! the frame's frozen grid velocity and push.
+//! the frame's frozen grid velocity (relative to the head) and push: the
+//! very force the step applies at that state
+//! ([`VolumePull::force_n_per_m`]).
 
 use glam::DVec3;
 
@@ -21,13 +23,21 @@ use crate::reconstruct::Kinematics;
 use super::friction::VolumePull;
 use super::splat::SamplePoint;
 
-/// Adds `pull`'s force, torque and power at the state of `kin` to `out`.
-pub fn add_pull(out: &mut StrandMeasure, model: &StrandModel, kin: &Kinematics, pull: &VolumePull) {
+/// Adds `pull`'s force, torque and power at the state of `kin`
+/// (reconstructed for a root moving as `root`) to `out`.
+pub fn add_pull(
+    out: &mut StrandMeasure,
+    model: &StrandModel,
+    kin: &Kinematics,
+    root: &RigidMotion,
+    pull: &VolumePull,
+) {
     for (i, s) in kin.samples.iter().enumerate() {
         let v = s.velocity_m_per_s;
         // The whole force at this state: its known part plus −μρS J q̇,
-        // i.e. μρS (u − ṙ) + ρS a with ṙ the sample's own velocity.
-        let f = pull.force_n_per_m(i, v, model.mass_per_length) * s.weight_m;
+        // J q̇ = ṙ − ṙ_carried.
+        let carried = carried_velocity(root, s.position_m);
+        let f = pull.force_n_per_m(i, v, carried, model.mass_per_length) * s.weight_m;
         out.external_force_n += f;
         out.external_torque_n_m += s.position_m.cross(f);
         out.external_power_w += f.dot(v);
@@ -76,23 +86,30 @@ impl PullWork {
 }
 
 /// `pull`'s work on a strand of ρS `mass_per_length` whose samples are
-/// `points` (gathered with the head at `head`, the strand's root point at
-/// `root_m`, world): quadrature lengths from the points' masses.
+/// `points` (gathered with the head at `head`, the strand's root moving
+/// as `root`): quadrature lengths from the points' masses.
 pub fn pull_work(
     points: &[SamplePoint],
     head: &RigidMotion,
-    root_m: DVec3,
+    root: &RigidMotion,
     pull: &VolumePull,
     mass_per_length: f64,
 ) -> PullWork {
     let mut work = PullWork::default();
     for (i, p) in points.iter().enumerate() {
-        let r = root_relative(p, head, root_m);
+        let r = root_relative(p, head, root.position_m);
         let v = p.velocity_m_per_s;
         let w = p.mass_kg / mass_per_length;
-        work.add(r, v, pull.force_n_per_m(i, v, mass_per_length) * w);
+        let carried = carried_velocity(root, r);
+        work.add(r, v, pull.force_n_per_m(i, v, carried, mass_per_length) * w);
     }
     work
+}
+
+/// The velocity a root moving as `root` carries a point at `r_m`
+/// (relative to the root point) with, m/s.
+fn carried_velocity(root: &RigidMotion, r_m: DVec3) -> DVec3 {
+    root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r_m)
 }
 
 /// A gathered point's position relative to its strand's root point

@@ -13,6 +13,7 @@ use std::time::Instant;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::friction::HeadVelocity;
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
 use super::splat::SamplePoint;
@@ -71,10 +72,15 @@ impl ReferenceVolume {
         let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
             return;
         };
+        let carried = HeadVelocity::of(head);
         let hand_out = |(s, points): (&mut Strand, &Vec<SamplePoint>)| {
             let readings = points.iter().map(|p| field.read(rest, settings, p));
             let (target, push): (Vec<DVec3>, Vec<DVec3>) = readings
-                .map(|r| (r.target_m_per_s, head.world_from_body * r.push_m_per_s2))
+                .zip(points)
+                .map(|(r, p)| {
+                    let relative = r.target_m_per_s - carried.at(p.position_m);
+                    (relative, head.world_from_body * r.push_m_per_s2)
+                })
                 .unzip();
             s.exchange_volume_pull((settings.friction_per_s, target, push), points, head);
         };

@@ -242,6 +242,19 @@ pub fn curl(n: usize) -> StrandParams {
 
 /// The head shake of the parity tests: 0.5 rad at 1.5 Hz about a tilted
 /// vertical axis.
+/// A head that moves 5 cm side to side at 1.5 Hz without turning, at
+/// `t_secs`: every point of it moves with one velocity.
+pub fn side_to_side(t_secs: f64) -> RigidMotion {
+    let (amplitude_m, rad_per_s) = (0.05, std::f64::consts::TAU * 1.5);
+    let phase = rad_per_s * t_secs;
+    RigidMotion {
+        position_m: DVec3::X * amplitude_m * phase.sin(),
+        velocity_m_per_s: DVec3::X * amplitude_m * rad_per_s * phase.cos(),
+        acceleration_m_per_s2: DVec3::X * -amplitude_m * rad_per_s.powi(2) * phase.sin(),
+        ..RigidMotion::default()
+    }
+}
+
 pub fn shake() -> Oscillation {
     Oscillation {
         axis: DVec3::new(0.2, 1.0, 0.1),
