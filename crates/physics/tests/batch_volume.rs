@@ -14,7 +14,7 @@ use glam::{DMat3, DVec3};
 use helixhair_physics::batch::contact::NoContact;
 use helixhair_physics::batch::exact::{Elimination, step_exact_with};
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
-use helixhair_physics::batch::pull::{SamplePull, WithPull, friction_rate};
+use helixhair_physics::batch::pull::{RootVelocity, SamplePull, WithPull, friction_rate};
 use helixhair_physics::batch::vec::V3;
 use helixhair_physics::batch::{BatchSystem, LANES, LaneModel, Lanes, Real};
 use helixhair_physics::engine::{Engine, EngineKind};
@@ -99,7 +99,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
         let mut hook = WithPull {
             inner: NoContact,
             pull,
-            root: &root,
+            root: RootVelocity::of(&root),
         };
         step_exact_with::<_, true, _>(
             &pulled_model,

@@ -15,7 +15,7 @@ use super::implicit::{Krylov, step_exact_implicit};
 use super::lane_model::LaneModel;
 use super::lanes::Lanes;
 use super::layout::{ElementData, RootMotion, StepEnv};
-use super::pull::{SamplePull, WithPull};
+use super::pull::{RootVelocity, SamplePull, WithPull};
 use super::vec::V3;
 use crate::settings::{Method, SimSettings, StepScheme};
 
@@ -179,7 +179,7 @@ pub(super) fn step_pulled<H: EndPointForce<Lanes>>(
             let mut hook = WithPull {
                 inner: end_force,
                 pull,
-                root,
+                root: RootVelocity::of(root),
             };
             step_batch_with(model, env, root, step, q, v, scratch, &mut hook);
         }

@@ -45,7 +45,7 @@ use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
 use super::near_cells::SkinTest;
-use super::pull::{SamplePull, add_pull_work, carried_velocity};
+use super::pull::{RootVelocity, SamplePull, add_pull_work};
 use super::vec::V3;
 use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardCause};
@@ -124,6 +124,7 @@ pub fn measure_lanes<'a>(
     // The thread's buffer, kept: a batch's measure allocates nothing.
     let mut ends = KEPT_ENDS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
     ends.clear();
+    let carried = RootVelocity::of(root);
     let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
         if let Some(kept) = samples.as_deref_mut() {
             kept[e * nodes + j] = [r, vel];
@@ -136,12 +137,11 @@ pub fn measure_lanes<'a>(
         first_moment = r.scale_add(w_mass, first_moment);
         mass += w_mass;
         second_moment = r.dot(r).mul_add(w_mass, second_moment);
-        let carried = carried_velocity(root, r);
+        let rel = vel - carried.at(r);
         if let Some(pull) = pull {
             let sums = (&mut force, &mut torque, &mut power);
-            add_pull_work(pull, e, j, r, (vel, carried), w_len, sums);
+            add_pull_work(pull, e, j, r, (vel, rel), w_len, sums);
         }
-        let rel = vel - carried;
         // Squares here, one root at the end: the root is monotone and
         // correctly rounded, so the same bits (NaN stays NaN).
         fastest_squared = fastest_squared.max(rel.dot(rel));

@@ -35,9 +35,12 @@
 use super::contact::EndPointForce;
 use super::forward::FrameState;
 use super::lane_model::{Constants, LaneModel};
-use super::lanes::{Lanes, Real};
+use super::lanes::{LANES, Lanes, Real};
+use glam::DVec3;
+
 use super::layout::{ElementData, RootMotion};
 use super::vec::V3;
+use crate::motion::{RigidMotion, RootPose};
 
 /// One batch's pull for a frame: what [`super::volume::BatchVolume`]
 /// hands each batch.
@@ -71,9 +74,9 @@ pub struct WithPull<'a, H> {
     pub inner: H,
     /// The pull.
     pub pull: SamplePull<'a>,
-    /// The batch's roots' motion over the step, whose rigid velocity at a
-    /// sample the friction's drag is relative to.
-    pub root: &'a RootMotion<Lanes>,
+    /// The batch's roots' rigid velocity over the step, which the
+    /// friction's drag is relative to.
+    pub root: RootVelocity,
 }
 
 impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
@@ -96,34 +99,82 @@ impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
 
     #[inline(always)]
     fn sample_force(&self, e: usize, j: usize, r: V3<Lanes>, velocity: V3<Lanes>) -> V3<Lanes> {
-        self.pull
-            .force(e, j, velocity - carried_velocity(self.root, r))
+        self.pull.force(e, j, velocity - self.root.at(r))
     }
 }
 
-/// The velocity the root's rigid motion `root` gives a point `r`
-/// (relative to the root point), m/s.
-#[inline(always)]
-pub fn carried_velocity(root: &RootMotion<Lanes>, r: V3<Lanes>) -> V3<Lanes> {
-    root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r)
+/// A batch's roots' rigid velocity field: each lane's root point velocity
+/// and the root frame's angular velocity (f32 lanes, as
+/// [`RootMotion::gather`] has them).
+#[derive(Clone, Copy, Debug)]
+pub struct RootVelocity {
+    /// The root points' velocities, m/s.
+    pub velocity_m_per_s: V3<Lanes>,
+    /// The roots' angular velocity, rad/s.
+    pub angular_velocity_rad_per_s: V3<Lanes>,
+}
+
+impl RootVelocity {
+    /// The field of roots moving as `root`.
+    #[inline(always)]
+    pub fn of(root: &RootMotion<Lanes>) -> Self {
+        Self {
+            velocity_m_per_s: root.velocity_m_per_s,
+            angular_velocity_rad_per_s: root.angular_velocity_rad_per_s,
+        }
+    }
+
+    /// The field of `roots` (≤ [`LANES`]; padding lanes repeat the last)
+    /// on a head moving as `head`: the velocities
+    /// [`RigidMotion::carry`] gives them, rounded to f32 as
+    /// [`RootMotion::gather`] rounds them, without the rest of their
+    /// motion.
+    pub fn carried_by(head: &RigidMotion, roots: &[RootPose]) -> Self {
+        let w = head.angular_velocity_rad_per_s;
+        let velocity: [DVec3; LANES] = std::array::from_fn(|l| {
+            let root = &roots[l.min(roots.len() - 1)];
+            head.velocity_m_per_s + w.cross(head.world_from_body * root.position_m)
+        });
+        let lanes = |f: fn(&DVec3) -> f64, values: &[DVec3; LANES]| {
+            Lanes::from_fn(|l| f(&values[l]) as f32)
+        };
+        let v3 = |values: &[DVec3; LANES]| {
+            V3::new(
+                lanes(|v| v.x, values),
+                lanes(|v| v.y, values),
+                lanes(|v| v.z, values),
+            )
+        };
+        Self {
+            velocity_m_per_s: v3(&velocity),
+            angular_velocity_rad_per_s: v3(&[w; LANES]),
+        }
+    }
+
+    /// The velocity the roots' rigid motion gives a point `r` (relative
+    /// to the root point), m/s.
+    #[inline(always)]
+    pub fn at(&self, r: V3<Lanes>) -> V3<Lanes> {
+        self.velocity_m_per_s + self.angular_velocity_rad_per_s.cross(r)
+    }
 }
 
 /// Per lane, the pull's work terms at a sample of quadrature length
 /// `w_len` (m) at `r` (relative to the root point) moving at `velocity`
-/// (world) where the root's rigid motion moves at `carried`: adds its
-/// force, torque and power to the guard's sums, as
-/// [`crate::volume::balance`] does on the reference.
+/// (world), `relative` to the root's rigid motion: adds its force, torque
+/// and power to the guard's sums, as [`crate::volume::balance`] does on
+/// the reference.
 #[inline(always)]
 pub fn add_pull_work(
     pull: &SamplePull<'_>,
     e: usize,
     j: usize,
     r: V3<Lanes>,
-    (velocity, carried): (V3<Lanes>, V3<Lanes>),
+    (velocity, relative): (V3<Lanes>, V3<Lanes>),
     w_len: Lanes,
     sums: (&mut V3<Lanes>, &mut V3<Lanes>, &mut Lanes),
 ) {
-    let f = pull.force(e, j, velocity - carried).scale(w_len);
+    let f = pull.force(e, j, relative).scale(w_len);
     let (force, torque, power) = sums;
     *force += f;
     *torque += r.cross(f);

@@ -59,7 +59,7 @@ use super::forward::sweep_samples;
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::RootMotion;
-use super::pull::{SamplePull, friction_rate};
+use super::pull::{RootVelocity, SamplePull, friction_rate};
 use super::vec::V3;
 use super::volume_read::{BatchRates, Exchange, ReadInputs, read_batch};
 use crate::frame_balance::StrandMeasure;
@@ -275,7 +275,7 @@ impl BatchVolume {
                     let kept = view.kept.as_ref().filter(|_| *from_kept);
                     let motion = kept.map_or(swept, |k| k.batches[b].as_slice());
                     let roots = &view.roots[b * LANES..((b + 1) * LANES).min(view.roots.len())];
-                    let root = RootMotion::<Lanes>::gather(&carried(head, roots));
+                    let root = RootVelocity::carried_by(head, roots);
                     read_batch(&inputs, &rates, points, (motion, &root), known, exchange);
                 };
             if parallel {

@@ -17,13 +17,14 @@
 //! positions and velocities the gather's sweep found (the same sweep as
 //! the measure's, on the same state).
 
+use std::cell::RefCell;
+
 use glam::DVec3;
 use wide::f64x4;
 
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes, Real};
-use super::layout::RootMotion;
-use super::pull::{SamplePull, add_pull_work, carried_velocity};
+use super::pull::{RootVelocity, SamplePull, add_pull_work};
 use super::vec::V3;
 use super::volume::HALVES;
 use crate::motion::RigidMotion;
@@ -67,14 +68,111 @@ pub type Exchange = (PullWork, PullWork);
 /// (its old k on entry, the new k on return) and sums each lane's old and
 /// new pull work into `exchange`, at the samples' positions relative to
 /// their roots and velocities `motion` (f32 lanes, from the gather: the
-/// numbers the guard's measure sweeps), the roots moving as `root`.
+/// numbers the guard's measure sweeps), the roots' rigid velocity `root`.
 pub fn read_batch(
     inputs: &ReadInputs<'_>,
     rates: &BatchRates<'_>,
     (points, cells): (&[PointLanes], &[CellLanes]),
-    (motion, root): (&[[V3<Lanes>; 2]], &RootMotion<Lanes>),
+    (motion, root): (&[[V3<Lanes>; 2]], &RootVelocity),
     known: &mut [V3<Lanes>],
     exchange: &mut [Exchange; LANES],
+) {
+    // The new k go to the thread's buffer first: the old k are still
+    // needed for the old work, and one pass then sums both.
+    let mut fresh = FRESH.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
+    fresh.clear();
+    fresh.resize(known.len(), V3::zero());
+    read_into(inputs, rates.model, (points, cells), &mut fresh);
+    *exchange = works(inputs.settings, rates, motion, root, (known, &fresh));
+    known.copy_from_slice(&fresh);
+    FRESH.with(|kept| *kept.borrow_mut() = fresh);
+}
+
+thread_local! {
+    /// The thread's buffer of new k, kept: a batch's read allocates
+    /// nothing.
+    static FRESH: RefCell<Vec<V3<Lanes>>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Each lane's old pull's work (`old` k with the rate `rates.old`, zero
+/// without an old pull) and new pull's (`new` k, `rates.new`) at the
+/// samples `motion`: one pass, each sample's velocity relative to its
+/// root's rigid motion found once for both, each sum in the order the
+/// guard's measure takes it ([`super::pull::add_pull_work`]).
+fn works(
+    settings: &InteractionSettings,
+    rates: &BatchRates<'_>,
+    motion: &[[V3<Lanes>; 2]],
+    root: &RootVelocity,
+    (old, new): (&[V3<Lanes>], &[V3<Lanes>]),
+) -> [Exchange; LANES] {
+    let model = rates.model;
+    let nodes = model.nodes().len();
+    let friction_per_s = settings.friction_per_s as f32;
+    let old_pull = rates.old.map(|rate| SamplePull {
+        friction_per_s,
+        rate,
+        known: old,
+        nodes,
+    });
+    let new_pull = SamplePull {
+        friction_per_s,
+        rate: rates.new,
+        known: new,
+        nodes,
+    };
+    let zero = || (V3::zero(), V3::zero(), Lanes::splat(0.0));
+    let (mut old_sums, mut new_sums) = (zero(), zero());
+    for (i, [r, v]) in motion.iter().enumerate() {
+        let (e, j) = (i / nodes, i % nodes);
+        let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
+        let relative = *v - root.at(*r);
+        if let Some(old_pull) = &old_pull {
+            let (force, torque, power) = &mut old_sums;
+            add_pull_work(
+                old_pull,
+                e,
+                j,
+                *r,
+                (*v, relative),
+                w_len,
+                (force, torque, power),
+            );
+        }
+        let (force, torque, power) = &mut new_sums;
+        add_pull_work(
+            &new_pull,
+            e,
+            j,
+            *r,
+            (*v, relative),
+            w_len,
+            (force, torque, power),
+        );
+    }
+    let x = |t: Lanes, l: usize| f64::from(t.lane(l));
+    let x3 = |t: V3<Lanes>, l: usize| DVec3::new(x(t.x, l), x(t.y, l), x(t.z, l));
+    let work = |(force, torque, power): &(V3<Lanes>, V3<Lanes>, Lanes), l: usize| PullWork {
+        force_n: x3(*force, l),
+        torque_n_m: x3(*torque, l),
+        power_w: x(*power, l),
+    };
+    std::array::from_fn(|l| {
+        let old = if old_pull.is_some() {
+            work(&old_sums, l)
+        } else {
+            PullWork::default()
+        };
+        (old, work(&new_sums, l))
+    })
+}
+
+/// Reads the batch's `points` (in `cells`) into their new k, `out`.
+fn read_into(
+    inputs: &ReadInputs<'_>,
+    model: &LaneModel,
+    (points, cells): (&[PointLanes], &[CellLanes]),
+    out: &mut [V3<Lanes>],
 ) {
     let ReadInputs {
         field,
@@ -82,41 +180,6 @@ pub fn read_batch(
         head,
         head_velocity,
     } = *inputs;
-    let model = rates.model;
-    let nodes = model.nodes().len();
-    let work = |known: &[V3<Lanes>], rate: Lanes| {
-        let pull = SamplePull {
-            friction_per_s: settings.friction_per_s as f32,
-            rate,
-            known,
-            nodes,
-        };
-        let (mut force, mut torque, mut power) = (V3::zero(), V3::zero(), Lanes::splat(0.0));
-        for (i, [r, v]) in motion.iter().enumerate() {
-            let (e, j) = (i / nodes, i % nodes);
-            let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
-            add_pull_work(
-                &pull,
-                e,
-                j,
-                *r,
-                (*v, carried_velocity(root, *r)),
-                w_len,
-                (&mut force, &mut torque, &mut power),
-            );
-        }
-        let x = |t: Lanes, l: usize| f64::from(t.lane(l));
-        let x3 = |t: V3<Lanes>, l: usize| DVec3::new(x(t.x, l), x(t.y, l), x(t.z, l));
-        std::array::from_fn(|l| PullWork {
-            force_n: x3(force, l),
-            torque_n_m: x3(torque, l),
-            power_w: x(power, l),
-        })
-    };
-    let old: [PullWork; LANES] = match rates.old {
-        Some(rate) => work(known, rate),
-        None => [PullWork::default(); LANES],
-    };
     let mu = f64x4::splat(settings.friction_per_s);
     let rho_s = model.mass_per_length().to_array().map(f64::from);
     // Sample by sample, the eight lanes in turn: the eight strands of a
@@ -130,7 +193,7 @@ pub fn read_batch(
     let no_push = f64x4::new([no_push.x, no_push.y, no_push.z, 0.0]);
     let is_no_push = |a: DVec3| a.to_array().iter().all(|x| x.to_bits() == 0);
     let groups = points.chunks_exact(HALVES).zip(cells.chunks_exact(HALVES));
-    for (c, (points, cells)) in known.iter_mut().zip(groups) {
+    for (c, (points, cells)) in out.iter_mut().zip(groups) {
         let mut value = [[0.0_f32; 3]; LANES];
         for (h, (point, cells)) in points.iter().zip(cells).enumerate() {
             let carried = head_velocity_lanes(head_velocity, &point.position_m);
@@ -156,8 +219,6 @@ pub fn read_batch(
             Lanes::from_array(value.map(|v| v[2])),
         );
     }
-    let new = work(known, rates.new);
-    *exchange = std::array::from_fn(|l| (old[l], new[l]));
 }
 
 /// The head's rigid velocity at four points in head coordinates
