@@ -12,6 +12,7 @@ use std::sync::Arc;
 use common::shake_scene::ShakeThenStill;
 use common::volume_scene::{assert_calms_down, kinetic_after_shake};
 use glam::{DMat3, DVec3};
+use helixhair_physics::volume::friction::HeadVelocity;
 use helixhair_physics::volume::friction::implicit_velocity;
 use helixhair_physics::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
 use helixhair_physics::{HairSystem, Method, RigidMotion, SimSettings, Strand, StrandModel};
@@ -65,10 +66,10 @@ fn friction_damps_relative_motion_with_time_constant_one_over_mu() {
     let mut field = VolumeField::default();
     let steps = (1.0 / (mu * h)).round() as i32; // t = 1/μ
     for _ in 0..steps {
-        field.update(&rest, &[&points], false);
+        field.update(&rest, &[&points], &HeadVelocity::default(), false);
         let targets: Vec<DVec3> = points
             .iter()
-            .map(|p| field.read(&rest, &s, p).target_m_per_s)
+            .map(|p| field.read(&rest, &s, p).relative_target_m_per_s)
             .collect();
         for (p, u) in points.iter_mut().zip(targets) {
             p.velocity_m_per_s = implicit_velocity(p.velocity_m_per_s, u, mu, h);
@@ -151,7 +152,7 @@ fn a_block_compressed_above_rest_density_expands() {
         (p.iter().map(|x| x.position_m.length_squared()).sum::<f64>() / p.len() as f64).sqrt()
     };
     let mut field = VolumeField::default();
-    field.update(&rest, &[&points], false);
+    field.update(&rest, &[&points], &HeadVelocity::default(), false);
     let start_excess = field.excess().iter().cloned().fold(0.0, f64::max);
     assert!(start_excess > 1.0, "squeezed: excess {start_excess}");
     let mut outward = 0.0;
@@ -172,12 +173,12 @@ fn a_block_compressed_above_rest_density_expands() {
     let start_rms = rms(&points);
     let h = 1.0 / 60.0;
     for _ in 0..120 {
-        field.update(&rest, &[&points], false);
+        field.update(&rest, &[&points], &HeadVelocity::default(), false);
         for p in &mut points {
             let r = field.read(&rest, &s, p);
             let v = implicit_velocity(
                 p.velocity_m_per_s + h * r.push_m_per_s2,
-                r.target_m_per_s,
+                r.relative_target_m_per_s,
                 s.friction_per_s,
                 h,
             );
@@ -185,7 +186,7 @@ fn a_block_compressed_above_rest_density_expands() {
             p.position_m += h * v;
         }
     }
-    field.update(&rest, &[&points], false);
+    field.update(&rest, &[&points], &HeadVelocity::default(), false);
     let end_excess = field.excess().iter().cloned().fold(0.0, f64::max);
     assert!(
         rms(&points) > 1.2 * start_rms,

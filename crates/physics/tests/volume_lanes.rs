@@ -6,6 +6,8 @@
 //! points outside the grid, at NaN and of zero mass (a batch's padding).
 
 use glam::DVec3;
+use helixhair_physics::RigidMotion;
+use helixhair_physics::volume::friction::HeadVelocity;
 use helixhair_physics::volume::splat_lanes::PointLanes;
 use helixhair_physics::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
 use wide::f64x4;
@@ -79,8 +81,14 @@ fn the_lane_splat_and_read_equal_the_scalar_ones_bit_for_bit() {
         .collect();
     let rest = RestDensity::new(&rest_points, 0.02, 0.0).unwrap();
     let (mut scalar, mut lane) = (VolumeField::default(), VolumeField::default());
-    scalar.update(&rest, &[&points[..32], &points[32..]], true);
-    lane.update_lanes(&rest, &[&lanes[..8], &lanes[8..]], true);
+    // A head that moves and turns: the nodes keep velocities relative to it.
+    let head = HeadVelocity::of(&RigidMotion {
+        velocity_m_per_s: DVec3::new(0.1, -0.2, 0.05),
+        angular_velocity_rad_per_s: DVec3::new(1.0, 2.0, -0.5),
+        ..RigidMotion::default()
+    });
+    scalar.update(&rest, &[&points[..32], &points[32..]], &head, true);
+    lane.update_lanes(&rest, &[&lanes[..8], &lanes[8..]], &head, true);
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(
         bits(scalar.density_kg_per_m3()),
@@ -94,13 +102,13 @@ fn the_lane_splat_and_read_equal_the_scalar_ones_bit_for_bit() {
         let cell = scalar.cells()[i];
         assert_eq!(lane.cell_lanes()[g].lane(k), cell, "point {i}");
         outside += usize::from(cell.is_none());
-        let expected = scalar.read_in(&settings, cell, point.velocity_m_per_s);
+        let expected = scalar.read_in(&settings, cell, point);
         let group = &lanes[g];
         let mut seen = false;
         lane.read_lanes(
             &settings,
             &lane.cell_lanes()[g],
-            &group.velocity_m_per_s,
+            group,
             |at, target, push| {
                 if at != k {
                     return;
@@ -109,7 +117,7 @@ fn the_lane_splat_and_read_equal_the_scalar_ones_bit_for_bit() {
                 let [x, y, z, _] = target.to_array();
                 assert_eq!(
                     bits(&[x, y, z]),
-                    bits(&expected.target_m_per_s.to_array()),
+                    bits(&expected.relative_target_m_per_s.to_array()),
                     "point {i}"
                 );
                 let push = push.unwrap_or(DVec3::ZERO);

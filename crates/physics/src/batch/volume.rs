@@ -240,11 +240,13 @@ impl BatchVolume {
             gather_group(view, head, parallel, pulls);
         }
         let parts: Vec<&[PointLanes]> = self.groups.iter().map(|g| g.points.as_slice()).collect();
-        let Some((_, field, settings)) = self.state.update_lanes(&parts, parallel) else {
+        let Some((_, field, settings)) =
+            self.state
+                .update_lanes(&parts, &HeadVelocity::of(head), parallel)
+        else {
             return;
         };
         let mut cells = field.cell_lanes();
-        let head_velocity = HeadVelocity::of(head);
         let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
             let lanes = pulls.samples * HALVES;
@@ -258,7 +260,6 @@ impl BatchVolume {
                 field,
                 settings,
                 head,
-                head_velocity: &head_velocity,
             };
             pulls.known.resize(batches * pulls.samples, V3::zero());
             let none = (PullWork::default(), PullWork::default());

@@ -30,7 +30,6 @@ use super::volume::HALVES;
 use crate::motion::RigidMotion;
 use crate::volume::balance::PullWork;
 use crate::volume::cell::CellLanes;
-use crate::volume::friction::HeadVelocity;
 use crate::volume::splat_lanes::PointLanes;
 use crate::volume::{InteractionSettings, VolumeField};
 
@@ -43,9 +42,6 @@ pub struct ReadInputs<'a> {
     pub settings: &'a InteractionSettings,
     /// The head at the frame's start.
     pub head: &'a RigidMotion,
-    /// Its rigid velocity field, which the grid velocity is taken
-    /// relative to ([`crate::volume::friction`]).
-    pub head_velocity: &'a HeadVelocity,
 }
 
 /// One batch's constants and its pull's μρS, old and new, lane by lane.
@@ -178,7 +174,6 @@ fn read_into(
         field,
         settings,
         head,
-        head_velocity,
     } = *inputs;
     let mu = f64x4::splat(settings.friction_per_s);
     let rho_s = model.mass_per_length().to_array().map(f64::from);
@@ -196,8 +191,7 @@ fn read_into(
     for (c, (points, cells)) in out.iter_mut().zip(groups) {
         let mut value = [[0.0_f32; 3]; LANES];
         for (h, (point, cells)) in points.iter().zip(cells).enumerate() {
-            let carried = head_velocity_lanes(head_velocity, &point.position_m);
-            let read = |k: usize, target: f64x4, push: Option<DVec3>| {
+            let read = |k: usize, relative: f64x4, push: Option<DVec3>| {
                 let l = 4 * h + k;
                 let push = match push {
                     Some(a) if !is_no_push(a) => {
@@ -206,12 +200,11 @@ fn read_into(
                     }
                     _ => no_push,
                 };
-                let relative = target - carried[k];
                 // ρS (μ u_rel + a), axis by axis as in DVec3 arithmetic.
                 let [x, y, z, _] = (f64x4::splat(rho_s[l]) * (mu * relative + push)).to_array();
                 value[l] = [x as f32, y as f32, z as f32];
             };
-            field.read_lanes(settings, cells, &point.velocity_m_per_s, read);
+            field.read_lanes(settings, cells, point, read);
         }
         *c = V3::new(
             Lanes::from_array(value.map(|v| v[0])),
@@ -219,22 +212,4 @@ fn read_into(
             Lanes::from_array(value.map(|v| v[2])),
         );
     }
-}
-
-/// The head's rigid velocity at four points in head coordinates
-/// (`position_m`: x, y and z, lane by lane), one per lane, each in the
-/// first three lanes of an f64x4 (the fourth zero): [`HeadVelocity::at`]'s
-/// products in its order (glam's `W * p`: ((X p_x) + (Y p_y)) + (Z p_z),
-/// then v +), four points at once.
-fn head_velocity_lanes(field: &HeadVelocity, position_m: &[f64x4; 3]) -> [f64x4; 4] {
-    let w = field.per_body_m;
-    let v = field.origin_m_per_s;
-    let [px, py, pz] = *position_m;
-    let axis = |a: usize, origin: f64| {
-        let column = |c: glam::DVec3| f64x4::splat(c[a]);
-        f64x4::splat(origin)
-            + ((column(w.x_axis) * px + column(w.y_axis) * py) + column(w.z_axis) * pz)
-    };
-    let [x, y, z] = [axis(0, v.x), axis(1, v.y), axis(2, v.z)].map(|a| *a.as_array());
-    std::array::from_fn(|k| f64x4::new([x[k], y[k], z[k], 0.0]))
 }

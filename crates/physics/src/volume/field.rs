@@ -8,7 +8,7 @@ use glam::DVec3;
 use wide::f64x4;
 
 use super::cell::{Cell, CellLanes, Locator, OUTSIDE};
-use super::friction::grid_velocity;
+use super::friction::{HeadVelocity, grid_velocity};
 use super::pressure::{self, push_m_per_s2};
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
@@ -19,9 +19,11 @@ use rayon::prelude::*;
 /// What one sample reads from the field.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SampleReading {
-    /// Grid velocity u at the sample, world coordinates, m/s. A sample
-    /// outside the grid reads its own velocity (no friction).
-    pub target_m_per_s: DVec3,
+    /// Grid velocity at the sample relative to the head's rigid motion
+    /// there, u − c (the head as the update had it), world axes, m/s. A
+    /// sample outside the grid reads its own relative velocity (no
+    /// friction).
+    pub relative_target_m_per_s: DVec3,
     /// Pressure acceleration, head coordinates, m/s² (zero outside).
     pub push_m_per_s2: DVec3,
 }
@@ -32,10 +34,16 @@ pub struct VolumeField {
     sums: NodeSums,
     /// The splat's per-piece sums, reused.
     pieces: Vec<NodeSums>,
-    /// Per node n [u_n (m/s, three lanes; zero at an empty node), 1 when
-    /// some corner of the cell whose first corner is n is in excess, else
-    /// 0]: what a read fetches with its cell's first node.
+    /// Per node n [u_n − c(x_n) (m/s, three lanes: the hair's mean
+    /// velocity relative to the head's rigid motion at the node; zero at
+    /// an empty node), 1 when some corner of the cell whose first corner
+    /// is n is in excess, else 0]: what a read fetches with its cell's
+    /// first node. Trilinear weights reproduce the head's affine velocity
+    /// field exactly, so a read of these is u(x) − c(x), with no
+    /// per-sample work for c.
     velocity_excess: Vec<f64x4>,
+    /// The head's rigid velocity field at the last update.
+    head_velocity: HeadVelocity,
     density: Vec<f64>,
     excess: Vec<f64>,
     /// The rest grid made ready for reads.
@@ -54,11 +62,19 @@ impl VolumeField {
     /// the other, as the engine holds them) onto `rest`'s grid, in
     /// parallel when `parallel` (same numbers either way,
     /// [`splat_pieces`]), and finds each node's density excess over its
-    /// rest threshold.
-    pub fn update(&mut self, rest: &RestDensity, parts: &[&[SamplePoint]], parallel: bool) {
+    /// rest threshold and its mean velocity relative to the head moving
+    /// as `head` ([`HeadVelocity`]).
+    pub fn update(
+        &mut self,
+        rest: &RestDensity,
+        parts: &[&[SamplePoint]],
+        head: &HeadVelocity,
+        parallel: bool,
+    ) {
         let grid = &rest.grid;
         let locator = grid.locator();
         self.locator = Some(locator);
+        self.head_velocity = *head;
         let (sums, pieces, cells) = (&mut self.sums, &mut self.pieces, &mut self.cells);
         splat_pieces(grid, parts, sums, pieces, cells, parallel);
         self.finish(rest, locator, parallel);
@@ -68,10 +84,17 @@ impl VolumeField {
     /// the batch engine gathers them ([`splat_lane_pieces`]: the same
     /// numbers as the scalar splat of the same points in the same order);
     /// their cells are [`Self::cell_lanes`].
-    pub fn update_lanes(&mut self, rest: &RestDensity, parts: &[&[PointLanes]], parallel: bool) {
+    pub fn update_lanes(
+        &mut self,
+        rest: &RestDensity,
+        parts: &[&[PointLanes]],
+        head: &HeadVelocity,
+        parallel: bool,
+    ) {
         let grid = &rest.grid;
         let locator = grid.locator();
         self.locator = Some(locator);
+        self.head_velocity = *head;
         let (sums, pieces) = (&mut self.sums, &mut self.pieces);
         splat_lane_pieces(grid, parts, sums, pieces, &mut self.cell_lanes, parallel);
         self.finish(rest, locator, parallel);
@@ -114,10 +137,17 @@ impl VolumeField {
             let corner = |o: &usize| excess.get(n + o).is_some_and(|e| *e > 0.0);
             locator.offsets.iter().any(corner)
         };
+        let head = &self.head_velocity;
+        let [nx, ny, _] = grid.dims;
         let node_data = |(t, out): (usize, &mut [f64x4])| {
             for (i, node) in out.iter_mut().enumerate() {
                 let n = t * NODES_PER_TASK + i;
-                let u = sums.velocity_m_per_s(n);
+                let u = if sums.mass_kg(n) > 0.0 {
+                    let at = grid.node_position(n % nx, (n / nx) % ny, n / (nx * ny));
+                    sums.velocity_m_per_s(n) - head.at(at)
+                } else {
+                    DVec3::ZERO
+                };
                 let flag = if cell_in_excess(n) { 1.0 } else { 0.0 };
                 *node = f64x4::new([u.x, u.y, u.z, flag]);
             }
@@ -138,7 +168,7 @@ impl VolumeField {
     ) -> SampleReading {
         debug_assert!(self.locator.is_none_or(|l| l == rest.grid.locator()));
         let cell = self.locator.and_then(|l| l.locate(point.position_m));
-        self.read_in(settings, cell, point.velocity_m_per_s)
+        self.read_in(settings, cell, point)
     }
 
     /// Each point's cell in the last [`Self::update`], the parts one after
@@ -153,20 +183,20 @@ impl VolumeField {
         &self.cell_lanes
     }
 
-    /// What a point moving at `velocity_m_per_s` reads, in `cell` (its
-    /// entry of [`Self::cells`] or [`Self::cell_lanes`], found by the
-    /// update's splat; the very cell [`Self::read`] finds).
+    /// What `point` reads, in `cell` (its entry of [`Self::cells`] or
+    /// [`Self::cell_lanes`], found by the update's splat; the very cell
+    /// [`Self::read`] finds).
     #[inline]
     pub fn read_in(
         &self,
         settings: &InteractionSettings,
         cell: Option<Cell>,
-        velocity_m_per_s: DVec3,
+        point: &SamplePoint,
     ) -> SampleReading {
         let found = self.locator.as_ref().zip(cell);
         let Some((locator, cell)) = found else {
             return SampleReading {
-                target_m_per_s: velocity_m_per_s,
+                relative_target_m_per_s: self.own_relative_velocity(point),
                 push_m_per_s2: DVec3::ZERO,
             };
         };
@@ -183,16 +213,16 @@ impl VolumeField {
             DVec3::ZERO
         };
         SampleReading {
-            target_m_per_s: grid_velocity(around, offsets, &cell.weights()),
+            relative_target_m_per_s: grid_velocity(around, offsets, &cell.weights()),
             push_m_per_s2: push,
         }
     }
 
-    /// What the four points of a group read, lane by lane, in `cells`
-    /// (their entry of [`Self::cell_lanes`]), each moving at its lane of
-    /// `velocity_m_per_s` (world, axis by axis): `each(k, u, a)` for lane
-    /// k in turn, with u the grid velocity in the first three lanes of an
-    /// f64x4 (the fourth is not a velocity) and a the push, head
+    /// What the four `points` of a group read, lane by lane, in `cells`
+    /// (their entry of [`Self::cell_lanes`]): `each(k, u, a)` for lane
+    /// k in turn, with u the grid velocity relative to the head in the
+    /// first three lanes of an f64x4 (the fourth is not a velocity) and a
+    /// the push, head
     /// coordinates, `None` where it is +0 for want of a node in excess
     /// (most of the hair: [`Self::read_in`] reads `DVec3::ZERO` there). Each lane's numbers are [`Self::read_in`]'s for that
     /// point; only the eight weights are found for the four points at once
@@ -202,12 +232,12 @@ impl VolumeField {
         &self,
         settings: &InteractionSettings,
         cells: &CellLanes,
-        velocity_m_per_s: &[f64x4; 3],
+        points: &PointLanes,
         mut each: impl FnMut(usize, f64x4, Option<DVec3>),
     ) {
         let own = |k: usize| {
-            let [x, y, z] = velocity_m_per_s.map(|v| v.as_array()[k]);
-            f64x4::new([x, y, z, 0.0])
+            let v = self.own_relative_velocity(&points.lane(k));
+            f64x4::new([v.x, v.y, v.z, 0.0])
         };
         let Some(locator) = self.locator.as_ref() else {
             (0..4).for_each(|k| each(k, own(k), None));
@@ -252,6 +282,12 @@ impl VolumeField {
             });
             each(k, target, push);
         }
+    }
+
+    /// A point's own velocity relative to the head's rigid motion at it,
+    /// what a point outside the grid reads (it feels no friction).
+    fn own_relative_velocity(&self, point: &SamplePoint) -> DVec3 {
+        point.velocity_m_per_s - self.head_velocity.at(point.position_m)
     }
 
     /// Hair density per node, kg/m³ (empty before the first update).

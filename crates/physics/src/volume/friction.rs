@@ -17,7 +17,8 @@
 //! frozen is the hair's velocity *relative to the head's rigid motion*:
 //! each sample keeps u_rel = u − c₀, with c₀ the velocity the head's rigid
 //! motion gives the sample's place at the frame's start
-//! ([`HeadVelocity`]), and feels F = μ ρS (u_rel − (v − c)), c the
+//! ([`HeadVelocity`]; the field subtracts it at its nodes, which comes to
+//! the same at every sample), and feels F = μ ρS (u_rel − (v − c)), c the
 //! head's velocity there now. Hair that moves with the head feels nothing
 //! however the head accelerates; a world-frozen u would drag it back
 //! toward the head's velocity of the frame's start, a force the frame's
@@ -103,14 +104,26 @@ impl VolumePull<'_> {
 
 /// The head's rigid velocity field, c(p) = v + ω × (R p) for a point p in
 /// head coordinates, written c(p) = v + W p with W = [ω]× R, one
-/// matrix–vector product per point (the batch engine's read-back does the
-/// same products four lanes at a time).
+/// matrix–vector product per point. The field takes it at its nodes
+/// ([`super::VolumeField::update`]): c is affine in p and trilinear
+/// weights reproduce affine functions exactly, so the read-back of
+/// u_n − c(x_n) is u(x) − c(x) with no per-sample work.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HeadVelocity {
     /// The head origin's velocity v, m/s, world.
     pub origin_m_per_s: DVec3,
     /// W = [ω]× R, 1/s: world velocity per metre of head coordinates.
     pub per_body_m: DMat3,
+}
+
+impl Default for HeadVelocity {
+    /// A still head: zero everywhere.
+    fn default() -> Self {
+        Self {
+            origin_m_per_s: DVec3::ZERO,
+            per_body_m: DMat3::ZERO,
+        }
+    }
 }
 
 impl HeadVelocity {

@@ -69,17 +69,16 @@ impl ReferenceVolume {
             strands.iter().zip(&mut self.points).for_each(gather);
         }
         let parts: Vec<&[SamplePoint]> = self.points.iter().map(Vec::as_slice).collect();
-        let Some((rest, field, settings)) = self.state.update(&parts, parallel) else {
+        let carried = HeadVelocity::of(head);
+        let Some((rest, field, settings)) = self.state.update(&parts, &carried, parallel) else {
             return;
         };
-        let carried = HeadVelocity::of(head);
         let hand_out = |(s, points): (&mut Strand, &Vec<SamplePoint>)| {
             let readings = points.iter().map(|p| field.read(rest, settings, p));
             let (target, push): (Vec<DVec3>, Vec<DVec3>) = readings
-                .zip(points)
-                .map(|(r, p)| {
-                    let relative = r.target_m_per_s - carried.at(p.position_m);
-                    (relative, head.world_from_body * r.push_m_per_s2)
+                .map(|r| {
+                    let push = head.world_from_body * r.push_m_per_s2;
+                    (r.relative_target_m_per_s, push)
                 })
                 .unzip();
             s.exchange_volume_pull((settings.friction_per_s, target, push), points, head);

@@ -5,6 +5,7 @@
 //! their own way and run the rest through this.
 
 use super::field::VolumeField;
+use super::friction::HeadVelocity;
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
 use super::splat::SamplePoint;
@@ -87,10 +88,11 @@ impl ModelState {
     pub fn update(
         &mut self,
         parts: &[&[SamplePoint]],
+        head: &HeadVelocity,
         parallel: bool,
     ) -> Option<(&RestDensity, &VolumeField, &InteractionSettings)> {
         let rest = self.rest.as_ref()?;
-        self.field.update(rest, parts, parallel);
+        self.field.update(rest, parts, head, parallel);
         Some((rest, &self.field, &self.settings))
     }
 
@@ -99,10 +101,11 @@ impl ModelState {
     pub fn update_lanes(
         &mut self,
         parts: &[&[PointLanes]],
+        head: &HeadVelocity,
         parallel: bool,
     ) -> Option<(&RestDensity, &VolumeField, &InteractionSettings)> {
         let rest = self.rest.as_ref()?;
-        self.field.update_lanes(rest, parts, parallel);
+        self.field.update_lanes(rest, parts, head, parallel);
         Some((rest, &self.field, &self.settings))
     }
 }
