@@ -103,7 +103,7 @@ impl VolumePull<'_> {
 }
 
 /// The head's rigid velocity field, c(p) = v + ω × (R p) for a point p in
-/// head coordinates, written c(p) = v + W p with W = [ω]× R, one
+/// head coordinates, written c(p) = v + W p with W = \[ω\]× R, one
 /// matrix–vector product per point. The field takes it at its nodes
 /// ([`super::VolumeField::update`]): c is affine in p and trilinear
 /// weights reproduce affine functions exactly, so the read-back of
@@ -112,7 +112,7 @@ impl VolumePull<'_> {
 pub struct HeadVelocity {
     /// The head origin's velocity v, m/s, world.
     pub origin_m_per_s: DVec3,
-    /// W = [ω]× R, 1/s: world velocity per metre of head coordinates.
+    /// W = \[ω\]× R, 1/s: world velocity per metre of head coordinates.
     pub per_body_m: DMat3,
 }
 
