@@ -29,7 +29,7 @@
 //! ([`crate::head_clip::motion_from_pose`]), as for the built-in clips.
 //!
 //! Errors name the file, the line and the field, as style errors do
-//! (`shot.ron:7:20: field `keys[2].time_secs`: …`).
+//! (`shot.ron:7:20: field `keys\[2\].time_secs`: …`).
 
 use std::path::{Path, PathBuf};
 

@@ -22,7 +22,7 @@
 //! A [`DrawnStrand`] holds, per element e, a `base` strain and a short
 //! list of sources (guide g, element j of g, weight w), with element j
 //! the one at the same fraction of the strand's length. Each frame its
-//! strains are k_e = base_e + Σ w q_g[j]; for a procedural group the base
+//! strains are k_e = base_e + Σ w q_g\[j\]; for a procedural group the base
 //! is zero (a blend of the guides' strains), for an imported strand it is
 //! its own imported strains minus the same blend of its guides' imported
 //! strains (the strand is its own rest shape, bent as its guides bend).

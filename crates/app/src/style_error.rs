@@ -1,5 +1,5 @@
 //! Errors of loading and saving styles, each naming the file, the line and
-//! the field: `curly.ron:12:13: field `groups[0].params.radius_m`: …`.
+//! the field: `curly.ron:12:13: field `groups\[0\].params.radius_m`: …`.
 
 use std::fmt;
 use std::io;

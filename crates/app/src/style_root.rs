@@ -53,7 +53,7 @@ impl Root {
     }
 
     /// The physics root frame; the direction must be non-zero (as
-    /// [`Style::validate`] checks).
+    /// [`Style::validate`](crate::style::Style::validate) checks).
     pub fn pose(&self) -> RootPose {
         RootPose::from_direction(self.position_m, self.direction, self.reference)
     }

@@ -2,7 +2,7 @@
 //! must not be empty.
 //!
 //! Physical parameters are checked by the physics crate itself
-//! ([`StrandParams::validate`], [`SimSettings::validate`]), whose field
+//! ([`StrandParams::validate`](helixhair_physics::StrandParams::validate), [`SimSettings::validate`](helixhair_physics::SimSettings::validate)), whose field
 //! names are prefixed here with where the parameters sit in the file.
 
 use glam::DVec3;

@@ -23,8 +23,8 @@
 //!
 //! - Ṁ_QQ q̇_Q = ∫_{Ω_Q} ρS (J_Qᵀ J̇_Q q̇_Q + J̇_Qᵀ w_Q);
 //! - ∂T_bd/∂q_Q = ∫_{Ω_Q} ρS (J_Qᵀ f_Q + (J̇_Q^own)ᵀ w_Q): an earlier
-//!   element P < Q sees q_Q move its points, J_P = A_P − [r]×B_P changes
-//!   by −[δr]×B_P, which gives f_Q = Σ_{P<Q} w_P × β_P (β_P = B_P q̇_P);
+//!   element P < Q sees q_Q move its points, J_P = A_P − \[r\]×B_P changes
+//!   by −\[δr\]×B_P, which gives f_Q = Σ_{P<Q} w_P × β_P (β_P = B_P q̇_P);
 //!   a later element P > Q is turned rigidly by q_Q, which leaves |w_P|
 //!   unchanged; and element Q itself gives J̇_Q^own = (∂J_Q/∂q_Q)[q̇_Q],
 //!   the rate of J_Q from q̇_Q alone.
@@ -78,9 +78,9 @@ impl BlockVelocityTerms {
     /// in O(N); `kin` from [`crate::reconstruct::reconstruct_with_rates`]: the sums over the samples beyond element Q
     /// are polynomials of degree two in r and ṙ, so five suffix moments of
     /// the samples (Σ ρSw, Σ ρSw r, Σ ρSw ṙ, Σ ρSw r rᵀ, Σ ρSw ṙ rᵀ), taken tip
-    /// to root, give them. With u = k₀ + L r + [β]× ṙ the sample's term
+    /// to root, give them. With u = k₀ + L r + \[β\]× ṙ the sample's term
     /// J̇ˢq̇_Q − f_Q − Ω_Q × w_Q and v_{>Q} = ṙ + d₀ + N r:
-    /// Σu = m k₀ + L R + [β]× V, and Σ r × u + v_{>Q} × w_Q by [`cross_sum`].
+    /// Σu = m k₀ + L R + \[β\]× V, and Σ r × u + v_{>Q} × w_Q by `cross_sum`.
     pub fn forces(
         &mut self,
         model: &StrandModel,

@@ -114,7 +114,7 @@ pub fn project_sample_forces(
 
 /// Σ (∂p_{e+1}/∂q)ᵀ F_e per element for point forces `point_force(e)` (N)
 /// on each element's end point p_{e+1}: the end point moves with its own
-/// element through a_e = A_e − [p]×B_e and with every earlier one through
+/// element through a_e = A_e − \[p\]×B_e and with every earlier one through
 /// the beyond-Jacobian, so it is one more "beyond" point for the suffix
 /// sums, entering after element e's own samples
 /// (`batch/contact.rs` derives it).

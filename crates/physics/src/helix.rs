@@ -4,8 +4,8 @@
 //! material frame, so the frame turns about a fixed axis and the centreline
 //! is a helix. With φ = σk, x = |φ| and y = x²:
 //!
-//! - frame:   E(φ) = exp([φ]×) = I + A [φ]× + B [φ]×²
-//! - point:   h(σ, k) = σ J_l(φ) e₀,  J_l(φ) = I + B [φ]× + C [φ]×²
+//! - frame:   E(φ) = exp(\[φ\]×) = I + A \[φ\]× + B \[φ\]×²
+//! - point:   h(σ, k) = σ J_l(φ) e₀,  J_l(φ) = I + B \[φ\]× + C \[φ\]×²
 //!
 //! with A = sin x / x, B = (1 − cos x)/x², C = (x − sin x)/x³ and J_l the
 //! left Jacobian of SO(3). Writing A, B, C as functions of y (not x) makes
@@ -97,7 +97,7 @@ impl HelixCoefficients {
     }
 }
 
-/// The cross-product matrix [v]×, with [v]× w = v × w.
+/// The cross-product matrix \[v\]×, with \[v\]× w = v × w.
 pub fn skew(v: DVec3) -> DMat3 {
     DMat3::from_cols(
         DVec3::new(0.0, v.z, -v.y),
@@ -106,7 +106,7 @@ pub fn skew(v: DVec3) -> DMat3 {
     )
 }
 
-/// exp([φ]×): the rotation of the frame across an element, φ = ℓk.
+/// exp(\[φ\]×): the rotation of the frame across an element, φ = ℓk.
 pub fn rotation(phi: DVec3) -> DMat3 {
     let co = HelixCoefficients::at(phi.length_squared());
     let s = skew(phi);
@@ -136,7 +136,7 @@ pub fn centreline_and_jacobian(sigma: f64, k: DVec3) -> (DVec3, DMat3) {
 }
 
 /// ∂h(σ, k)/∂k = σ² ∂f/∂φ at φ = σk, with f(φ) = J_l(φ) e₀:
-/// ∂f/∂φ = B(−[e₀]×) + C(φe₀ᵀ + (φ·e₀)I − 2e₀φᵀ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ.
+/// ∂f/∂φ = B(−\[e₀\]×) + C(φe₀ᵀ + (φ·e₀)I − 2e₀φᵀ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ.
 pub fn centreline_jacobian_with(sigma: f64, phi: DVec3, co: &HelixCoefficients) -> DMat3 {
     let e0 = DVec3::X;
     let phi_x_e0 = phi.cross(e0);

@@ -20,9 +20,9 @@ use crate::helix::{HelixCoefficients, outer, skew};
 /// moving at φ̇ = σk̇: the rate of [`crate::helix::centreline_jacobian_with`].
 ///
 /// With L(p) = pe₀ᵀ + p_x I − 2e₀pᵀ (linear in p), ∂f/∂φ =
-/// −B[e₀]× + L(Cφ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ; term by term,
+/// −B\[e₀\]× + L(Cφ) + 2B'(φ×e₀)φᵀ + 2C'(φ×(φ×e₀))φᵀ; term by term,
 ///
-/// d/dt ∂f/∂φ = −Ḃ[e₀]× + L(Ċφ + Cφ̇) + u φᵀ + u' φ̇ᵀ,
+/// d/dt ∂f/∂φ = −Ḃ\[e₀\]× + L(Ċφ + Cφ̇) + u φᵀ + u' φ̇ᵀ,
 ///
 /// u = 2(B'(φ×e₀))˙ + 2(C'(φ×(φ×e₀)))˙, u' = 2B'(φ×e₀) + 2C'(φ×(φ×e₀)):
 /// two outer products, grouped by their right-hand vector.
@@ -51,7 +51,7 @@ pub fn centreline_jacobian_rate(
 }
 
 /// d/dt J_l(φ) for φ moving at φ̇: the rate of
-/// [`crate::helix::left_jacobian_with`], J_l = I + B[φ]× + C[φ]×².
+/// [`crate::helix::left_jacobian_with`], J_l = I + B\[φ\]× + C\[φ\]×².
 pub fn left_jacobian_rate(phi: DVec3, phi_rate: DVec3, co: &HelixCoefficients) -> DMat3 {
     let y_rate = 2.0 * phi.dot(phi_rate);
     let s = skew(phi);

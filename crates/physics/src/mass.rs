@@ -1,14 +1,14 @@
 //! Stage "mass": the mass matrix M_ab = ∫ ρS J_a · J_b ds, as O(N) data.
 //!
-//! With J = A_Q − [r]×B_Q beyond element Q (see [`crate::reconstruct`]), an
+//! With J = A_Q − \[r\]×B_Q beyond element Q (see [`crate::reconstruct`]), an
 //! integral over everything beyond Q needs only the suffix mass moments
 //! m = Σ wρS, c = Σ wρS r and the inertia tensor I = Σ wρS(|r|²𝟙 − rrᵀ).
 //! Every off-diagonal block then factors as
 //!
 //! M_PQ = A_Pᵀ X_Q + B_Pᵀ Y_Q   (P < Q),
 //!
-//! X_Q = U_Q + m A_Q − [c]× B_Q,  Y_Q = V_Q + [c]× A_Q + I B_Q (moments of
-//! the samples past Q), U_Q = Σ_own wρS G, V_Q = Σ_own wρS [r]× G, and the
+//! X_Q = U_Q + m A_Q − \[c\]× B_Q,  Y_Q = V_Q + \[c\]× A_Q + I B_Q (moments of
+//! the samples past Q), U_Q = Σ_own wρS G, V_Q = Σ_own wρS \[r\]× G, and the
 //! diagonal block is M_QQ = D_Q + A_Qᵀ(X_Q − U_Q) + B_Qᵀ(Y_Q − V_Q) with
 //! D_Q = Σ_own wρS GᵀG, G the sample's own-element Jacobian.
 //!
@@ -126,10 +126,10 @@ fn put_block(m: &mut DMatrix<f64>, row: usize, col: usize, block: &DMat3) {
 /// in the step matrix (W = w h (h k + c) n nᵀ).
 ///
 /// With anisotropic weights the suffix moments become matrices,
-/// M₀ = Σ W, M₁ = Σ W[r]×, N₂ = Σ [r]× W [r]×, and beyond element Q
+/// M₀ = Σ W, M₁ = Σ W\[r\]×, N₂ = Σ \[r\]× W \[r\]×, and beyond element Q
 /// X_Q += M₀ A_Q − M₁ B_Q, Y_Q += −M₁ᵀ A_Q − N₂ B_Q (with W = ρS w 𝟙 these
 /// are the isotropic moments of [`mass_blocks`]); the element's own
-/// samples add D_Q += Gᵀ W G, U_Q += W G, V_Q += [r]× W G.
+/// samples add D_Q += Gᵀ W G, U_Q += W G, V_Q += \[r\]× W G.
 pub fn add_sample_weights(
     model: &StrandModel,
     kin: &Kinematics,

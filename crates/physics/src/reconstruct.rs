@@ -2,7 +2,7 @@
 //! and q̇, root to tip in O(N).
 //!
 //! Element Q starts at point p_Q with frame R_Q (columns n₀, n₁, n₂). Its
-//! centreline is p_Q + R_Q h(σ, q_Q) and its end frame R_Q exp(ℓ_Q[q_Q]×)
+//! centreline is p_Q + R_Q h(σ, q_Q) and its end frame R_Q exp(ℓ_Q\[q_Q\]×)
 //! (see [`crate::helix`]). The sweep runs on [`Jet`]s seeded with the root's
 //! motion and (q, q̇, 0), so each quadrature sample gets its position,
 //! velocity and its acceleration with q̈ = 0 (Coriolis, centrifugal and root
@@ -10,9 +10,9 @@
 //!
 //! Jacobians. Moving q_Q moves element Q and carries everything beyond it
 //! rigidly: for a point r beyond element Q,
-//! ∂r/∂q_Q = a_Q − [r − p_{Q+1}]× b_Q = A_Q − [r]× B_Q, with
+//! ∂r/∂q_Q = a_Q − [r − p_{Q+1}]× b_Q = A_Q − \[r\]× B_Q, with
 //! a_Q = R_Q ∂h(ℓ_Q)/∂k, b_Q = ℓ_Q R_Q J_l(ℓ_Q q_Q) and A_Q = a_Q + [p_{Q+1}]× b_Q.
-//! Writing it as A − [r]×B makes every later integral a function of the
+//! Writing it as A − \[r\]×B makes every later integral a function of the
 //! mass moments of what lies beyond, which suffix sums give in O(N). Inside
 //! element Q the Jacobian is R_Q ∂h(σ)/∂k, stored per sample.
 //!
@@ -42,7 +42,7 @@ pub struct Sample {
     pub weight_m: f64,
 }
 
-/// The "beyond" Jacobian of an element: ∂r/∂q_Q = A − [r]×B for any point r
+/// The "beyond" Jacobian of an element: ∂r/∂q_Q = A − \[r\]×B for any point r
 /// past the element's end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ElementJacobian {

@@ -29,7 +29,7 @@
 //! (J = ∂r/∂q, so ∂J_j/∂q_k = ∂J_k/∂q_j: the two ways q̇ enters J̇ q̇
 //! count equally; the root's turn enters as ω × J x twice, once through J̇
 //! and once through the Coriolis term ω × ṙ). Writing J as the
-//! reconstruction does, J_Q(s) = A_Q − [r]× B_Q beyond element Q and the
+//! reconstruction does, J_Q(s) = A_Q − \[r\]× B_Q beyond element Q and the
 //! sample's own R_Q ∂h(σ)/∂k inside it, gives for a sample of element e
 //!
 //! J̇ x = Σ_{Q<e} Ȧ_Q x_Q − ṙ × Σ_{Q<e} B_Q x_Q − r × Σ_{Q<e} Ḃ_Q x_Q + j̇ x_e,

@@ -9,7 +9,7 @@
 //! the crown), then pushed out or in along d by a few smooth bumps (nose,
 //! brow, cheeks, ears) and dents (eye sockets). Every shape term is a
 //! smooth function of d, so normals come out smooth from
-//! [`Mesh::compute_normals`].
+//! [`Mesh::compute_normals`](crate::mesh::Mesh::compute_normals).
 //!
 //! The sphere's rings are not parallels: the first [`SCALP_RINGS`] run
 //! from the crown down to the hairline, a curve that sits at the forehead

@@ -8,7 +8,7 @@
 //! the user's pose, its spring and any playback or motion file playing)
 //! are cloned, and a worker thread ([`super::job`]) steps the clone as the
 //! window would step it ([`WindowRun`], a
-//! [`FrameStepper`](crate::frame_stepper::FrameStepper)), exporting every
+//! [`crate::frame_stepper::FrameStepper`]), exporting every
 //! frame through the command line's export loop. "Export frame…" is the
 //! same with no frame stepped: the state on screen. The window goes on
 //! with its own run meanwhile; the recording is what the next N frames

@@ -9,7 +9,7 @@
 //! (cancel asked) and the window reads and writes, so neither waits for
 //! the other. Each frame the window calls [`Job::poll`], which returns the
 //! worker's result once the thread has finished. Cancelling is the
-//! worker's business: it checks [`Progress::cancelled`] between frames or
+//! worker's business: it checks [`WorkProgress::cancelled`] between frames or
 //! strands and stops, leaving no file under its final name (writes are
 //! atomic, see [`crate::atomic_write`]).
 

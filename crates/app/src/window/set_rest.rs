@@ -7,7 +7,7 @@
 //! For every simulated strand, its current strains q (twist and two
 //! curvatures per element) are kept as its starting shape, and its natural
 //! strains are solved with the sag-free solve `helixhair import` uses
-//! ([`helixhair_physics::fit::sag_free`]): q⁰ = q − K⁻¹ Q(q), so that the
+//! ([`helixhair_physics::fit::sag_free`](mod@helixhair_physics::fit::sag_free)): q⁰ = q − K⁻¹ Q(q), so that the
 //! elastic force K(q − q⁰) balances gravity exactly in the current shape,
 //! with the root where the head holds it now. Per-strand natural strains
 //! are what an `imported` section of the style holds (docs/import.md), so

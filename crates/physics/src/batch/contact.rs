@@ -145,7 +145,7 @@ impl<T> EndPointForce<T> for NoContact {
 ///
 /// With `LOCAL` moments A_Q is about the end point itself, so the
 /// generalized force is A_QᵀF alone (the same number:
-/// (A − [p]×B)ᵀF = AᵀF + Bᵀ(p × F) about the root), and the torque is
+/// (A − \[p\]×B)ᵀF = AᵀF + Bᵀ(p × F) about the root), and the torque is
 /// about the element's start, `span` × F.
 pub fn add_end_point_force<T: Real, const LOCAL: bool>(
     el: &mut ElementData<T>,

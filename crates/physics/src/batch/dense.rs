@@ -12,7 +12,7 @@
 //!    everything element Q moves, itself included), its diagonal block
 //!    M_QQ and its generalized force Q_Q, exactly as Exact's sweep 2
 //!    ([`super::exact`]) forms them.
-//! 3. Assembly ([`assemble`]): with J = A_P − [r]×B_P for every sample past
+//! 3. Assembly ([`assemble`]): with J = A_P − \[r\]×B_P for every sample past
 //!    element P, the block of rows P and columns Q > P is
 //!    M_PQ = A_Pᵀ X_Q + B_Pᵀ Y_Q (see [`crate::mass`]); M is symmetric, so
 //!    the block of rows Q and columns P is M_PQᵀ = X_Qᵀ A_P + Y_Qᵀ B_P. The
@@ -44,7 +44,7 @@ use super::vec::{M3, V3};
 pub struct DenseColumn<T> {
     /// X_Q = U_Q + X_b = Σ wρS J_Q over every sample element Q moves, kg·m².
     pub x: M3<T>,
-    /// Y_Q = V_Q + Y_b = Σ wρS [r]×J_Q over the same samples, kg·m³.
+    /// Y_Q = V_Q + Y_b = Σ wρS \[r\]×J_Q over the same samples, kg·m³.
     pub y: M3<T>,
     /// M_QQ, kg·m³.
     pub mass_block: M3<T>,

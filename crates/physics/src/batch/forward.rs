@@ -123,7 +123,7 @@ pub fn advance<T: Real>(
 
 /// A_Q about the root from A_Q about the element's end point `end_m`
 /// (relative to the root): moving the origin back by p_end gives
-/// A = A_end + [p_end]×B.
+/// A = A_end + \[p_end\]×B.
 #[inline(always)]
 pub fn root_jacobian<T: Real>(a_local: M3<T>, end_m: V3<T>, b: &M3<T>) -> M3<T> {
     a_local + M3::cross_cols(end_m, b)
@@ -181,7 +181,7 @@ pub fn advance_local_with<T: Real>(
 /// in the element's frame and R is applied once per element, not once per
 /// sample: GᵀG = JᵀJ (symmetric: six dot products), GᵀF = Jᵀ(RᵀF),
 /// U = R Σ wρS J, and with r = p + R h,
-/// V = Σ wρS [r]×G = [p]×U + R Σ wρS [h]×J.
+/// V = Σ wρS \[r\]×G = \[p\]×U + R Σ wρS \[h\]×J.
 #[inline(always)]
 pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
     model: &impl Constants<T>,

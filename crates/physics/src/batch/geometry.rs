@@ -5,7 +5,7 @@
 //! The f64 reference ([`crate::helix`], [`crate::reconstruct`]) runs the
 //! whole sweep on jets, so every frame is a jet of three matrices. Here the
 //! frame's time derivatives are carried as its angular velocity ω and
-//! acceleration α (world vectors, Ṙ = [ω]×R), as in articulated-body
+//! acceleration α (world vectors, Ṙ = \[ω\]×R), as in articulated-body
 //! dynamics, and only the element-local quantities (φ = σk, the coefficient
 //! jets, the local centreline h) are differentiated by hand. With q̈ = 0:
 //!
@@ -157,7 +157,7 @@ pub struct LocalPoint<T> {
 /// What the frame does across a whole element (σ = ℓ), besides the point.
 #[derive(Clone, Copy, Debug)]
 pub struct LocalTurn<T> {
-    /// The rotation E = exp([φ]×) across the element.
+    /// The rotation E = exp(\[φ\]×) across the element.
     pub rotation: M3<T>,
     /// The left Jacobian J_l(φ).
     pub left_jacobian: M3<T>,

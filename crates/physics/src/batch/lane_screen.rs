@@ -23,11 +23,11 @@
 //! are bit for bit those of the exact test alone.
 //!
 //! **Why this never skips a point the exact test keeps.** While every term
-//! summed into a grid coordinate is below [`LARGEST_CELLS`] (2¹² cells),
+//! summed into a grid coordinate is below `LARGEST_CELLS` (2¹² cells),
 //! the f32 coordinate is within 10⁻² cells of the f64 one (a few ulps of
 //! 2¹², plus the rotation rounded to f32). So:
 //!
-//! - a coordinate more than [`FACE_MARGIN`] (1/32 cell) from every face of
+//! - a coordinate more than `FACE_MARGIN` (1/32 cell) from every face of
 //!   a cell of the grid has the exact test's cell, and reads that cell's
 //!   own bit: the screen is then exactly the exact test;
 //! - a coordinate nearer a face, or in the one-cell band just outside the

@@ -152,7 +152,7 @@ pub struct ElementData<T> {
     pub torque_sum: V3<T>,
     /// U_Q = Σ_own wρS G (Exact only), kg·m.
     pub u: M3<T>,
-    /// V_Q = Σ_own wρS [r]×G (Exact only), kg·m².
+    /// V_Q = Σ_own wρS \[r\]×G (Exact only), kg·m².
     pub v: M3<T>,
     /// The element's end point minus its start point, metres (set by the
     /// sweep with local moments, see [`super::forward::forward_with`]).

@@ -1,12 +1,12 @@
 //! The tip-to-root half of stages "forces" and "mass": suffix sums of what
 //! lies beyond each element, and the terms an element reads from them.
 //!
-//! With J = A_Q − [r]×B_Q for every sample past element Q, the diagonal
+//! With J = A_Q − \[r\]×B_Q for every sample past element Q, the diagonal
 //! block and generalized force of element Q need only the suffix mass
 //! moments (m, c, I) and the suffix force and torque (see [`crate::mass`],
 //! [`crate::forces`]):
 //!
-//! X_b = m A − [c]×B,  Y_b = [c]×A + I B,
+//! X_b = m A − \[c\]×B,  Y_b = \[c\]×A + I B,
 //! M_QQ = D_Q + AᵀX_b + BᵀY_b,  Q_Q = Σ_own GᵀF + AᵀF_b + Bᵀτ_b.
 //!
 //! The right-hand side and diagonal of the step (see [`crate::step`]) are
@@ -75,9 +75,9 @@ impl<T: Real> Beyond<T> {
 /// What element Q reads from the suffix sums past it.
 #[derive(Clone, Copy, Debug)]
 pub struct ElementTerms<T> {
-    /// X_b = m A − [c]×B, kg·m².
+    /// X_b = m A − \[c\]×B, kg·m².
     pub x_beyond: M3<T>,
-    /// Y_b = [c]×A + I B, kg·m³.
+    /// Y_b = \[c\]×A + I B, kg·m³.
     pub y_beyond: M3<T>,
     /// M_QQ, kg·m³.
     pub mass_block: M3<T>,

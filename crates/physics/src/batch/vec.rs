@@ -152,7 +152,7 @@ impl<T: Real> M3<T> {
             V3::new(m02, m12, m22),
         )
     }
-    /// The cross-product matrix [v]×.
+    /// The cross-product matrix \[v\]×.
     #[inline(always)]
     pub fn skew(v: V3<T>) -> Self {
         let z = T::splat(0.0);
@@ -266,7 +266,7 @@ impl<T: Real> M3<T> {
             Self::outer_add(self.c1, o.c1, Self::outer_add(self.c0, o.c0, *acc)),
         )
     }
-    /// [v]× M, column by column.
+    /// \[v\]× M, column by column.
     #[inline(always)]
     pub fn cross_cols(v: V3<T>, m: &Self) -> Self {
         Self::from_cols(v.cross(m.c0), v.cross(m.c1), v.cross(m.c2))

@@ -7,7 +7,7 @@
 //! the fit proceeds. The algebra is the same (`docs/physics.md` sections 2
 //! and 4): element Q starts at p_Q with frame R_Q, a point at arc length σ
 //! inside it is p_Q + R_Q h(σ, q_Q), and moving q_Q moves every later point
-//! rigidly, ∂r/∂q_Q = A_Q − [r]× B_Q with A_Q = a_Q + [p_{Q+1}]× b_Q,
+//! rigidly, ∂r/∂q_Q = A_Q − \[r\]× B_Q with A_Q = a_Q + [p_{Q+1}]× b_Q,
 //! a_Q = R_Q ∂h(ℓ)/∂k and b_Q = ℓ R_Q J_l(ℓ q_Q).
 
 use glam::{DMat3, DVec3};

@@ -14,7 +14,7 @@
 //!    a tolerance, by default 0.5% of the strand's length
 //!    ([`FitOptions`]).
 //!
-//! [`sag_free`] then solves the natural strains q⁰ that make the fitted
+//! [`sag_free`](mod@sag_free) then solves the natural strains q⁰ that make the fitted
 //! shape a static equilibrium under gravity (and the head's contact push,
 //! by the law of the engine that will step it: [`rest_contact`]), so
 //! an imported groom keeps its shape instead of sagging, and

@@ -12,7 +12,7 @@
 //!
 //! The Jacobian is analytic ([`super::curve`]):
 //!
-//! - ∂r_i/∂q_Q = R_e ∂h/∂k for the point's own element e, A_Q − [x_i]× B_Q
+//! - ∂r_i/∂q_Q = R_e ∂h/∂k for the point's own element e, A_Q − \[x_i\]× B_Q
 //!   for every earlier element Q, zero beyond;
 //! - ∂r_i/∂(tilt about n_j) = n_j × x_i (the whole strand turns about the
 //!   root);

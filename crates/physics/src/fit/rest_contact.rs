@@ -144,7 +144,7 @@ impl<'a> RestContact<'a> {
     /// distance field's gradient is piecewise (its grid's cells), so the
     /// exact push has no derivative where a point sits on a cell face;
     /// ∂n/∂x is taken instead by central differences of the normal over
-    /// one cell ([`surface_turn`]): the surface's curvature. That term
+    /// one cell (`surface_turn`): the surface's curvature. That term
     /// matters: on a convex head the normal turns the way the point moves,
     /// so a point pressed hard into the skin (f / R beside the strand's own
     /// stiffness) is pushed further along the surface, like a ball on a

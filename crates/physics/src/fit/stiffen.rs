@@ -1,7 +1,7 @@
 //! Holding strands that cannot hold themselves: the least stiffening that
 //! makes a sag-free equilibrium stable.
 //!
-//! The sag-free solve ([`super::sag_free`]) makes any fitted shape an
+//! The sag-free solve ([`super::sag_free`](mod@super::sag_free)) makes any fitted shape an
 //! equilibrium, but a strand standing up past its buckling length (or
 //! reaching out too far for its stiffness) is at an *unstable* one: in
 //! simulation it falls away from the imported shape (on the Sintel groom,

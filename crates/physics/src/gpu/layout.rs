@@ -167,7 +167,7 @@ pub struct DenseOwnGpu {
     pub own: OwnGpu,
     /// U_Q = Σ_own wρS G, kg·m.
     pub u: Mat3Gpu,
-    /// V_Q = Σ_own wρS [r]×G, kg·m².
+    /// V_Q = Σ_own wρS \[r\]×G, kg·m².
     pub v: Mat3Gpu,
 }
 

@@ -25,7 +25,7 @@
 //!    pushed down the excess's gradient (an equation of state, no solve).
 //!
 //! [`field`] runs 2–5 on any set of sample points, and each engine only
-//! gathers its samples and hands out the answers: [`reference`] is the
+//! gathers its samples and hands out the answers: [`reference`](mod@reference) is the
 //! f64 `HairSystem`'s use of it (once per frame, before the strands step,
 //! it gathers every strand's samples, splats them and hands each strand
 //! its pull, [`friction::VolumePull`], which the step adds to its forces
