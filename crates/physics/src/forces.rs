@@ -49,8 +49,7 @@ pub fn sample_force(
     i: usize,
 ) -> DVec3 {
     let s = &kin.samples[i];
-    let carried =
-        inputs.root.velocity_m_per_s + inputs.root.angular_velocity_rad_per_s.cross(s.position_m);
+    let carried = inputs.root.velocity_at(s.position_m);
     let mut f = model.mass_per_length * (inputs.gravity_m_per_s2 - s.free_acceleration_m_per_s2)
         - model.air_drag * (carried - inputs.air_velocity_m_per_s);
     if let Some(extra) = inputs.external_n_per_m.get(i) {

@@ -176,7 +176,7 @@ pub fn measure(
         f += rho_s * inputs.gravity_m_per_s2;
         out.external_force_n += f * w;
         out.external_torque_n_m += r.cross(f) * w;
-        let carried = root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r);
+        let carried = root.velocity_at(r);
         out.fastest_relative_m_per_s = out.fastest_relative_m_per_s.max((v - carried).length());
     }
     let elastic_j: f64 = q

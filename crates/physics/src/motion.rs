@@ -78,6 +78,12 @@ impl RigidMotion {
         }
     }
 
+    /// The velocity of the body's point at `offset_m` from its origin
+    /// (world axes), m/s: v + ω × offset.
+    pub fn velocity_at(&self, offset_m: DVec3) -> DVec3 {
+        self.velocity_m_per_s + self.angular_velocity_rad_per_s.cross(offset_m)
+    }
+
     /// The motion of a frame fixed to this body at `root` (body
     /// coordinates): same angular motion, and the rigid-body velocity and
     /// acceleration (with centripetal term) of the attachment point.
@@ -88,7 +94,7 @@ impl RigidMotion {
         RigidMotion {
             position_m: self.position_m + offset,
             world_from_body: self.world_from_body * root.head_from_root,
-            velocity_m_per_s: self.velocity_m_per_s + w.cross(offset),
+            velocity_m_per_s: self.velocity_at(offset),
             angular_velocity_rad_per_s: w,
             acceleration_m_per_s2: self.acceleration_m_per_s2
                 + alpha.cross(offset)

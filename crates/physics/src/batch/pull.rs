@@ -130,10 +130,9 @@ impl RootVelocity {
     /// [`RootMotion::gather`] rounds them, without the rest of their
     /// motion.
     pub fn carried_by(head: &RigidMotion, roots: &[RootPose]) -> Self {
-        let w = head.angular_velocity_rad_per_s;
         let velocity: [DVec3; LANES] = std::array::from_fn(|l| {
             let root = &roots[l.min(roots.len() - 1)];
-            head.velocity_m_per_s + w.cross(head.world_from_body * root.position_m)
+            head.velocity_at(head.world_from_body * root.position_m)
         });
         let lanes = |f: fn(&DVec3) -> f64, values: &[DVec3; LANES]| {
             Lanes::from_fn(|l| f(&values[l]) as f32)
@@ -147,7 +146,7 @@ impl RootVelocity {
         };
         Self {
             velocity_m_per_s: v3(&velocity),
-            angular_velocity_rad_per_s: v3(&[w; LANES]),
+            angular_velocity_rad_per_s: v3(&[head.angular_velocity_rad_per_s; LANES]),
         }
     }
 

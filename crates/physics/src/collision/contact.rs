@@ -123,8 +123,7 @@ impl ContactInputs<'_> {
             return None;
         }
         let normal = head.world_from_body * gradient;
-        let surface_velocity =
-            head.velocity_m_per_s + head.angular_velocity_rad_per_s.cross(offset);
+        let surface_velocity = head.velocity_at(offset);
         Some(SurfacePoint {
             distance_m,
             normal,

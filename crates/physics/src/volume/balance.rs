@@ -36,7 +36,7 @@ pub fn add_pull(
         let v = s.velocity_m_per_s;
         // The whole force at this state: its known part plus −μρS J q̇,
         // J q̇ = ṙ − ṙ_carried.
-        let carried = carried_velocity(root, s.position_m);
+        let carried = root.velocity_at(s.position_m);
         let f = pull.force_n_per_m(i, v, carried, model.mass_per_length) * s.weight_m;
         out.external_force_n += f;
         out.external_torque_n_m += s.position_m.cross(f);
@@ -100,16 +100,10 @@ pub fn pull_work(
         let r = root_relative(p, head, root.position_m);
         let v = p.velocity_m_per_s;
         let w = p.mass_kg / mass_per_length;
-        let carried = carried_velocity(root, r);
+        let carried = root.velocity_at(r);
         work.add(r, v, pull.force_n_per_m(i, v, carried, mass_per_length) * w);
     }
     work
-}
-
-/// The velocity a root moving as `root` carries a point at `r_m`
-/// (relative to the root point) with, m/s.
-fn carried_velocity(root: &RigidMotion, r_m: DVec3) -> DVec3 {
-    root.velocity_m_per_s + root.angular_velocity_rad_per_s.cross(r_m)
 }
 
 /// A gathered point's position relative to its strand's root point
