@@ -14,9 +14,8 @@ use crate::motion::{RigidMotion, RootPose};
 use crate::reconstruct::{Kinematics, reconstruct};
 use crate::settings::{Method, StepScheme};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
-use crate::volume::SamplePoint;
 use crate::volume::VolumePull;
-use crate::volume::balance::{PullWork, add_pull, pull_work};
+use crate::volume::balance::{PullWork, SampleMotion, add_pull, pull_work};
 
 /// A Super-Helix strand clamped to a root on the head.
 #[derive(Clone, Debug)]
@@ -120,8 +119,9 @@ impl Strand {
     }
 
     /// Sets the hair–hair model's pull for the coming steps: friction
-    /// rate μ (1/s), and per quadrature sample the grid velocity relative
-    /// to the head's rigid motion there (m/s) and the pressure
+    /// rate μ (1/s), and per point ([`crate::volume::pair_points`]) the
+    /// grid velocity relative to the head's rigid motion there (m/s) and
+    /// the pressure
     /// acceleration (m/s²), world axes ([`crate::volume::friction`]).
     pub fn set_volume_pull(
         &mut self,
@@ -136,28 +136,29 @@ impl Strand {
             friction_per_s,
             relative_target,
             push,
+            samples_per_element: self.model.quadrature.len(),
         };
     }
 
     /// [`Self::set_volume_pull`] that keeps the guard's cached measure:
-    /// `points` are the strand's samples at its current state, gathered
-    /// with the head at `head` ([`crate::volume::reference`]); the old
+    /// `samples` are the strand's quadrature samples at its current state,
+    /// reconstructed with the head at `head` ([`crate::volume::reference`]); the old
     /// pull's work there is exchanged for the new one's in the cached
     /// measure ([`crate::volume::balance::PullWork`]) instead of dropping
     /// it.
     pub fn exchange_volume_pull(
         &mut self,
         pull: (f64, Vec<DVec3>, Vec<DVec3>),
-        points: &[SamplePoint],
+        samples: &[SampleMotion],
         head: &RigidMotion,
     ) {
         let cached = self.cached_measure.take();
         let root = head.carry(&self.root);
         let rho_s = self.model.mass_per_length;
         let work = |state: &VolumeState| {
-            state.pull().map_or_else(PullWork::default, |p| {
-                pull_work(points, head, &root, &p, rho_s)
-            })
+            state
+                .pull()
+                .map_or_else(PullWork::default, |p| pull_work(samples, &root, &p, rho_s))
         };
         let old = work(&self.volume);
         let (friction_per_s, relative_target, push) = pull;
@@ -166,6 +167,7 @@ impl Strand {
             friction_per_s,
             relative_target,
             push,
+            samples_per_element: self.model.quadrature.len(),
         };
         let new = work(&self.volume);
         self.cached_measure = cached.map(|mut m| {
@@ -318,6 +320,7 @@ struct VolumeState {
     friction_per_s: f64,
     relative_target: Vec<DVec3>,
     push: Vec<DVec3>,
+    samples_per_element: usize,
 }
 
 impl VolumeState {
@@ -326,6 +329,7 @@ impl VolumeState {
             friction_per_s: self.friction_per_s,
             relative_target_m_per_s: &self.relative_target,
             push_m_per_s2: &self.push,
+            samples_per_element: self.samples_per_element,
         })
     }
 }

@@ -20,6 +20,7 @@ use helixhair_physics::batch::{BatchSystem, LANES, LaneModel, Lanes, Real};
 use helixhair_physics::engine::{Engine, EngineKind};
 use helixhair_physics::motion::HeadTrajectory;
 use helixhair_physics::volume::InteractionSettings;
+use helixhair_physics::volume::pair_points::points_per_element;
 use helixhair_physics::{
     HairSystem, Method, RigidMotion, RootPose, SimSettings, StepScheme, StrandModel, StrandParams,
 };
@@ -71,7 +72,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
         gravity_m_per_s2: [0.0, -9.81, 0.0],
         air_velocity_m_per_s: air.as_vec3().to_array(),
     };
-    let known = vec![lanes_of(&[rho_s * mu * u; LANES]); n * 4];
+    let known = vec![lanes_of(&[rho_s * mu * u; LANES]); n * points_per_element(4)];
     let pull = SamplePull {
         friction_per_s: mu as f32,
         rate: friction_rate(mu as f32, &LaneModel::splat(&pulled_model)),

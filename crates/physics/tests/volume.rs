@@ -14,6 +14,7 @@ use common::volume_scene::{assert_calms_down, kinetic_after_shake};
 use glam::{DMat3, DVec3};
 use helixhair_physics::volume::friction::HeadVelocity;
 use helixhair_physics::volume::friction::implicit_velocity;
+use helixhair_physics::volume::pair_points::points_per_element;
 use helixhair_physics::volume::{InteractionSettings, RestDensity, SamplePoint, VolumeField};
 use helixhair_physics::{HairSystem, Method, RigidMotion, SimSettings, Strand, StrandModel};
 
@@ -117,8 +118,8 @@ fn friction_in_the_step_is_air_drag_toward_the_target() {
     let root = common::horizontal_root();
     let mut pulled = Strand::new(model.clone(), root, Method::Exact);
     let mut reference = Strand::new(dragged_model, root, Method::Exact);
-    let samples = model.samples();
-    pulled.set_volume_pull(mu, vec![u; samples], vec![DVec3::ZERO; samples]);
+    let points = model.elements() * points_per_element(4);
+    pulled.set_volume_pull(mu, vec![u; points], vec![DVec3::ZERO; points]);
     let gravity = DVec3::new(0.0, -9.81, 0.0);
     for k in 0..60 {
         let head = common::side_to_side(k as f64 / 60.0);
@@ -252,43 +253,50 @@ fn energy_after_a_shake_decays_with_the_model_and_no_guard_events() {
     assert_calms_down(&with, &without);
 }
 
+/// An 8-element curl (four quadrature nodes) in a random state (seed
+/// `seed`) on a head caught mid-shake, so velocities and the head's turn
+/// are all in play; with the generator, for more random numbers.
+fn curl_mid_shake(seed: u64) -> (Strand, RigidMotion, common::Rng) {
+    use helixhair_physics::HeadTrajectory;
+    let model = Arc::new(StrandModel::new(&common::curl(8), 4).unwrap());
+    let mut strand = Strand::new(model.clone(), common::horizontal_root(), Method::Exact);
+    let mut rng = common::Rng::new(seed);
+    let q: Vec<DVec3> = model.natural.iter().map(|k| *k + rng.vec3(4.0)).collect();
+    let v: Vec<DVec3> = (0..q.len()).map(|_| rng.vec3(10.0)).collect();
+    strand.set_state(&q, &v);
+    (strand, common::shake().motion_at(0.3), rng)
+}
+
 /// The guard's start measure is the last frame's end measure, reused; the
 /// model's new pull is exchanged into it (`volume::balance::PullWork`)
 /// instead of measuring again. Known answer: the exchanged measure is the
 /// measure taken afresh with the new pull, to round-off.
 #[test]
 fn exchanging_the_pull_in_a_cached_measure_equals_measuring_again() {
-    use helixhair_physics::HeadTrajectory;
     use helixhair_physics::frame_balance::MeasureInputs;
-    use helixhair_physics::volume::reference::head_points;
-    let params = common::curl(8);
-    let model = Arc::new(StrandModel::new(&params, 4).unwrap());
-    let root = common::horizontal_root();
-    let mut strand = Strand::new(model.clone(), root, Method::Exact);
-    let mut rng = common::Rng::new(9);
-    let q: Vec<DVec3> = model.natural.iter().map(|k| *k + rng.vec3(4.0)).collect();
-    let v: Vec<DVec3> = (0..q.len()).map(|_| rng.vec3(10.0)).collect();
-    strand.set_state(&q, &v);
-    let head = common::shake().motion_at(0.3);
-    let carried = head.carry(&root);
+    use helixhair_physics::volume::reference::strand_points;
+    let (mut strand, head, mut rng) = curl_mid_shake(9);
+    let model = strand.model().clone();
+    let carried = head.carry(strand.root());
     let inputs = MeasureInputs {
         gravity_m_per_s2: DVec3::new(0.0, -9.81, 0.0),
         air_velocity_m_per_s: DVec3::ZERO,
         contact: None,
     };
-    let samples = model.samples();
+    let points = model.elements() * points_per_element(4);
     let pull = |rng: &mut common::Rng| {
-        let target = (0..samples).map(|_| rng.vec3(0.5)).collect();
-        let push = (0..samples).map(|_| rng.vec3(5.0)).collect();
+        let target = (0..points).map(|_| rng.vec3(0.5)).collect();
+        let push = (0..points).map(|_| rng.vec3(5.0)).collect();
         (5.0 + 10.0 * rng.next(), target, push)
     };
     let (mu, target, push) = pull(&mut rng);
     strand.set_volume_pull(mu, target, push);
     let end = strand.measure(&carried, &inputs);
     strand.set_cached_measure(Some(end));
-    let mut points = Vec::new();
-    head_points(&strand, &strand.kinematics(&carried), &head, &mut points);
-    strand.exchange_volume_pull(pull(&mut rng), &points, &head);
+    let (mut samples, mut points) = (Vec::new(), Vec::new());
+    let kin = strand.kinematics(&carried);
+    strand_points(&strand, &kin, &head, &mut samples, &mut points);
+    strand.exchange_volume_pull(pull(&mut rng), &samples, &head);
     let exchanged = strand.cached_measure().expect("kept");
     let fresh = strand.measure(&carried, &inputs);
     let size = fresh.external_force_n.length() + fresh.external_power_w.abs();
@@ -298,6 +306,58 @@ fn exchanging_the_pull_in_a_cached_measure_equals_measuring_again() {
     assert!((exchanged.external_power_w - fresh.external_power_w).abs() < 1e-12 * size);
     assert_ne!(exchanged.external_power_w, end.external_power_w);
     assert_eq!(exchanged.energy_j, fresh.energy_j);
+}
+
+/// The model's points (one per pair of quadrature nodes,
+/// `volume::pair_points`) carry the strand's mass, momentum and centre of
+/// mass: Σ m_p = ρS L, Σ m_p v_p = Σ ρS w_j ℓ v_j and Σ m_p x_p / Σ m_p
+/// the quadrature's centre of mass, carried into head coordinates; at
+/// four nodes per element there are two points per element. A curl in a
+/// random state on a head caught mid-shake, so velocities and the head's
+/// turn are all in play.
+#[test]
+fn the_points_carry_the_strands_mass_momentum_and_centre_of_mass() {
+    use helixhair_physics::volume::reference::strand_points;
+    let (strand, head, _) = curl_mid_shake(21);
+    let model = strand.model().clone();
+    let carried = head.carry(strand.root());
+    let kin = strand.kinematics(&carried);
+    let (mut samples, mut points) = (Vec::new(), Vec::new());
+    strand_points(&strand, &kin, &head, &mut samples, &mut points);
+    assert_eq!(points.len(), 2 * model.elements());
+    assert_eq!(points_per_element(4), 2);
+    let rho_s = model.mass_per_length;
+    let length_m: f64 = model.lengths_m.iter().sum();
+    let mass: f64 = points.iter().map(|p| p.mass_kg).sum();
+    assert!(
+        (mass - rho_s * length_m).abs() < 1e-13 * mass,
+        "mass {mass}"
+    );
+    let momentum: DVec3 = points.iter().map(|p| p.mass_kg * p.velocity_m_per_s).sum();
+    let expected: DVec3 = kin
+        .samples
+        .iter()
+        .map(|s| rho_s * s.weight_m * s.velocity_m_per_s)
+        .sum();
+    assert!(expected.length() / mass > 0.1, "the strand moves");
+    assert!((momentum - expected).length() < 1e-12 * expected.length());
+    let centre: DVec3 = points
+        .iter()
+        .map(|p| p.mass_kg * p.position_m)
+        .sum::<DVec3>()
+        / mass;
+    let world: DVec3 = kin
+        .samples
+        .iter()
+        .map(|s| s.weight_m * s.position_m)
+        .sum::<DVec3>()
+        / length_m;
+    let body_from_world = head.world_from_body.transpose();
+    let expected = body_from_world * (carried.position_m + world - head.position_m);
+    assert!(
+        (centre - expected).length() < 1e-12,
+        "{centre} against {expected}"
+    );
 }
 
 /// The cell search on a 3 × 3 × 3-node grid of 1 m cells from the origin:

@@ -19,9 +19,11 @@
 //! the right-hand side ([`crate::step`]); since J q̇ = ṙ − c at every
 //! sample, the two are one arithmetic up to round-off, as for air drag.
 //!
-//! Per sample the pull keeps one vector, the known part
-//! k = ρS (μ u_rel + a) (computed in f64, stored in f32), and per lane the
-//! rate μρS, so the force at relative velocity ṙ − c is k − μρS (ṙ − c).
+//! Per point (one per pair of quadrature nodes,
+//! [`crate::volume::pair_points`]) the pull keeps one vector, the known
+//! part k = ρS (μ u_rel + a) read there (computed in f64, stored in f32),
+//! and per lane the rate μρS, so the force on a sample of the pair moving
+//! at ṙ − c relative to the root's rigid motion is k − μρS (ṙ − c).
 //!
 //! # The hook
 //!
@@ -41,6 +43,7 @@ use glam::DVec3;
 use super::layout::{ElementData, RootMotion};
 use super::vec::V3;
 use crate::motion::{RigidMotion, RootPose};
+use crate::volume::pair_points::point_of;
 
 /// One batch's pull for a frame: what [`super::volume::BatchVolume`]
 /// hands each batch.
@@ -50,8 +53,8 @@ pub struct SamplePull<'a> {
     pub friction_per_s: f32,
     /// μρS per lane, kg/(m·s).
     pub rate: Lanes,
-    /// Per quadrature sample (element by element, the element's nodes in
-    /// order), the known part k = ρS (μ u_rel + a), N/m, world axes.
+    /// Per point ([`point_of`]), the known part k = ρS (μ u_rel + a), N/m,
+    /// world axes.
     pub known: &'a [V3<Lanes>],
     /// Quadrature nodes per element.
     pub nodes: usize,
@@ -60,10 +63,10 @@ pub struct SamplePull<'a> {
 impl SamplePull<'_> {
     /// The model's force per unit length on node `j` of element `e` moving
     /// at `relative` (m/s) relative to the root's rigid motion, ṙ − c:
-    /// k − μρS (ṙ − c), N/m.
+    /// k − μρS (ṙ − c), N/m, k its point's.
     #[inline(always)]
     pub fn force(&self, e: usize, j: usize, relative: V3<Lanes>) -> V3<Lanes> {
-        self.known[e * self.nodes + j] - relative.scale(self.rate)
+        self.known[point_of(e, j, self.nodes)] - relative.scale(self.rate)
     }
 }
 
@@ -158,11 +161,11 @@ impl RootVelocity {
     }
 }
 
-/// Per lane, the pull's work terms at a sample of quadrature length
-/// `w_len` (m) at `r` (relative to the root point) moving at `velocity`
-/// (world), `relative` to the root's rigid motion: adds its force, torque
-/// and power to the guard's sums, as [`crate::volume::balance`] does on
-/// the reference.
+/// Per lane, the pull's work terms at node `j` of element `e`, of
+/// quadrature length `w_len` (m) at `r` (relative to the root point)
+/// moving at `velocity` (world), `relative` to the root's rigid motion:
+/// adds its force, torque and power to the guard's sums, as
+/// [`crate::volume::balance`] does on the reference.
 #[inline(always)]
 pub fn add_pull_work(
     pull: &SamplePull<'_>,

@@ -1,6 +1,7 @@
 //! The hair–hair model ([`crate::volume`]) on the batch engine: once per
-//! frame, before the strands step, gather every lane's quadrature samples,
-//! splat them on the rest grid with the shared f64 arithmetic
+//! frame, before the strands step, gather every lane's quadrature samples
+//! into its points, one per pair of nodes ([`crate::volume::pair_points`]), splat
+//! them on the rest grid with the shared f64 arithmetic
 //! ([`crate::volume::field`]), and hand each batch its pull
 //! ([`super::pull::SamplePull`]) for the frame's steps.
 //!
@@ -9,14 +10,16 @@
 //! Only the gather is the batch engine's own: a root-to-tip sweep in f32
 //! lanes, as the guard's measure sweeps ([`super::guard`]), gives each
 //! sample's position relative to its root and its world velocity; they are
-//! widened to f64 and carried into head coordinates exactly as the
-//! reference's [`crate::volume::reference::head_points`] does, with mass
-//! ρS·w·ℓ (four lanes at a time in f64x4, each lane's operations those of
-//! the reference's DVec3 arithmetic, in the same order). The splat, the density excess and what each sample reads back
-//! (grid velocity, pressure push) are the same functions the reference
-//! calls. The reading becomes the sample's known force
-//! k = ρS (μ u_rel + a) (world axes; u_rel the grid velocity relative to
-//! the head, [`crate::volume::friction`]), rounded to f32 once.
+//! widened to f64, averaged over each pair of nodes with the quadrature
+//! weights and carried into head coordinates exactly as the reference's
+//! [`crate::volume::pair_points::pair_points`] does, with mass
+//! ρS·ℓ·(w_a + w_b) (four lanes at a time in f64x4, each lane's operations those of the
+//! reference's DVec3 arithmetic, in the same order). The splat, the
+//! density excess and what each point reads back (grid velocity, pressure
+//! push) are the same functions the reference calls. The reading becomes
+//! the point's known force k = ρS (μ u_rel + a) (world axes; u_rel the
+//! grid velocity relative to the head, [`crate::volume::friction`]),
+//! rounded to f32 once.
 //!
 //! # The guard's samples
 //!
@@ -45,7 +48,7 @@
 //! # Padding
 //!
 //! A short last batch pads with copies of its last strand
-//! ([`super::layout`]); their samples splat with zero mass (a strand is
+//! ([`super::layout`]); their points splat with zero mass (a strand is
 //! counted once) and read the field like any other, so the padding steps
 //! as its strand does.
 
@@ -67,6 +70,7 @@ use crate::motion::{RigidMotion, RootPose};
 use crate::volume::balance::PullWork;
 use crate::volume::cell::CellLanes;
 use crate::volume::friction::HeadVelocity;
+use crate::volume::pair_points::{NODES_PER_POINT, PairWeights, pair_weights, points_per_element};
 use crate::volume::splat_lanes::PointLanes;
 use crate::volume::{InteractionSettings, ModelState, RestDensity};
 
@@ -118,8 +122,9 @@ impl<'a> KeptSamples<'a> {
     }
 }
 
-/// One batch's outputs of the gather: its points, its samples (where it
-/// swept them itself), and whether it took the kept samples instead.
+/// One batch's outputs of the gather: its points, its samples
+/// (where it swept them itself), and whether it took the kept samples
+/// instead.
 type BatchOut<'a> = (
     (&'a mut [PointLanes], &'a mut [[V3<Lanes>; 2]]),
     &'a mut bool,
@@ -138,8 +143,7 @@ type BatchRead<'a> = (
 /// One group's samples and pulls of the current frame.
 #[derive(Clone, Debug, Default)]
 struct GroupPulls {
-    /// Batch b's sample i (element-major), lanes 4h..4h + 4 at
-    /// (b·S + i)·2 + h.
+    /// Batch b's point p, lanes 4h..4h + 4 at (b·P + p)·2 + h.
     points: Vec<PointLanes>,
     /// Batch b's sample i's position relative to its root and velocity
     /// (world, f32 lanes) at b·S + i, where the gather swept batch b.
@@ -147,13 +151,15 @@ struct GroupPulls {
     /// Per batch, whether the gather took its kept samples
     /// ([`KeptSamples`]) rather than sweeping it into `motion`.
     from_kept: Vec<bool>,
-    /// Batch b's sample i's known force c at b·S + i, N/m.
+    /// Batch b's point p's known force k at b·P + p, N/m.
     known: Vec<V3<Lanes>>,
     /// Per batch, μρS lane by lane, kg/(m·s).
     rate: Vec<Lanes>,
     /// Per batch and lane, the old and the new pull's work at the frame's
     /// start ([`super::volume_read`]).
     exchange: Vec<[Exchange; LANES]>,
+    /// Points per strand P ([`crate::volume::pair_points`]).
+    points_per_strand: usize,
     /// Samples per strand S = N × nodes.
     samples: usize,
     /// Quadrature nodes per element.
@@ -190,7 +196,8 @@ impl BatchVolume {
     /// if [`Self::prepare`] has run on it.
     pub fn pull(&self, group: usize, batch: usize) -> Option<SamplePull<'_>> {
         let g = self.groups.get(group)?;
-        let known = g.known.get(batch * g.samples..(batch + 1) * g.samples)?;
+        let p = g.points_per_strand;
+        let known = g.known.get(batch * p..(batch + 1) * p)?;
         Some(SamplePull {
             friction_per_s: self.state.settings().friction_per_s as f32,
             rate: *g.rate.get(batch)?,
@@ -249,11 +256,10 @@ impl BatchVolume {
         let mut cells = field.cell_lanes();
         let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
-            let lanes = pulls.samples * HALVES;
-            let batches = pulls.points.len() / lanes;
+            let (per_strand, lanes) = (pulls.points_per_strand, pulls.points_per_strand * HALVES);
+            let batches = pulls.points.len() / lanes.max(1);
             // An old pull exists when the last frame read this very layout.
-            let had_old =
-                pulls.known.len() == batches * pulls.samples && pulls.rate.len() == batches;
+            let had_old = pulls.known.len() == batches * per_strand && pulls.rate.len() == batches;
             let rates: Vec<Lanes> = view.models.iter().map(|m| friction_rate(mu, m)).collect();
             let old_rates = std::mem::replace(&mut pulls.rate, rates);
             let inputs = ReadInputs {
@@ -261,7 +267,7 @@ impl BatchVolume {
                 settings,
                 head,
             };
-            pulls.known.resize(batches * pulls.samples, V3::zero());
+            pulls.known.resize(batches * per_strand, V3::zero());
             let none = (PullWork::default(), PullWork::default());
             pulls.exchange.resize(batches, [none; LANES]);
             let (group_cells, after) = cells.split_at(pulls.points.len());
@@ -280,7 +286,7 @@ impl BatchVolume {
                     read_batch(&inputs, &rates, points, (motion, &root), known, exchange);
                 };
             if parallel {
-                let known = pulls.known.par_chunks_mut(pulls.samples);
+                let known = pulls.known.par_chunks_mut(per_strand);
                 known
                     .zip(
                         pulls
@@ -298,7 +304,7 @@ impl BatchVolume {
                     .enumerate()
                     .for_each(read);
             } else {
-                let known = pulls.known.chunks_mut(pulls.samples);
+                let known = pulls.known.chunks_mut(per_strand);
                 known
                     .zip(pulls.points.chunks(lanes).zip(group_cells.chunks(lanes)))
                     .zip(pulls.motion.chunks(pulls.samples).zip(&pulls.from_kept))
@@ -317,13 +323,14 @@ impl BatchVolume {
 fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &mut GroupPulls) {
     let n = view.n;
     out.nodes = view.models.first().map_or(0, |m| m.nodes().len());
+    out.points_per_strand = n * points_per_element(out.nodes);
     out.samples = n * out.nodes;
     let batches = view.models.len();
-    out.points
-        .resize(batches * out.samples * HALVES, PointLanes::default());
+    let lanes = out.points_per_strand * HALVES;
+    out.points.resize(batches * lanes, PointLanes::default());
     out.motion.resize(batches * out.samples, [V3::zero(); 2]);
     out.from_kept.resize(batches, false);
-    let (lanes, samples) = (out.samples * HALVES, out.samples);
+    let samples = out.samples;
     let one = |(b, (((out, (q, v)), roots), model)): (
         usize,
         (((BatchOut<'_>, _), _), &Arc<LaneModel>),
@@ -361,12 +368,13 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
 /// A batch's lanes in groups of four ([`PointLanes`]): two per sample.
 pub(super) const HALVES: usize = LANES / 4;
 
-/// One batch's samples (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
-/// at `head`) as points in head coordinates, written to `out` (sample i,
-/// lanes 4h..4h + 4 at i·2 + h; padding lanes get zero mass). The samples'
-/// f32 lanes of position relative to the root and world velocity are
-/// `kept` if given (the guard's measure found them at this state), else
-/// swept root to tip here and written to `motion` (sample i at i).
+/// One batch's points (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
+/// at `head`), one per pair of quadrature nodes, in head coordinates,
+/// written to `out` (point p, lanes 4h..4h + 4 at p·2 + h; padding lanes
+/// get zero mass). The
+/// samples' f32 lanes of position relative to the root and world velocity
+/// are `kept` if given (the guard's measure found them at this state),
+/// else swept root to tip here and written to `motion` (sample i at i).
 pub fn gather_batch(
     model: &LaneModel,
     roots: &[RootPose],
@@ -378,35 +386,26 @@ pub fn gather_batch(
 ) {
     let motions = carried(head, roots);
     let place = Placement::new(model, roots, &motions, head);
-    let nodes = model.nodes().len();
-    let Some(kept) = kept else {
-        let root = RootMotion::<Lanes>::gather(&motions);
-        let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
-            let i = e * nodes + j;
-            motion[i] = [r, vel];
-            let (weight, length_m) = (model.weights()[j], model.length_m(e));
-            place.write(
-                r,
-                vel,
-                weight,
-                length_m,
-                &mut out[i * HALVES..(i + 1) * HALVES],
-            );
-        };
-        sweep_samples(model, &root, q, v, sample, |_, _| {});
-        return;
+    let samples = match kept {
+        Some(kept) => kept,
+        None => {
+            let root = RootMotion::<Lanes>::gather(&motions);
+            let nodes = model.nodes().len();
+            let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
+                motion[e * nodes + j] = [r, vel];
+            };
+            sweep_samples(model, &root, q, v, sample, |_, _| {});
+            &*motion
+        }
     };
-    for (i, [r, vel]) in kept.iter().enumerate() {
-        let e = i / nodes;
-        let weight = model.weights()[i % nodes];
-        let length_m = model.length_m(e);
-        place.write(
-            *r,
-            *vel,
-            weight,
-            length_m,
-            &mut out[i * HALVES..(i + 1) * HALVES],
-        );
+    let weights: Vec<f64> = model.weights().iter().map(|w| f64::from(*w)).collect();
+    let pairs = pair_weights(&weights);
+    let mut out = out.chunks_exact_mut(HALVES);
+    for (e, nodes) in samples.chunks_exact(weights.len().max(1)).enumerate() {
+        let points = nodes.chunks(NODES_PER_POINT).zip(&pairs);
+        for ((nodes, pair), out) in points.zip(&mut out) {
+            place.write(nodes, pair, model.length_m(e), out);
+        }
     }
 }
 
@@ -416,12 +415,13 @@ pub(super) fn carried(head: &RigidMotion, roots: &[RootPose]) -> [RigidMotion; L
     std::array::from_fn(|i| head.carry(&roots[i.min(roots.len() - 1)]))
 }
 
-/// What turns a batch's samples (f32 lanes: position relative to the root,
-/// world velocity) into points in head coordinates, four lanes at a time
-/// in f64x4, each lane's arithmetic that of a DVec3 (`root + r - head`,
-/// then glam's `body_from_world * d`: ((X d_x) + (Y d_y)) + (Z d_z) per
-/// component), as the reference's
-/// [`crate::volume::reference::head_points`] does.
+/// What turns a batch's samples (f32 lanes: position relative to the
+/// root, world velocity) into its points in head coordinates, four lanes
+/// at a time in f64x4, each lane's arithmetic that of a DVec3 as the
+/// reference's [`crate::volume::pair_points::pair_points`] does: the
+/// pair's mean x̄ = share_a x_a + share_b x_b ([`PairWeights`]), then
+/// `root + x̄ − head` and glam's `body_from_world * d`,
+/// ((X d_x) + (Y d_y)) + (Z d_z) per component.
 struct Placement {
     columns: [[f64x4; 3]; 3],
     head_at: [f64x4; 3],
@@ -458,32 +458,54 @@ impl Placement {
         }
     }
 
-    /// One sample at `r` (relative to its root) moving at `vel`, of
-    /// quadrature weight `weight` on an element `length_m` long, into its
-    /// [`HALVES`] groups of four lanes.
+    /// The point of a pair of quadrature `nodes` (position relative to the
+    /// root, velocity; or one node) weighing `pair` on an element
+    /// `length_m` long, into its [`HALVES`] groups of four lanes.
     #[inline(always)]
     fn write(
         &self,
-        r: V3<Lanes>,
-        vel: V3<Lanes>,
-        weight: f32,
+        nodes: &[[V3<Lanes>; 2]],
+        pair: &PairWeights,
         length_m: Lanes,
         out: &mut [PointLanes],
     ) {
-        let w = f64x4::splat(f64::from(weight));
         for (h, (root_h, out)) in self.root_at.iter().zip(out).enumerate() {
-            let rel = [r.x, r.y, r.z].map(|x| widen(x, h));
-            let d: [f64x4; 3] = std::array::from_fn(|a| root_h[a] + rel[a] - self.head_at[a]);
+            let (mean_r, mean_v) = pair_mean(nodes, &pair.share, h);
+            let d: [f64x4; 3] = std::array::from_fn(|a| root_h[a] + mean_r[a] - self.head_at[a]);
             let columns = &self.columns;
             *out = PointLanes {
                 position_m: std::array::from_fn(|c| {
                     columns[0][c] * d[0] + columns[1][c] * d[1] + columns[2][c] * d[2]
                 }),
-                velocity_m_per_s: [vel.x, vel.y, vel.z].map(|x| widen(x, h)),
-                mass_kg: (widen(self.rho_s, h) * w * widen(length_m, h)) & self.real[h],
+                velocity_m_per_s: mean_v,
+                mass_kg: (widen(self.rho_s, h) * widen(length_m, h) * f64x4::splat(pair.sum))
+                    & self.real[h],
             };
         }
     }
+}
+
+/// Lanes `4h..4h + 4` of the mean position and velocity of a pair of
+/// `nodes` (or one node) with their `share`s of the pair's weight
+/// ([`PairWeights`]), in f64, in node order.
+#[inline(always)]
+fn pair_mean(
+    nodes: &[[V3<Lanes>; 2]],
+    share: &[f64; NODES_PER_POINT],
+    h: usize,
+) -> ([f64x4; 3], [f64x4; 3]) {
+    let mut terms = nodes.iter().zip(share).map(|([r, v], w)| {
+        let w = f64x4::splat(*w);
+        let axes = |x: &V3<Lanes>| [x.x, x.y, x.z].map(|a| w * widen(a, h));
+        (axes(r), axes(v))
+    });
+    let first = terms.next().unwrap_or(([f64x4::ZERO; 3], [f64x4::ZERO; 3]));
+    terms.fold(first, |(r, v), (dr, dv)| {
+        (
+            std::array::from_fn(|a| r[a] + dr[a]),
+            std::array::from_fn(|a| v[a] + dv[a]),
+        )
+    })
 }
 
 /// Lanes `4h..4h + 4` of `x` in f64 (exact).
@@ -507,7 +529,8 @@ pub fn rest_density(
             let q: Vec<V3<Lanes>> = (0..view.n).map(|e| model.natural(e)).collect();
             let v = vec![V3::zero(); q.len()];
             let samples = q.len() * model.nodes().len();
-            let mut batch = vec![PointLanes::default(); samples * HALVES];
+            let count = q.len() * points_per_element(model.nodes().len());
+            let mut batch = vec![PointLanes::default(); count * HALVES];
             let mut motion = vec![[V3::zero(); 2]; samples];
             gather_batch(model, roots, &head, (&q, &v), None, &mut batch, &mut motion);
             let lanes = batch.iter().flat_map(|p| (0..4).map(|k| p.lane(k)));

@@ -1,12 +1,12 @@
 //! Reading the field back into a batch's pull ([`super::volume`]), and
 //! the pull's work for the guard's reused start measure.
 //!
-//! Each sample of each lane reads the field (grid velocity u, pressure
-//! push a: [`crate::volume::VolumeField::read_in`], the reference's
-//! [`crate::volume::VolumeField::read`] in the cell the splat found for
-//! the sample, [`crate::volume::VolumeField::cells`]) and keeps
+//! Each point ([`crate::volume::pair_points`]) of each lane reads the field (grid velocity u,
+//! pressure push a: [`crate::volume::VolumeField::read_in`], the
+//! reference's [`crate::volume::VolumeField::read`] in the cell the splat
+//! found for the point, [`crate::volume::VolumeField::cells`]) and keeps
 //! k = ρS (μ u_rel + a) in f32, u_rel = u − c the grid velocity relative
-//! to the head's rigid motion at the sample
+//! to the head's rigid motion at the point
 //! ([`crate::volume::friction`]). While it is at it, it sums, per lane, the old
 //! pull's work and the new one's at the state just gathered
 //! ([`crate::volume::balance::PullWork`]): the guard's start measure is the
@@ -58,10 +58,10 @@ pub struct BatchRates<'a> {
 /// A lane's old and new pull work at the frame's start.
 pub type Exchange = (PullWork, PullWork);
 
-/// Reads batch `points` (sample i, lanes 4h..4h + 4 at 2i + h; in
+/// Reads batch `points` (point p, lanes 4h..4h + 4 at 2p + h; in
 /// `cells`, the field's [`VolumeField::cell_lanes`] of these points) into
-/// `known`
-/// (its old k on entry, the new k on return) and sums each lane's old and
+/// `known` (per point, its old k on entry, the new k on return)
+/// and sums each lane's old and
 /// new pull work into `exchange`, at the samples' positions relative to
 /// their roots and velocities `motion` (f32 lanes, from the gather: the
 /// numbers the guard's measure sweeps), the roots' rigid velocity `root`.
@@ -177,11 +177,11 @@ fn read_into(
     } = *inputs;
     let mu = f64x4::splat(settings.friction_per_s);
     let rho_s = model.mass_per_length().to_array().map(f64::from);
-    // Sample by sample, the eight lanes in turn: the eight strands of a
-    // batch lie side by side, so the nodes one sample reads are mostly
-    // those the last read, still in cache. Each sample's reading is its
+    // Point by point, the eight lanes in turn: the eight strands of a
+    // batch lie side by side, so the nodes one point reads are mostly
+    // those the last read, still in cache. Each point's reading is its
     // own: the order changes no number.
-    // Most samples feel no push, +0 on every axis (bit for bit, not −0:
+    // Most points feel no push, +0 on every axis (bit for bit, not −0:
     // the turn of −0 may differ in the sign of a zero); its turn to world
     // axes is the same for all of them.
     let no_push = head.world_from_body * DVec3::ZERO;

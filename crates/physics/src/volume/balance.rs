@@ -21,7 +21,6 @@ use crate::motion::RigidMotion;
 use crate::reconstruct::Kinematics;
 
 use super::friction::VolumePull;
-use super::splat::SamplePoint;
 
 /// Adds `pull`'s force, torque and power at the state of `kin`
 /// (reconstructed for a root moving as `root`) to `out`.
@@ -85,29 +84,33 @@ impl PullWork {
     }
 }
 
-/// `pull`'s work on a strand of ρS `mass_per_length` whose samples are
-/// `points` (gathered with the head at `head`, the strand's root moving
-/// as `root`): quadrature lengths from the points' masses.
+/// One quadrature sample's place and motion, what the pull's work needs:
+/// the reference's gather keeps them from the reconstruction it makes
+/// anyway ([`super::reference`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleMotion {
+    /// Position relative to the strand's root point, world axes, metres.
+    pub position_m: DVec3,
+    /// Velocity, world, m/s.
+    pub velocity_m_per_s: DVec3,
+    /// Quadrature weight times element length, metres.
+    pub weight_m: f64,
+}
+
+/// `pull`'s work on a strand of ρS `mass_per_length` whose quadrature
+/// samples are `samples`, its root moving as `root`.
 pub fn pull_work(
-    points: &[SamplePoint],
-    head: &RigidMotion,
+    samples: &[SampleMotion],
     root: &RigidMotion,
     pull: &VolumePull,
     mass_per_length: f64,
 ) -> PullWork {
     let mut work = PullWork::default();
-    for (i, p) in points.iter().enumerate() {
-        let r = root_relative(p, head, root.position_m);
-        let v = p.velocity_m_per_s;
-        let w = p.mass_kg / mass_per_length;
+    for (i, s) in samples.iter().enumerate() {
+        let (r, v) = (s.position_m, s.velocity_m_per_s);
         let carried = root.velocity_at(r);
-        work.add(r, v, pull.force_n_per_m(i, v, carried, mass_per_length) * w);
+        let f = pull.force_n_per_m(i, v, carried, mass_per_length) * s.weight_m;
+        work.add(r, v, f);
     }
     work
-}
-
-/// A gathered point's position relative to its strand's root point
-/// `root_m` (world), world axes.
-pub fn root_relative(point: &SamplePoint, head: &RigidMotion, root_m: DVec3) -> DVec3 {
-    head.world_from_body * point.position_m + head.position_m - root_m
 }

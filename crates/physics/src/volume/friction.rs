@@ -47,33 +47,41 @@
 use glam::{DMat3, DVec3};
 use wide::f64x4;
 
+use super::pair_points::point_of;
 use crate::motion::RigidMotion;
 
 #[cfg(doc)]
 use super::splat::NodeSums;
 
 /// What the model hands one strand's step: the friction rate and, per
-/// quadrature sample, the grid velocity relative to the head and the
-/// pressure's push, frozen over the frame.
+/// point (the model reads the field once per pair of quadrature nodes,
+/// [`super::pair_points`]), the grid velocity relative to the head and
+/// the pressure's push, frozen over the frame. Both samples of a pair
+/// feel their point's known part; the drag on its own velocity is each
+/// sample's.
 #[derive(Clone, Copy, Debug)]
 pub struct VolumePull<'a> {
     /// Friction rate μ, 1/s: the implicit part, added to the drag rate.
     pub friction_per_s: f64,
-    /// Grid velocity at each sample relative to the head's rigid motion
+    /// Grid velocity at each point relative to the head's rigid motion
     /// there, u − c₀, at the frame's start, world axes, m/s.
     pub relative_target_m_per_s: &'a [DVec3],
-    /// Pressure acceleration at each sample, world coordinates, m/s².
+    /// Pressure acceleration at each point, world coordinates, m/s².
     pub push_m_per_s2: &'a [DVec3],
+    /// Quadrature samples per element: sample i is node i mod n of
+    /// element i / n, and feels point [`point_of`] of them.
+    pub samples_per_element: usize,
 }
 
 impl VolumePull<'_> {
     /// The known part of the model's force per unit length on sample `i`
-    /// (N/m): ρS (μ u_rel + a). The rest, −μ ρS J q̇, is in the step
-    /// matrix. A sample past the slices' ends feels nothing.
+    /// (N/m): ρS (μ u_rel + a), its point's. The rest, −μ ρS J q̇, is in
+    /// the step matrix. A sample past the slices' ends feels nothing.
     pub fn known_n_per_m(&self, i: usize, mass_per_length: f64) -> DVec3 {
+        let p = self.point(i);
         let (Some(u), Some(a)) = (
-            self.relative_target_m_per_s.get(i),
-            self.push_m_per_s2.get(i),
+            self.relative_target_m_per_s.get(p),
+            self.push_m_per_s2.get(p),
         ) else {
             return DVec3::ZERO;
         };
@@ -90,15 +98,22 @@ impl VolumePull<'_> {
         carried: DVec3,
         mass_per_length: f64,
     ) -> DVec3 {
-        if i >= self
-            .relative_target_m_per_s
-            .len()
-            .min(self.push_m_per_s2.len())
+        if self.point(i)
+            >= self
+                .relative_target_m_per_s
+                .len()
+                .min(self.push_m_per_s2.len())
         {
             return DVec3::ZERO;
         }
         self.known_n_per_m(i, mass_per_length)
             - mass_per_length * self.friction_per_s * (velocity - carried)
+    }
+
+    /// The point sample `i` feels.
+    fn point(&self, i: usize) -> usize {
+        let n = self.samples_per_element.max(1);
+        point_of(i / n, i % n, n)
     }
 }
 

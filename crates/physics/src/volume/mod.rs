@@ -12,22 +12,26 @@
 //! 1. [`grid`]: a box of cubic cells fitted to the head's hair at rest,
 //!    fixed in head coordinates; a trilinear stencil ties a point to the
 //!    eight nodes around it. [`cell`] finds a point's cell and weights,
-//!    once per sample and frame: the splat finds it and the read-back
+//!    once per point and frame: the splat finds it and the read-back
 //!    reuses it.
-//! 2. [`splat`]: every quadrature sample spreads its mass and momentum onto
-//!    the nodes: density and mean velocity of the hair around each node.
+//! 2. [`pair_points`]: the hair is sampled by one point per pair of an
+//!    element's quadrature nodes, the pair's centre of mass, with its mass
+//!    and mean velocity. [`splat`]: every point spreads its mass and
+//!    momentum onto the nodes: density and mean velocity of the hair
+//!    around each node.
 //! 3. [`rest`]: the density of the groom's rest pose, node by node, sets
 //!    the threshold above which hair is compressed; at rest nothing is.
-//! 4. [`friction`]: each sample's velocity is pulled toward the grid's, a
-//!    drag toward a velocity field, implicit in the step exactly as air
-//!    drag is.
-//! 5. [`pressure`]: samples in nodes denser than their threshold are
-//!    pushed down the excess's gradient (an equation of state, no solve).
+//! 4. [`friction`]: each quadrature sample's velocity is pulled toward
+//!    the grid's at its point, a drag toward a velocity field, implicit in
+//!    the step exactly as air drag is.
+//! 5. [`pressure`]: samples whose point is in nodes denser than their
+//!    threshold are pushed down the excess's gradient (an equation of
+//!    state, no solve).
 //!
-//! [`field`] runs 2–5 on any set of sample points, and each engine only
-//! gathers its samples and hands out the answers: [`reference`](mod@reference) is the
+//! [`field`] runs 2–5 on any set of points, and each engine only
+//! gathers its points and hands out the answers: [`reference`](mod@reference) is the
 //! f64 `HairSystem`'s use of it (once per frame, before the strands step,
-//! it gathers every strand's samples, splats them and hands each strand
+//! it gathers every strand's points, splats them and hands each strand
 //! its pull, [`friction::VolumePull`], which the step adds to its forces
 //! and to its drag rate), and `crate::batch::volume` the f32 batch
 //! engine's (an f32 gather per SIMD batch, the same f64 splat and read,
@@ -46,6 +50,7 @@ pub mod cell;
 pub mod field;
 pub mod friction;
 pub mod grid;
+pub mod pair_points;
 pub mod pressure;
 pub mod reference;
 pub mod rest;
