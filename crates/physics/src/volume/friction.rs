@@ -6,7 +6,8 @@
 //!
 //! Per unit length, F = μ ρS (u(x) − v), with μ the friction rate (1/s),
 //! ρS the strand's mass per length, v the sample's world velocity and u(x)
-//! = Σ w_n(x) u_n the grid velocity read back at the sample (PIC). Strands
+//! = Σ w_n(x) u_n the grid velocity read back at the sample's point
+//! ([`super::pair_points`], one per pair of quadrature nodes; PIC). Strands
 //! moving through each other feel it; a lock moving as one does not
 //! (u = v).
 //!

@@ -1,9 +1,9 @@
-//! Splat: strand samples spread their mass and momentum onto the grid's
-//! nodes with the trilinear weights, giving the hair's density and its
-//! mean velocity around each node.
+//! Splat: the model's points spread their mass and momentum onto the
+//! grid's nodes with the trilinear weights, giving the hair's density and
+//! its mean velocity around each node.
 //!
-//! A sample stands for the hair of its quadrature weight: mass
-//! m = ρS · w (kg). Node n gathers m_n = Σ w_n(x_i) m_i and
+//! A point stands for the hair of its pair of quadrature nodes
+//! ([`super::pair_points`]): mass m = ρS ℓ (w_a + w_b) (kg). Node n gathers m_n = Σ w_n(x_i) m_i and
 //! p_n = Σ w_n(x_i) m_i v_i, so ρ_n = m_n / Δx³ is the hair's density there
 //! (kg of hair per m³ of space) and u_n = p_n / m_n its mass-weighted mean
 //! velocity. Positions are in head coordinates (the grid's), velocities in
@@ -26,14 +26,16 @@ use wide::f64x4;
 use super::cell::{Cell, Locator};
 use super::grid::Grid;
 
-/// One strand sample as the model sees it.
+/// One point of the model: a pair of quadrature nodes' centre of mass
+/// ([`super::pair_points`]), or any point with a mass and a velocity.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SamplePoint {
     /// Position in head coordinates, metres.
     pub position_m: DVec3,
     /// Velocity in world coordinates, m/s.
     pub velocity_m_per_s: DVec3,
-    /// Mass the sample stands for, kg (ρS times its quadrature weight).
+    /// Mass the point stands for, kg (ρS ℓ times its nodes' quadrature
+    /// weights).
     pub mass_kg: f64,
 }
 
