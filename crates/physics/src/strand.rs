@@ -142,7 +142,8 @@ impl Strand {
 
     /// [`Self::set_volume_pull`] that keeps the guard's cached measure:
     /// `samples` are the strand's quadrature samples at its current state,
-    /// reconstructed with the head at `head` ([`crate::volume::reference`]); the old
+    /// reconstructed with the head at `head`
+    /// ([`crate::volume::reference`]); the old
     /// pull's work there is exchanged for the new one's in the cached
     /// measure ([`crate::volume::balance::PullWork`]) instead of dropping
     /// it.

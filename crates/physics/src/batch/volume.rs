@@ -1,7 +1,8 @@
 //! The hair–hair model ([`crate::volume`]) on the batch engine: once per
 //! frame, before the strands step, gather every lane's quadrature samples
-//! into its points, one per pair of nodes ([`crate::volume::pair_points`]), splat
-//! them on the rest grid with the shared f64 arithmetic
+//! into its points, one per pair of nodes
+//! ([`crate::volume::pair_points`]), splat them on the rest grid with the
+//! shared f64 arithmetic
 //! ([`crate::volume::field`]), and hand each batch its pull
 //! ([`super::pull::SamplePull`]) for the frame's steps.
 //!
@@ -13,8 +14,9 @@
 //! widened to f64, averaged over each pair of nodes with the quadrature
 //! weights and carried into head coordinates exactly as the reference's
 //! [`crate::volume::pair_points::pair_points`] does, with mass
-//! ρS·ℓ·(w_a + w_b) (four lanes at a time in f64x4, each lane's operations those of the
-//! reference's DVec3 arithmetic, in the same order). The splat, the
+//! ρS·ℓ·(w_a + w_b) (four lanes at a time in f64x4, each lane's
+//! operations those of the reference's DVec3 arithmetic, in the same
+//! order). The splat, the
 //! density excess and what each point reads back (grid velocity, pressure
 //! push) are the same functions the reference calls. The reading becomes
 //! the point's known force k = ρS (μ u_rel + a) (world axes; u_rel the

@@ -1,18 +1,17 @@
 //! Reading the field back into a batch's pull ([`super::volume`]), and
 //! the pull's work for the guard's reused start measure.
 //!
-//! Each point ([`crate::volume::pair_points`]) of each lane reads the field (grid velocity u,
-//! pressure push a: [`crate::volume::VolumeField::read_in`], the
-//! reference's [`crate::volume::VolumeField::read`] in the cell the splat
-//! found for the point, [`crate::volume::VolumeField::cells`]) and keeps
-//! k = ρS (μ u_rel + a) in f32, u_rel = u − c the grid velocity relative
-//! to the head's rigid motion at the point
-//! ([`crate::volume::friction`]). While it is at it, it sums, per lane, the old
-//! pull's work and the new one's at the state just gathered
-//! ([`crate::volume::balance::PullWork`]): the guard's start measure is the
-//! last frame's end measure, which counted the old pull, and exchanging
-//! the two is what lets it be reused instead of measured again (a sweep
-//! over every batch). The work is summed in f32 lanes exactly as the
+//! Each point ([`crate::volume::pair_points`]) of each lane reads the field
+//! (grid velocity u, pressure push a: [`crate::volume::VolumeField::read_in`],
+//! the reference's [`crate::volume::VolumeField::read`] in the cell the splat
+//! found for the point, [`crate::volume::VolumeField::cells`]) and keeps k = ρS
+//! (μ u_rel + a) in f32, u_rel = u − c the grid velocity relative to the head's
+//! rigid motion at the point ([`crate::volume::friction`]). While it is at it,
+//! it sums, per lane, the old pull's work and the new one's at the state just
+//! gathered ([`crate::volume::balance::PullWork`]): the guard's start measure
+//! is the last frame's end measure, which counted the old pull, and exchanging
+//! the two is what lets it be reused instead of measured again (a sweep over
+//! every batch). The work is summed in f32 lanes exactly as the
 //! guard's measure sums it ([`super::pull::add_pull_work`]), at the
 //! positions and velocities the gather's sweep found (the same sweep as
 //! the measure's, on the same state).

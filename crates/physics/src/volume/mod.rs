@@ -28,17 +28,17 @@
 //!    threshold are pushed down the excess's gradient (an equation of
 //!    state, no solve).
 //!
-//! [`field`] runs 2–5 on any set of points, and each engine only
-//! gathers its points and hands out the answers: [`reference`](mod@reference) is the
-//! f64 `HairSystem`'s use of it (once per frame, before the strands step,
-//! it gathers every strand's points, splats them and hands each strand
-//! its pull, [`friction::VolumePull`], which the step adds to its forces
-//! and to its drag rate), and `crate::batch::volume` the f32 batch
-//! engine's (an f32 gather per SIMD batch, the same f64 splat and read,
-//! and a per-sample pull in the batch step, `crate::batch::pull`).
-//! [`state`] is what both keep between frames; [`balance`] counts the
-//! model's work in the guard's energy balance, and exchanges the old
-//! pull's work for the new one's in the reused start-of-frame measure.
+//! [`field`] runs 2–5 on any set of points, and each engine only gathers its
+//! points and hands out the answers: [`reference`](mod@reference) is the f64
+//! `HairSystem`'s use of it (once per frame, before the strands step, it
+//! gathers every strand's points, splats them and hands each strand its pull,
+//! [`friction::VolumePull`], which the step adds to its forces and to its drag
+//! rate), and `crate::batch::volume` the f32 batch engine's (an f32 gather per
+//! SIMD batch, the same f64 splat and read, and a per-sample pull in the batch
+//! step, `crate::batch::pull`). [`state`] is what both keep between frames;
+//! [`balance`] counts the model's work in the guard's energy balance, and
+//! exchanges the old pull's work for the new one's in the reused start-of-frame
+//! measure.
 //! [`settings`] holds the knobs.
 //!
 //! What is left out: the GPU kernels do not run the model

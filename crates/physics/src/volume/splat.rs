@@ -3,8 +3,8 @@
 //! its mean velocity around each node.
 //!
 //! A point stands for the hair of its pair of quadrature nodes
-//! ([`super::pair_points`]): mass m = ρS ℓ (w_a + w_b) (kg). Node n gathers m_n = Σ w_n(x_i) m_i and
-//! p_n = Σ w_n(x_i) m_i v_i, so ρ_n = m_n / Δx³ is the hair's density there
+//! ([`super::pair_points`]): mass m = ρS ℓ (w_a + w_b) (kg). Node n
+//! gathers m_n = Σ w_n(x_i) m_i and p_n = Σ w_n(x_i) m_i v_i, so ρ_n = m_n / Δx³ is the hair's density there
 //! (kg of hair per m³ of space) and u_n = p_n / m_n its mass-weighted mean
 //! velocity. Positions are in head coordinates (the grid's), velocities in
 //! world coordinates: a mean of velocities does not care where the origin
