@@ -193,26 +193,47 @@ const VARIANTS: [Variant; 5] = [
     },
 ];
 
+impl GroomInput {
+    /// The groom: the style's hair on the head (`--head`, else the head an
+    /// imported group names, else the default head), and that head's
+    /// path (`None` for the default head).
+    pub fn load(&self) -> anyhow::Result<(Groom, Option<PathBuf>)> {
+        let style = Style::load(&self.style)?;
+        let head_path = self
+            .head
+            .clone()
+            .or_else(|| imported_head(&style, &self.style));
+        let head = load_head(head_path.as_deref())?;
+        Ok((Groom::new(style, head), head_path))
+    }
+
+    /// The style and its head, as the log names them.
+    pub fn describe(&self, head_path: Option<&Path>) -> String {
+        format!(
+            "{} on {}",
+            self.style.display(),
+            head_path.map_or("the default head".into(), |p| p.display().to_string())
+        )
+    }
+
+    /// The input `--style` and `--head` ask for, if `--style` is given.
+    pub fn from_args(style: Option<&PathBuf>, head: Option<&PathBuf>) -> Option<Self> {
+        style.map(|style| Self {
+            style: style.clone(),
+            head: head.cloned(),
+        })
+    }
+}
+
 /// Runs the study on `input`: `groom.csv`, `groom.svg`.
 pub fn run(ctx: &mut BenchContext<'_>, input: &GroomInput) -> anyhow::Result<()> {
-    let style = Style::load(&input.style)?;
-    let head_path = input
-        .head
-        .clone()
-        .or_else(|| imported_head(&style, &input.style));
-    let head = load_head(head_path.as_deref())?;
-    let groom = Groom::new(style, head);
+    let (groom, head_path) = input.load()?;
     let collider = Arc::new(
         groom
             .collider()
             .context("cannot build the head's collision field")?,
     );
-    writeln!(
-        ctx.log,
-        "   {} on {}",
-        input.style.display(),
-        head_path.map_or("the default head".into(), |p| p.display().to_string())
-    )?;
+    writeln!(ctx.log, "   {}", input.describe(head_path.as_deref()))?;
     let frames = if ctx.quick { FRAMES.1 } else { FRAMES.0 };
     let runs = if ctx.quick { RUNS.1 } else { RUNS.0 };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());

@@ -110,11 +110,13 @@ pub struct BenchArgs {
     /// absent): reference or batch.
     #[arg(long = "soak-engine", value_name = "ENGINE", value_parser = soak::parse_engine)]
     pub soak_engines: Vec<EngineKind>,
-    /// The style the `groom` study times (an imported groom's, say).
+    /// The style the `groom` study times (an imported groom's, say), and
+    /// the one the `volume` study settles instead of the built-in full
+    /// head.
     #[arg(long, value_name = "STYLE")]
     pub style: Option<PathBuf>,
-    /// The head mesh of the `groom` study; default: the head its imported
-    /// group names, else the default head.
+    /// The head mesh of the `groom` and `volume` studies with `--style`;
+    /// default: the head its imported group names, else the default head.
     #[arg(long, value_name = "MESH")]
     pub head: Option<PathBuf>,
 }
@@ -159,8 +161,11 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             Study::Stability => stability::run(&mut ctx),
             Study::Modes => modes::run(&mut ctx),
             Study::Throughput => throughput::run(&mut ctx),
-            Study::Volume => volume::run(&mut ctx, volume::Part::Settle),
-            Study::VolumeShake => volume::run(&mut ctx, volume::Part::Shake),
+            Study::Volume => {
+                let input = groom::GroomInput::from_args(args.style.as_ref(), args.head.as_ref());
+                volume::run(&mut ctx, volume::Part::Settle, input.as_ref())
+            }
+            Study::VolumeShake => volume::run(&mut ctx, volume::Part::Shake, None),
             Study::VolumeCost => volume_cost::cost(&mut ctx),
             Study::Soak => {
                 let engines = if args.soak_engines.is_empty() {
@@ -175,14 +180,8 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
                 soak::run(&mut ctx, length, engines)
             }
             Study::Groom => {
-                let style = args
-                    .style
-                    .clone()
+                let input = groom::GroomInput::from_args(args.style.as_ref(), args.head.as_ref())
                     .context("the groom study needs --style STYLE.ron")?;
-                let input = groom::GroomInput {
-                    style,
-                    head: args.head.clone(),
-                };
                 groom::run(&mut ctx, &input)
             }
         }

@@ -4,7 +4,9 @@
 //! The scene is `assets/styles/groomed/full_head.ron` (3,000 guides of
 //! 25 and 15 cm curls) on the default head with its collider, stepped by
 //! the reference engine (volume and shake; the cost runs both engines),
-//! once with the model and once without:
+//! once with the model and once without; `--style` (and `--head`) settles
+//! another groom instead, an imported one say, with the engine its style
+//! names:
 //!
 //! - **volume**: settled 5 s on a still head; mean distance of the hair's
 //!   element points from the nearest root (the scalp) and the volume of
@@ -33,6 +35,7 @@ use serde::Serialize;
 
 use super::BenchContext;
 use super::chart::{Axis, LineChart, Series, draw_line_chart};
+use super::groom::GroomInput;
 use super::table::write_csv;
 use super::volume_measures::{close_pairs, mean_scalp_distance_m, occupied_volume_m3};
 use crate::groom::Groom;
@@ -105,20 +108,32 @@ pub fn build(groom: &Groom, engine: EngineKind, on: bool) -> anyhow::Result<Head
     Ok(sim)
 }
 
-/// Runs `part` of the study.
-pub fn run(ctx: &mut BenchContext<'_>, part: Part) -> anyhow::Result<()> {
+/// Runs `part` of the study: on the built-in full head, or, for the
+/// settle, on the groom `input` names (`--style`, `--head`; an imported
+/// groom, say) with the engine its style names.
+pub fn run(
+    ctx: &mut BenchContext<'_>,
+    part: Part,
+    input: Option<&GroomInput>,
+) -> anyhow::Result<()> {
     let strands = if ctx.quick { 70 } else { 3000 };
-    match part {
-        Part::Settle => settle(ctx, &scaled_groom(strands)?),
-        Part::Shake => shake(ctx, &scaled_groom(strands)?),
+    match (part, input) {
+        (Part::Settle, Some(input)) => {
+            let (groom, head_path) = input.load()?;
+            writeln!(ctx.log, "   {}", input.describe(head_path.as_deref()))?;
+            let engine = groom.grown.engine;
+            settle(ctx, &groom, engine)
+        }
+        (Part::Settle, None) => settle(ctx, &scaled_groom(strands)?, EngineKind::Reference),
+        (Part::Shake, _) => shake(ctx, &scaled_groom(strands)?),
     }
 }
 
-fn settle(ctx: &mut BenchContext<'_>, base: &Groom) -> anyhow::Result<()> {
+fn settle(ctx: &mut BenchContext<'_>, base: &Groom, engine: EngineKind) -> anyhow::Result<()> {
     let settle = if ctx.quick { 10 } else { 300 };
     let mut rows = Vec::new();
     for on in [false, true] {
-        let mut sim = build(base, EngineKind::Reference, on)?;
+        let mut sim = build(base, engine, on)?;
         if !on {
             rows.push(volume_row("rest", sim.engine()));
         }

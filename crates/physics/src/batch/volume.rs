@@ -258,8 +258,16 @@ impl BatchVolume {
         let mut cells = field.cell_lanes();
         let mu = settings.friction_per_s as f32;
         for (view, pulls) in groups.iter().zip(&mut self.groups) {
+            if pulls.points.is_empty() {
+                // A group without strands (added with no roots): nothing
+                // to read, and no chunks to cut.
+                pulls.known.clear();
+                pulls.rate.clear();
+                pulls.exchange.clear();
+                continue;
+            }
             let (per_strand, lanes) = (pulls.points_per_strand, pulls.points_per_strand * HALVES);
-            let batches = pulls.points.len() / lanes.max(1);
+            let batches = pulls.points.len() / lanes;
             // An old pull exists when the last frame read this very layout.
             let had_old = pulls.known.len() == batches * per_strand && pulls.rate.len() == batches;
             let rates: Vec<Lanes> = view.models.iter().map(|m| friction_rate(mu, m)).collect();
@@ -328,6 +336,14 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     out.points_per_strand = n * points_per_element(out.nodes);
     out.samples = n * out.nodes;
     let batches = view.models.len();
+    if batches == 0 || out.samples == 0 {
+        // A group without strands, or of strands without samples: no
+        // points (and no chunks of zero to cut).
+        out.points.clear();
+        out.motion.clear();
+        out.from_kept.clear();
+        return;
+    }
     let lanes = out.points_per_strand * HALVES;
     out.points.resize(batches * lanes, PointLanes::default());
     out.motion.resize(batches * out.samples, [V3::zero(); 2]);
