@@ -136,7 +136,8 @@ pub struct HeadlessSim {
 
 /// Adds the guides of an imported group, one engine group per strand (each
 /// has its own length, elements and natural strains), each started in its
-/// fitted shape; returns their indices. On the batch engine strands of the
+/// fitted shape, which is also the shape it rests in (the hair–hair
+/// model's rest pose); returns their indices. On the batch engine strands of the
 /// same element count share SIMD batches, eight to a batch, whatever
 /// their other constants (`helixhair_physics::batch`, "Packing").
 pub fn add_imported(
@@ -149,6 +150,10 @@ pub fn add_imported(
         let range = system.add_group(&strand.params(material), &[strand.pose()])?;
         let rest = vec![glam::DVec3::ZERO; strand.strains.len()];
         system.set_state(range.start, &strand.strains, &rest);
+        // It rests there (sag-free: gravity holds it in its fitted shape,
+        // away from its natural one), so the hair–hair model's rest
+        // density is built from that shape.
+        system.set_rest_pose(range.start, &strand.strains);
     }
     Ok(start..system.strand_count())
 }

@@ -356,6 +356,18 @@ impl Engine {
         }
     }
 
+    /// Sets the strains strand `index` rests in, which the hair–hair
+    /// model's rest density is built from ([`crate::Strand::rest_pose`]:
+    /// its natural strains unless told; an imported sag-free strand rests
+    /// in its groomed shape). Panics if out of range or of the wrong
+    /// length.
+    pub fn set_rest_pose(&mut self, index: usize, q: &[DVec3]) {
+        match self {
+            Self::Reference(system) => system.set_rest_pose(index, q),
+            Self::Batch { system, .. } => system.set_rest_pose(index, q),
+        }
+    }
+
     /// Strand `index`'s model. Panics if out of range.
     pub fn strand_model(&self, index: usize) -> &Arc<StrandModel> {
         match self {

@@ -136,6 +136,17 @@ impl HairSystem {
         &mut self.strands
     }
 
+    /// Sets the strains strand `index` rests in ([`Strand::rest_pose`]);
+    /// the hair–hair model rebuilds its rest density at the next frame.
+    /// Panics if `index` is out of range or `q`'s length is not the
+    /// strand's element count.
+    pub fn set_rest_pose(&mut self, index: usize, q: &[DVec3]) {
+        self.strands[index].set_rest_pose(q);
+        if let Some(volume) = &mut self.volume {
+            volume.state_mut().forget_rest();
+        }
+    }
+
     /// Simulated time in seconds.
     pub fn time_secs(&self) -> f64 {
         self.time_secs

@@ -24,6 +24,8 @@ pub struct Strand {
     root: RootPose,
     q: Vec<DVec3>,
     v: Vec<DVec3>,
+    /// The strains the strand rests in ([`Self::rest_pose`]).
+    rest_pose: Vec<DVec3>,
     external_n_per_m: Vec<DVec3>,
     volume: VolumeState,
     workspace: StepWorkspace,
@@ -42,6 +44,7 @@ impl Strand {
         Self {
             q: model.natural.clone(),
             v: vec![DVec3::ZERO; n],
+            rest_pose: model.natural.clone(),
             external_n_per_m: Vec::new(),
             volume: VolumeState::default(),
             workspace: StepWorkspace::new(method),
@@ -80,6 +83,20 @@ impl Strand {
         self.q.copy_from_slice(q);
         self.v.copy_from_slice(v);
         self.cached_measure = None;
+    }
+
+    /// The strains the strand rests in, which the hair–hair model's rest
+    /// density is built from ([`crate::volume::rest`]): its natural
+    /// strains unless told otherwise. A sag-free strand (an imported
+    /// groom's, docs/import.md) rests in its groomed shape, which gravity
+    /// holds away from its natural one.
+    pub fn rest_pose(&self) -> &[DVec3] {
+        &self.rest_pose
+    }
+
+    /// Sets the strains the strand rests in (length: the element count).
+    pub fn set_rest_pose(&mut self, q: &[DVec3]) {
+        self.rest_pose.copy_from_slice(q);
     }
 
     /// The guard's measure of the current state ([`crate::frame_balance`])

@@ -185,8 +185,12 @@ fn the_rest_pose_feels_no_pressure_on_the_batch_engine() {
 /// moves in by 60% of its root's distance): the tips' cells are denser
 /// than the rest pose's, and in the first frame the model pushes the outer
 /// tips outward, faster than the strands' own elasticity alone does.
-#[test]
-fn a_squeezed_bundle_is_pushed_apart_on_the_batch_engine() {
+/// 25 straight 10 cm strands of 5 elements hanging from a 5 × 5 grid of
+/// roots 1 cm apart, and for each the strains that bend it inward so that
+/// its tip is drawn toward the axis by 60% of its root's distance (the
+/// bend about whichever strain axis, either sign, draws the tips in: tip
+/// displacement κL²/2 = 0.6 r).
+fn squeezed_bundle() -> (StrandParams, Vec<RootPose>, Vec<Vec<DVec3>>) {
     let params = StrandParams {
         length_m: 0.1,
         elements: 5,
@@ -200,10 +204,46 @@ fn a_squeezed_bundle_is_pushed_apart_on_the_batch_engine() {
         })
         .collect();
     let natural = StrandModel::new(&params, 4).unwrap().natural;
-    let tip_radius = |system: &BatchSystem, i: usize| {
-        let tip = *system.boundary_points_world(i).last().unwrap();
-        DVec3::new(tip.x.into(), 0.0, tip.z.into()).length()
-    };
+    let mut probe = batch(&params, &roots, SimSettings::default());
+    let bends = [
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ];
+    let radii: Vec<f64> = bends
+        .iter()
+        .map(|axis| {
+            let q: Vec<DVec3> = natural.iter().map(|k| *k + 10.0 * *axis).collect();
+            probe.set_state(24, &q, &vec![DVec3::ZERO; q.len()]);
+            tip_radius(&probe, 24)
+        })
+        .collect();
+    let inward = (0..bends.len())
+        .min_by(|a, b| radii[*a].total_cmp(&radii[*b]))
+        .map(|i| bends[i])
+        .unwrap();
+    let states = roots
+        .iter()
+        .map(|root| {
+            let kappa = 1.2 * root.position_m.length() / (params.length_m * params.length_m);
+            natural.iter().map(|k| *k + kappa * inward).collect()
+        })
+        .collect();
+    (params, roots, states)
+}
+
+/// Distance of strand `i`'s tip from the vertical axis, metres.
+fn tip_radius(system: &BatchSystem, i: usize) -> f64 {
+    let tip = *system.boundary_points_world(i).last().unwrap();
+    DVec3::new(tip.x.into(), 0.0, tip.z.into()).length()
+}
+
+#[test]
+fn a_squeezed_bundle_is_pushed_apart_on_the_batch_engine() {
+    let (params, roots, states) = squeezed_bundle();
     let squeezed = |on: bool| {
         let mut settings = SimSettings {
             gravity_m_per_s2: DVec3::ZERO,
@@ -211,32 +251,8 @@ fn a_squeezed_bundle_is_pushed_apart_on_the_batch_engine() {
         };
         settings.interaction.enabled = on;
         let mut system = batch(&params, &roots, settings);
-        // The bend (about any strain axis, either sign) that draws the
-        // tips in: tip displacement κL²/2 = 0.6 r.
-        let bends = [
-            DVec3::X,
-            -DVec3::X,
-            DVec3::Y,
-            -DVec3::Y,
-            DVec3::Z,
-            -DVec3::Z,
-        ];
-        let radii: Vec<f64> = bends
-            .iter()
-            .map(|axis| {
-                let q: Vec<DVec3> = natural.iter().map(|k| *k + 10.0 * *axis).collect();
-                system.set_state(24, &q, &vec![DVec3::ZERO; q.len()]);
-                tip_radius(&system, 24)
-            })
-            .collect();
-        let inward = (0..bends.len())
-            .min_by(|a, b| radii[*a].total_cmp(&radii[*b]))
-            .map(|i| bends[i])
-            .unwrap();
-        for (i, root) in roots.iter().enumerate() {
-            let kappa = 1.2 * root.position_m.length() / (params.length_m * params.length_m);
-            let q: Vec<DVec3> = natural.iter().map(|k| *k + kappa * inward).collect();
-            system.set_state(i, &q, &vec![DVec3::ZERO; q.len()]);
+        for (i, q) in states.iter().enumerate() {
+            system.set_state(i, q, &vec![DVec3::ZERO; q.len()]);
         }
         let before: Vec<f64> = (0..roots.len()).map(|i| tip_radius(&system, i)).collect();
         system.step_frame(&RigidMotion::default());
@@ -258,6 +274,43 @@ fn a_squeezed_bundle_is_pushed_apart_on_the_batch_engine() {
         assert!(
             pushed > elastic,
             "strand {i}: tip moved out {pushed:.3e} m with the model, {elastic:.3e} without"
+        );
+    }
+}
+
+/// Hair that rests away from its natural shape (an imported sag-free
+/// groom rests in its groomed shape, which gravity holds) feels no
+/// pressure there once told so (`Engine::set_rest_pose`): the squeezed
+/// bundle, started and resting squeezed, has no node in excess in its
+/// first frame, on either engine, where the same bundle resting in its
+/// natural shape is well above its threshold.
+#[test]
+fn hair_resting_away_from_its_natural_shape_feels_no_pressure_there() {
+    let (params, roots, states) = squeezed_bundle();
+    let settings = SimSettings {
+        gravity_m_per_s2: DVec3::ZERO,
+        interaction: interaction(),
+        ..SimSettings::default()
+    };
+    for kind in [EngineKind::Batch, EngineKind::Reference] {
+        let most_excess = |told: bool| {
+            let mut engine = Engine::new(kind, settings.clone()).unwrap();
+            engine.add_group(&params, &roots).unwrap();
+            for (i, q) in states.iter().enumerate() {
+                engine.set_state(i, q, &vec![DVec3::ZERO; q.len()]);
+                if told {
+                    engine.set_rest_pose(i, q);
+                }
+            }
+            engine.step_frame(&RigidMotion::default());
+            let (_, field) = engine.volume_field().expect("the model ran");
+            field.excess().iter().cloned().fold(0.0, f64::max)
+        };
+        assert_eq!(most_excess(true), 0.0, "{kind:?}: resting where it is");
+        let natural = most_excess(false);
+        assert!(
+            natural > 0.25,
+            "{kind:?}: resting in its natural shape: {natural}"
         );
     }
 }

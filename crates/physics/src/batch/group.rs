@@ -34,6 +34,10 @@ pub(super) struct Group {
     /// Batch-major: batch b's element e is entry b·N + e.
     pub(super) q: Vec<V3<Lanes>>,
     pub(super) v: Vec<V3<Lanes>>,
+    /// Batch-major as `q`: the strains each lane rests in, which the
+    /// hair–hair model's rest density is built from (its natural strains
+    /// unless told: [`crate::Strand::rest_pose`]).
+    pub(super) rest_q: Vec<V3<Lanes>>,
     /// Per batch: the guard's measures of its lanes, at the start of the
     /// frame while it steps, at its end once the frame is judged.
     pub(super) measures: Vec<[StrandMeasure; LANES]>,
@@ -120,6 +124,7 @@ impl Group {
             strands: Vec::new(),
             q: Vec::new(),
             v: Vec::new(),
+            rest_q: Vec::new(),
             measures: Vec::new(),
             measured: false,
             standing: Vec::new(),
@@ -146,6 +151,7 @@ impl Group {
         if lane == 0 {
             self.models.push(uniform.clone());
             self.q.extend_from_slice(&uniform.natural);
+            self.rest_q.extend_from_slice(&uniform.natural);
             self.v.extend(std::iter::repeat_n(V3::zero(), n));
             self.measures.push(Default::default());
             self.standing.push(BatchStanding::default());
@@ -159,6 +165,8 @@ impl Group {
             for l in lane..LANES {
                 let (q, v) = (&mut self.q[range.clone()], &mut self.v[range.clone()]);
                 set_natural_at_rest(&self.models[batch], q, v, l);
+                let natural = self.models[batch].natural_of_lane(l);
+                set_lane(&mut self.rest_q[range.clone()], l, natural);
                 self.standing[batch].lanes[l] = LaneStanding::default();
             }
         }
@@ -237,6 +245,7 @@ impl Group {
             roots: &self.roots,
             q: &self.q,
             v: &self.v,
+            rest_q: &self.rest_q,
             kept,
         }
     }
@@ -417,4 +426,18 @@ fn judge_batch(
         kept.clear();
     }
     failed
+}
+
+/// Sets lane `lane` of `values` (one strand's N entries) to `lane_values`,
+/// element by element.
+pub(super) fn set_lane(
+    values: &mut [V3<Lanes>],
+    lane: usize,
+    lane_values: impl IntoIterator<Item = [f32; 3]>,
+) {
+    for (x, [a, b, c]) in values.iter_mut().zip(lane_values) {
+        x.x.set_lane(lane, a);
+        x.y.set_lane(lane, b);
+        x.z.set_lane(lane, c);
+    }
 }

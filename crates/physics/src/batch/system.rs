@@ -25,7 +25,7 @@ use super::batch_step::{BatchStep, krylov_bytes_per_element};
 use super::contact::{NearCells, SkinTest};
 use super::exact::Elimination;
 use super::forward::{FrameState, advance};
-use super::group::{FrameCheck, Group};
+use super::group::{FrameCheck, Group, set_lane};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
@@ -401,6 +401,22 @@ impl BatchSystem {
                 x.y.set_lane(lane, s.y as f32);
                 x.z.set_lane(lane, s.z as f32);
             }
+        }
+    }
+
+    /// Sets the strains strand `index` rests in (rounded to f32; length:
+    /// its element count), which the hair–hair model's rest density is
+    /// built from ([`crate::Strand::rest_pose`]); the model rebuilds it at
+    /// the next frame.
+    pub fn set_rest_pose(&mut self, index: usize, q: &[DVec3]) {
+        let (g, batch, lane) = self.locate(index);
+        let g = &mut self.groups[g];
+        let n = g.n;
+        assert!(q.len() == n, "rest pose length must be {n}");
+        let values = q.iter().map(|k| k.as_vec3().to_array());
+        set_lane(&mut g.rest_q[batch * n..(batch + 1) * n], lane, values);
+        if let Some(volume) = &mut self.volume {
+            volume.state_mut().forget_rest();
         }
     }
 

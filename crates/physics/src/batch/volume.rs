@@ -41,10 +41,11 @@
 //! # Rest density
 //!
 //! Built on first use, as on the reference, from the rest pose: every
-//! strand at its natural strains, at rest, the head at the origin, on a
+//! strand in the strains it rests in (its natural strains unless told,
+//! [`crate::Strand::rest_pose`]), at rest, the head at the origin, on a
 //! grid fitted to those samples with half the longest strand to spare. It
 //! is gathered by the same f32 sweep the frames use, so a batch at rest in
-//! its natural shape on a still head splats exactly the rest density and
+//! its rest pose on a still head splats exactly the rest density and
 //! feels no pressure.
 //!
 //! # Padding
@@ -90,6 +91,9 @@ pub struct GroupView<'a> {
     pub q: &'a [V3<Lanes>],
     /// Strain rates, batch-major.
     pub v: &'a [V3<Lanes>],
+    /// The strains each lane rests in, batch-major
+    /// ([`crate::Strand::rest_pose`]): the rest density's pose.
+    pub rest_q: &'a [V3<Lanes>],
     /// The samples the guard's measure kept at the end of the last frame,
     /// if they still describe the state ([`KeptSamples`]).
     pub kept: Option<KeptSamples<'a>>,
@@ -533,8 +537,9 @@ fn widen(x: Lanes, h: usize) -> f64x4 {
     f64x4::new(std::array::from_fn(|k| f64::from(a[4 * h + k])))
 }
 
-/// The rest density of the groups' rest pose (natural strains, at rest,
-/// head at the origin), gathered as the frames are; `None` without strands.
+/// The rest density of the groups' rest pose (each lane's rest strains,
+/// at rest, head at the origin), gathered as the frames are; `None`
+/// without strands.
 pub fn rest_density(
     groups: &[GroupView<'_>],
     settings: &InteractionSettings,
@@ -543,14 +548,14 @@ pub fn rest_density(
     let mut points = Vec::new();
     let mut longest_m: f64 = 0.0;
     for view in groups {
-        for (model, roots) in view.models.iter().zip(view.roots.chunks(LANES)) {
-            let q: Vec<V3<Lanes>> = (0..view.n).map(|e| model.natural(e)).collect();
+        let rest = view.rest_q.chunks(view.n.max(1));
+        for ((model, roots), q) in view.models.iter().zip(view.roots.chunks(LANES)).zip(rest) {
             let v = vec![V3::zero(); q.len()];
             let samples = q.len() * model.nodes().len();
             let count = q.len() * points_per_element(model.nodes().len());
             let mut batch = vec![PointLanes::default(); count * HALVES];
             let mut motion = vec![[V3::zero(); 2]; samples];
-            gather_batch(model, roots, &head, (&q, &v), None, &mut batch, &mut motion);
+            gather_batch(model, roots, &head, (q, &v), None, &mut batch, &mut motion);
             let lanes = batch.iter().flat_map(|p| (0..4).map(|k| p.lane(k)));
             points.extend(lanes.filter(|p| p.mass_kg > 0.0));
             let length_m = (0..view.n).fold(Lanes::splat(0.0), |sum, e| sum + model.length_m(e));

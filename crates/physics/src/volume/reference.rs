@@ -5,8 +5,10 @@
 //! hand each strand its pull ([`super::friction::VolumePull`]) for the
 //! frame's steps.
 //!
-//! The rest density is built on first use from every strand's rest shape
-//! (natural strains, at rest, head at the origin: head coordinates), on a
+//! The rest density is built on first use from every strand's rest pose
+//! ([`Strand::rest_pose`]: its natural strains unless told, an imported
+//! sag-free strand its groomed shape; at rest, head at the origin: head
+//! coordinates), on a
 //! grid fitted to those points with half the longest strand to spare on
 //! each side, room for hair that swings out.
 
@@ -131,7 +133,8 @@ pub fn strand_points(
     pair_points(samples, weights, &model.lengths_m, &at, points);
 }
 
-/// The rest density of `strands`' rest shapes, or `None` without strands.
+/// The rest density of `strands`' rest poses ([`Strand::rest_pose`]: their
+/// natural shapes unless told), or `None` without strands.
 pub fn rest_density(strands: &[Strand], settings: &InteractionSettings) -> Option<RestDensity> {
     let head = RigidMotion::default();
     let mut points = Vec::new();
@@ -143,7 +146,7 @@ pub fn rest_density(strands: &[Strand], settings: &InteractionSettings) -> Optio
         let still = vec![DVec3::ZERO; model.elements()];
         reconstruct(
             model,
-            &model.natural,
+            s.rest_pose(),
             &still,
             &head.carry(s.root()),
             &mut kin,
