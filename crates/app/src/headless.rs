@@ -382,13 +382,14 @@ impl HeadlessSim {
             self.strands_lost += events.len();
             let sentences = events.iter().take(room).map(|event| {
                 // What failed and by how much, and what the batch guard
-                // did (it resets to the natural shape, not the last good
-                // one as the reference's events say).
+                // did (it resets to the strand's rest pose, its natural
+                // shape unless told, not the last good one as the
+                // reference's events say).
                 let (strand, t, cause) = (event.strand, event.time_secs, event.cause);
                 let group = self.group_name(strand);
                 let action = match event.action {
                     GuardAction::Pinned => {
-                        "it kept failing, so it was pinned at rest in its natural shape; it is \
+                        "it kept failing, so it was pinned at rest in its rest shape; it is \
                          no longer simulated (try more substeps or the Exact solver)"
                     }
                     _ => "it was reset to its rest shape",

@@ -40,7 +40,7 @@
 //! [`Guard::hold_frames`] frames, or [`Guard::long_resets_before_pinning`]
 //! times each within [`Guard::long_window_frames`] of the previous (a
 //! strand failing every time a head motion repeats), is **pinned**: held at rest in its
-//! natural shape, carried by the head, and no longer stepped, with one
+//! rest pose ([`crate::Strand::rest_pose`]: its natural shape unless told), carried by the head, and no longer stepped, with one
 //! event that says so, instead of a reset every frame. Each intervention is
 //! a [`GuardEvent`] that the app shows the user.
 
@@ -191,7 +191,7 @@ impl std::fmt::Display for GuardEvent {
                 method.label()
             ),
             GuardAction::Reset => "reset it to its last good shape, at rest".to_string(),
-            GuardAction::Pinned => "it kept failing, so it is pinned at rest in its natural \
+            GuardAction::Pinned => "it kept failing, so it is pinned at rest in its rest \
                                     shape and no longer simulated; change its settings (fewer \
                                     elements, more substeps, the Exact solver) to free it"
                 .to_string(),

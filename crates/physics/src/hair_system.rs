@@ -370,7 +370,7 @@ fn guarded_frame(
     };
     let mut state = s.guard_state();
     if state.pinned {
-        // Held at rest in its natural shape, carried by the head.
+        // Held at rest in its rest pose, carried by the head.
         return FrameOutcome::default();
     }
     state.resets.tick();
@@ -415,7 +415,7 @@ fn guarded_frame(
             state.substeps = 0;
             state.hold_frames = guard.hold_frames;
             if state.resets.record_reset(&guard) {
-                s.set_natural_at_rest();
+                s.set_rest_pose_at_rest();
                 state.pinned = true;
                 break GuardAction::Pinned;
             }

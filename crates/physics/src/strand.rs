@@ -323,9 +323,10 @@ impl Strand {
 }
 
 impl Strand {
-    /// Puts the strand at rest in its natural shape (the guard's pin).
-    pub fn set_natural_at_rest(&mut self) {
-        self.q.clone_from(&self.model.natural);
+    /// Puts the strand at rest in its rest pose ([`Self::rest_pose`]: its
+    /// natural shape unless told), where the guard pins it.
+    pub fn set_rest_pose_at_rest(&mut self) {
+        self.q.clone_from(&self.rest_pose);
         self.v.fill(DVec3::ZERO);
         self.cached_measure = None;
     }

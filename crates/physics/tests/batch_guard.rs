@@ -107,6 +107,34 @@ fn a_reset_strand_is_at_its_natural_shape_at_rest() {
     assert!(system.v(4).iter().all(|v| *v == DVec3::ZERO));
 }
 
+/// A strand that rests away from its natural shape (an imported sag-free
+/// strand rests in its groomed shape, `BatchSystem::set_rest_pose`) is
+/// reset there, at rest, not to its natural shape, from which it would
+/// swing back into its pose.
+#[test]
+fn a_reset_strand_is_at_its_rest_pose_at_rest() {
+    let strict = Guard {
+        speed_limit_m_per_s: 1e-3,
+        ..Guard::default()
+    };
+    let mut system = mixed(Method::Exact, Some(strict));
+    let natural = model(&hanging_curl(10), 4).natural;
+    let pose: Vec<DVec3> = natural
+        .iter()
+        .enumerate()
+        .map(|(e, k)| *k + DVec3::new(1.0, -2.0, 3.0) * (e as f64 + 1.0))
+        .collect();
+    system.set_rest_pose(4, &pose);
+    system.step_frame(&at_rest(glam::DMat3::IDENTITY));
+    assert_eq!(system.last_guard_resets(), &[0, 1, 2, 3, 4]);
+    let pose_f32: Vec<DVec3> = pose.iter().map(|k| k.as_vec3().as_dvec3()).collect();
+    let natural_f32: Vec<DVec3> = natural.iter().map(|k| k.as_vec3().as_dvec3()).collect();
+    assert_eq!(system.q(4), pose_f32);
+    assert!(system.v(4).iter().all(|v| *v == DVec3::ZERO));
+    // Its batch-mate, told nothing, is at its natural shape.
+    assert_eq!(system.q(3), natural_f32);
+}
+
 #[test]
 fn a_healthy_run_is_left_alone_and_matches_the_unguarded_one() {
     // Exact on the hanging curl and straight strands under a head shake at

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::batch_step::{BatchStep, Scratch, step_pulled};
 use super::contact::{LaneContact, NoContact, SkinTest};
-use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest};
+use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest, set_rest_pose_at_rest};
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
@@ -311,6 +311,7 @@ impl Group {
         let n = self.n;
         // Kept samples from the last frame describe the state no more.
         self.kept_at = None;
+        let rest_q = &self.rest_q;
         let step_batch = |scratch: &mut Scratch,
                           (b, ((((((q, v), roots), model), measures), standing), kept)): (
             usize,
@@ -331,7 +332,14 @@ impl Group {
                 None => step_pulled(model, env, &root, step_kind, q, v, scratch, NoContact, pull),
             }
             if let Some(check) = check {
-                let batch = BatchState { model, roots, q, v };
+                let rest_q = &rest_q[b * n..(b + 1) * n];
+                let batch = BatchState {
+                    model,
+                    roots,
+                    rest_q,
+                    q,
+                    v,
+                };
                 let judged = judge_batch(check, env, batch, measures, &standing.lanes, pull, kept);
                 standing.failed = judged;
             }
@@ -375,6 +383,8 @@ impl Group {
 struct BatchState<'a> {
     model: &'a LaneModel,
     roots: &'a [RootPose],
+    /// The lanes' rest poses, where the guard resets and holds them.
+    rest_q: &'a [V3<Lanes>],
     q: &'a mut [V3<Lanes>],
     v: &'a mut [V3<Lanes>],
 }
@@ -399,9 +409,15 @@ fn judge_batch(
     pull: Option<SamplePull<'_>>,
     kept: &mut Vec<[V3<Lanes>; 2]>,
 ) -> [Option<GuardCause>; LANES] {
-    let BatchState { model, roots, q, v } = batch;
+    let BatchState {
+        model,
+        roots,
+        rest_q,
+        q,
+        v,
+    } = batch;
     for (lane, _) in standing.iter().enumerate().filter(|(_, s)| s.pinned) {
-        set_natural_at_rest(model, q, v, lane);
+        set_rest_pose_at_rest(rest_q, q, v, lane);
     }
     let motions = carried(check.motion, roots);
     let root = RootMotion::<Lanes>::gather(&motions);
@@ -421,7 +437,7 @@ fn judge_batch(
         pull.as_ref(),
         samples,
     );
-    let failed = check_and_reset(check.guard, model, q, v, measures, &end, check.frame);
+    let failed = check_and_reset(check.guard, rest_q, q, v, measures, &end, check.frame);
     if pull.is_none() || failed.iter().any(Option::is_some) {
         kept.clear();
     }

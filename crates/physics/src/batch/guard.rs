@@ -20,8 +20,9 @@
 //! [`F32_ENERGY_ROUND_OFF`]). The start of a frame is the end of the
 //! previous one, so a frame costs one sweep more than its steps.
 //!
-//! **Recovery is a reset**: a failing strand goes back to its natural shape
-//! at rest (q = qⁿ, q̇ = 0), and reported with the check that failed and
+//! **Recovery is a reset**: a failing strand goes back to its rest pose at
+//! rest (q = its rest strains, qⁿ unless told otherwise, as an imported
+//! sag-free strand is told its groomed shape; q̇ = 0), and reported with the check that failed and
 //! by how much ([`super::BatchSystem::last_guard_events`], the f64
 //! guard's [`crate::guard::GuardEvent`]). This path does not retry the
 //! frame with Exact and more substeps as the f64 guard does: it is the
@@ -309,12 +310,13 @@ fn lanes_in_contact(
 
 /// Checks one batch (`q`, `v`: N triples each) whose lanes started the
 /// frame measured as `measures` and ended it as `end`, and leaves the end's
-/// measures in `measures`; resets each failing lane to `model`'s natural
-/// shape at rest. Returns, per lane, what failed (`None`: the lane
-/// passed), as the f64 guard names it.
+/// measures in `measures`; resets each failing lane to its rest pose
+/// `rest_q` (its natural strains unless told, [`crate::Strand::rest_pose`])
+/// at rest. Returns, per lane, what failed (`None`: the lane passed), as
+/// the f64 guard names it.
 pub fn check_and_reset(
     guard: &Guard,
-    model: &LaneModel,
+    rest_q: &[V3<Lanes>],
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     measures: &mut [StrandMeasure; LANES],
@@ -334,9 +336,30 @@ pub fn check_and_reset(
         *start = end;
     }
     for (lane, _) in failed.iter().enumerate().filter(|(_, f)| f.is_some()) {
-        set_natural_at_rest(model, q, v, lane);
+        set_rest_pose_at_rest(rest_q, q, v, lane);
     }
     failed
+}
+
+/// Puts lane `lane` of a batch (`q`, `v`: N triples each) in its rest pose
+/// `rest_q` (N triples), at rest: where the guard resets and holds a
+/// strand. An imported sag-free strand's rest pose is its groomed shape,
+/// which gravity holds; its natural strains are not (it would swing from
+/// them back into its shape).
+pub fn set_rest_pose_at_rest(
+    rest_q: &[V3<Lanes>],
+    q: &mut [V3<Lanes>],
+    v: &mut [V3<Lanes>],
+    lane: usize,
+) {
+    for ((q, v), rest) in q.iter_mut().zip(v.iter_mut()).zip(rest_q) {
+        q.x.set_lane(lane, rest.x.lane(lane));
+        q.y.set_lane(lane, rest.y.lane(lane));
+        q.z.set_lane(lane, rest.z.lane(lane));
+        v.x.set_lane(lane, 0.0);
+        v.y.set_lane(lane, 0.0);
+        v.z.set_lane(lane, 0.0);
+    }
 }
 
 /// Puts lane `lane` of a batch (`q`, `v`: N triples each) at that lane's

@@ -83,7 +83,8 @@
 //! - **Guard** ([`guard`], on by default): after each frame, each strand is
 //!   measured and checked as [`crate::guard`] checks (finite, true speed,
 //!   energy against the root's work), and one that fails is reset to its
-//!   natural shape at rest and reported with what failed and by how much
+//!   rest pose (its natural shape unless told, [`BatchSystem::set_rest_pose`])
+//!   at rest and reported with what failed and by how much
 //!   ([`BatchSystem::last_guard_events`]); one that keeps failing is
 //!   pinned ([`crate::guard::ResetMemory`]). No retry with another solver:
 //!   this is the interactive path, and the f64 [`crate::HairSystem`] is the
