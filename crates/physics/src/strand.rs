@@ -110,7 +110,7 @@ impl Strand {
             &mut self.measure_kinematics,
         );
         let mut out = measure(&self.model, &self.q, &self.measure_kinematics, root, inputs);
-        if let Some(pull) = self.volume.pull() {
+        if let Some(pull) = self.volume.pull(&self.model) {
             add_pull(&mut out, &self.model, &self.measure_kinematics, root, &pull);
         }
         out
@@ -153,7 +153,6 @@ impl Strand {
             friction_per_s,
             relative_target,
             push,
-            samples_per_element: self.model.quadrature.len(),
         };
     }
 
@@ -175,7 +174,7 @@ impl Strand {
         let rho_s = self.model.mass_per_length;
         let work = |state: &VolumeState| {
             state
-                .pull()
+                .pull(&self.model)
                 .map_or_else(PullWork::default, |p| pull_work(samples, &root, &p, rho_s))
         };
         let old = work(&self.volume);
@@ -185,7 +184,6 @@ impl Strand {
             friction_per_s,
             relative_target,
             push,
-            samples_per_element: self.model.quadrature.len(),
         };
         let new = work(&self.volume);
         self.cached_measure = cached.map(|mut m| {
@@ -257,7 +255,7 @@ impl Strand {
                 air_velocity_m_per_s: air_velocity,
                 external_n_per_m: &self.external_n_per_m,
                 contact,
-                volume: self.volume.pull(),
+                volume: self.volume.pull(&self.model),
             },
         };
         step_strand(
@@ -339,16 +337,16 @@ struct VolumeState {
     friction_per_s: f64,
     relative_target: Vec<DVec3>,
     push: Vec<DVec3>,
-    samples_per_element: usize,
 }
 
 impl VolumeState {
-    fn pull(&self) -> Option<VolumePull<'_>> {
+    /// The pull on a strand of `model`, if on.
+    fn pull(&self, model: &StrandModel) -> Option<VolumePull<'_>> {
         self.on.then_some(VolumePull {
             friction_per_s: self.friction_per_s,
             relative_target_m_per_s: &self.relative_target,
             push_m_per_s2: &self.push,
-            samples_per_element: self.samples_per_element,
+            samples_per_element: model.quadrature.len(),
         })
     }
 }

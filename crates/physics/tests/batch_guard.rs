@@ -39,6 +39,14 @@ fn mixed(method: Method, guard: Option<Guard>) -> BatchSystem {
     system
 }
 
+/// A guard whose 1 mm/s speed limit fails every strand falling from rest.
+fn strict() -> Guard {
+    Guard {
+        speed_limit_m_per_s: 1e-3,
+        ..Guard::default()
+    }
+}
+
 fn states(system: &BatchSystem, strands: std::ops::Range<usize>) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
     strands.map(|i| (system.q(i), system.v(i))).collect()
 }
@@ -93,12 +101,7 @@ fn a_block_diagonal_blow_up_on_a_hanging_curl_is_reset_and_reported() {
 
 #[test]
 fn a_reset_strand_is_at_its_natural_shape_at_rest() {
-    // A 1 mm/s speed limit fails every strand falling from rest.
-    let strict = Guard {
-        speed_limit_m_per_s: 1e-3,
-        ..Guard::default()
-    };
-    let mut system = mixed(Method::Exact, Some(strict));
+    let mut system = mixed(Method::Exact, Some(strict()));
     system.step_frame(&at_rest(glam::DMat3::IDENTITY));
     assert_eq!(system.last_guard_resets(), &[0, 1, 2, 3, 4]);
     let natural = model(&hanging_curl(10), 4).natural;
@@ -113,11 +116,7 @@ fn a_reset_strand_is_at_its_natural_shape_at_rest() {
 /// swing back into its pose.
 #[test]
 fn a_reset_strand_is_at_its_rest_pose_at_rest() {
-    let strict = Guard {
-        speed_limit_m_per_s: 1e-3,
-        ..Guard::default()
-    };
-    let mut system = mixed(Method::Exact, Some(strict));
+    let mut system = mixed(Method::Exact, Some(strict()));
     let natural = model(&hanging_curl(10), 4).natural;
     let pose: Vec<DVec3> = natural
         .iter()

@@ -8,12 +8,12 @@ use rayon::prelude::*;
 
 use super::batch_step::{BatchStep, Scratch, step_pulled};
 use super::contact::{LaneContact, NoContact, SkinTest};
-use super::guard::{check_and_reset, measure_lanes, set_natural_at_rest, set_rest_pose_at_rest};
+use super::guard::{check_and_reset, measure_lanes, set_at_rest};
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
 use super::pull::SamplePull;
-use super::vec::V3;
+use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView, KeptSamples, carried};
 use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
@@ -163,10 +163,10 @@ impl Group {
             }
             let range = batch * n..(batch + 1) * n;
             for l in lane..LANES {
+                let rest_q = &mut self.rest_q[range.clone()];
+                set_lane(rest_q, l, self.models[batch].natural_of_lane(l));
                 let (q, v) = (&mut self.q[range.clone()], &mut self.v[range.clone()]);
-                set_natural_at_rest(&self.models[batch], q, v, l);
-                let natural = self.models[batch].natural_of_lane(l);
-                set_lane(&mut self.rest_q[range.clone()], l, natural);
+                set_at_rest(q, v, l, lane_of(rest_q, l));
                 self.standing[batch].lanes[l] = LaneStanding::default();
             }
         }
@@ -417,7 +417,7 @@ fn judge_batch(
         v,
     } = batch;
     for (lane, _) in standing.iter().enumerate().filter(|(_, s)| s.pinned) {
-        set_rest_pose_at_rest(rest_q, q, v, lane);
+        set_at_rest(q, v, lane, lane_of(rest_q, lane));
     }
     let motions = carried(check.motion, roots);
     let root = RootMotion::<Lanes>::gather(&motions);
@@ -442,18 +442,4 @@ fn judge_batch(
         kept.clear();
     }
     failed
-}
-
-/// Sets lane `lane` of `values` (one strand's N entries) to `lane_values`,
-/// element by element.
-pub(super) fn set_lane(
-    values: &mut [V3<Lanes>],
-    lane: usize,
-    lane_values: impl IntoIterator<Item = [f32; 3]>,
-) {
-    for (x, [a, b, c]) in values.iter_mut().zip(lane_values) {
-        x.x.set_lane(lane, a);
-        x.y.set_lane(lane, b);
-        x.z.set_lane(lane, c);
-    }
 }

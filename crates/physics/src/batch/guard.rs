@@ -41,13 +41,13 @@ use std::cell::RefCell;
 use glam::DVec3;
 
 use super::forward::{FrameState, sweep_samples};
-use super::lane_model::{Constants, LaneModel};
+use super::lane_model::Constants;
 use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
 use super::near_cells::SkinTest;
 use super::pull::{RootVelocity, SamplePull, add_pull_work};
-use super::vec::V3;
+use super::vec::{V3, lane_of, set_lane};
 use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
@@ -336,47 +336,22 @@ pub fn check_and_reset(
         *start = end;
     }
     for (lane, _) in failed.iter().enumerate().filter(|(_, f)| f.is_some()) {
-        set_rest_pose_at_rest(rest_q, q, v, lane);
+        set_at_rest(q, v, lane, lane_of(rest_q, lane));
     }
     failed
 }
 
-/// Puts lane `lane` of a batch (`q`, `v`: N triples each) in its rest pose
-/// `rest_q` (N triples), at rest: where the guard resets and holds a
-/// strand. An imported sag-free strand's rest pose is its groomed shape,
-/// which gravity holds; its natural strains are not (it would swing from
-/// them back into its shape).
-pub fn set_rest_pose_at_rest(
-    rest_q: &[V3<Lanes>],
+/// Puts lane `lane` of a batch (`q`, `v`: N triples each) in `shape` (N
+/// triples), at rest: where the guard resets and holds a strand (its rest
+/// pose: an imported sag-free strand's is its groomed shape, which gravity
+/// holds, not its natural strains, from which it would swing back into
+/// its shape) and where a new lane starts.
+pub fn set_at_rest(
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     lane: usize,
+    shape: impl IntoIterator<Item = [f32; 3]>,
 ) {
-    for ((q, v), rest) in q.iter_mut().zip(v.iter_mut()).zip(rest_q) {
-        q.x.set_lane(lane, rest.x.lane(lane));
-        q.y.set_lane(lane, rest.y.lane(lane));
-        q.z.set_lane(lane, rest.z.lane(lane));
-        v.x.set_lane(lane, 0.0);
-        v.y.set_lane(lane, 0.0);
-        v.z.set_lane(lane, 0.0);
-    }
-}
-
-/// Puts lane `lane` of a batch (`q`, `v`: N triples each) at that lane's
-/// natural shape in `model`, at rest.
-pub fn set_natural_at_rest(
-    model: &LaneModel,
-    q: &mut [V3<Lanes>],
-    v: &mut [V3<Lanes>],
-    lane: usize,
-) {
-    let natural = model.natural_of_lane(lane);
-    for ((q, v), natural) in q.iter_mut().zip(v.iter_mut()).zip(natural) {
-        q.x.set_lane(lane, natural[0]);
-        q.y.set_lane(lane, natural[1]);
-        q.z.set_lane(lane, natural[2]);
-        v.x.set_lane(lane, 0.0);
-        v.y.set_lane(lane, 0.0);
-        v.z.set_lane(lane, 0.0);
-    }
+    set_lane(q, lane, shape);
+    set_lane(v, lane, std::iter::repeat([0.0; 3]));
 }

@@ -25,11 +25,11 @@ use super::batch_step::{BatchStep, krylov_bytes_per_element};
 use super::contact::{NearCells, SkinTest};
 use super::exact::Elimination;
 use super::forward::{FrameState, advance};
-use super::group::{FrameCheck, Group, set_lane};
+use super::group::{FrameCheck, Group};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
-use super::vec::V3;
+use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
@@ -367,9 +367,8 @@ impl BatchSystem {
     }
 
     fn lane_values(values: &[V3<Lanes>], n: usize, batch: usize, lane: usize) -> Vec<DVec3> {
-        values[batch * n..(batch + 1) * n]
-            .iter()
-            .map(|x| Vec3::new(x.x.lane(lane), x.y.lane(lane), x.z.lane(lane)).as_dvec3())
+        lane_of(&values[batch * n..(batch + 1) * n], lane)
+            .map(|x| Vec3::from_array(x).as_dvec3())
             .collect()
     }
 
@@ -396,11 +395,8 @@ impl BatchSystem {
         assert!(q.len() == n && v.len() == n, "state length must be {n}");
         g.measured = false;
         for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
-            for (x, s) in dst[batch * n..(batch + 1) * n].iter_mut().zip(src) {
-                x.x.set_lane(lane, s.x as f32);
-                x.y.set_lane(lane, s.y as f32);
-                x.z.set_lane(lane, s.z as f32);
-            }
+            let values = src.iter().map(|s| s.as_vec3().to_array());
+            set_lane(&mut dst[batch * n..(batch + 1) * n], lane, values);
         }
     }
 

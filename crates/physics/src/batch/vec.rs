@@ -13,7 +13,7 @@
 
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
-use super::lanes::Real;
+use super::lanes::{Lanes, Real};
 
 /// A 3-vector.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -334,4 +334,25 @@ impl<T: Real> Mul<V3<T>> for M3<T> {
     fn mul(self, v: V3<T>) -> V3<T> {
         self.mul_vec(v)
     }
+}
+
+/// Sets lane `lane` of `values` (one strand's entries, batch-major) to
+/// `lane_values`, entry by entry.
+pub fn set_lane(
+    values: &mut [V3<Lanes>],
+    lane: usize,
+    lane_values: impl IntoIterator<Item = [f32; 3]>,
+) {
+    for (x, [a, b, c]) in values.iter_mut().zip(lane_values) {
+        x.x.set_lane(lane, a);
+        x.y.set_lane(lane, b);
+        x.z.set_lane(lane, c);
+    }
+}
+
+/// Lane `lane` of `values`, entry by entry.
+pub fn lane_of(values: &[V3<Lanes>], lane: usize) -> impl Iterator<Item = [f32; 3]> + '_ {
+    values
+        .iter()
+        .map(move |x| [x.x.lane(lane), x.y.lane(lane), x.z.lane(lane)])
 }

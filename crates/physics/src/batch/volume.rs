@@ -353,6 +353,11 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     out.motion.resize(batches * out.samples, [V3::zero(); 2]);
     out.from_kept.resize(batches, false);
     let samples = out.samples;
+    let pairs = view
+        .models
+        .first()
+        .map(|m| lane_pair_weights(m))
+        .unwrap_or_default();
     let one = |(b, (((out, (q, v)), roots), model)): (
         usize,
         (((BatchOut<'_>, _), _), &Arc<LaneModel>),
@@ -360,7 +365,7 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
         let ((points, motion), from_kept) = out;
         let kept = view.kept.and_then(|k| k.batch(b, head, samples));
         *from_kept = kept.is_some();
-        gather_batch(model, roots, head, (q, v), kept, points, motion);
+        gather_batch(model, roots, head, (q, v), (kept, &pairs), (points, motion));
     };
     if parallel {
         let state = view.q.par_chunks(n).zip(view.v.par_chunks(n));
@@ -387,13 +392,18 @@ fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &
     }
 }
 
+/// One quadrature sample of a batch, lane by lane: its position relative
+/// to the root and its world velocity.
+pub type SampleLanes = [V3<Lanes>; 2];
+
 /// A batch's lanes in groups of four ([`PointLanes`]): two per sample.
 pub(super) const HALVES: usize = LANES / 4;
 
 /// One batch's points (state `q`, `v`; its ≤ [`LANES`] `roots`; the head
 /// at `head`), one per pair of quadrature nodes, in head coordinates,
 /// written to `out` (point p, lanes 4h..4h + 4 at p·2 + h; padding lanes
-/// get zero mass). The
+/// get zero mass), with `pairs` the pairs' weights of `model`'s
+/// quadrature ([`lane_pair_weights`], the same for every batch). The
 /// samples' f32 lanes of position relative to the root and world velocity
 /// are `kept` if given (the guard's measure found them at this state),
 /// else swept root to tip here and written to `motion` (sample i at i).
@@ -402,9 +412,8 @@ pub fn gather_batch(
     roots: &[RootPose],
     head: &RigidMotion,
     (q, v): (&[V3<Lanes>], &[V3<Lanes>]),
-    kept: Option<&[[V3<Lanes>; 2]]>,
-    out: &mut [PointLanes],
-    motion: &mut [[V3<Lanes>; 2]],
+    (kept, pairs): (Option<&[SampleLanes]>, &[PairWeights]),
+    (out, motion): (&mut [PointLanes], &mut [SampleLanes]),
 ) {
     let motions = carried(head, roots);
     let place = Placement::new(model, roots, &motions, head);
@@ -420,15 +429,20 @@ pub fn gather_batch(
             &*motion
         }
     };
-    let weights: Vec<f64> = model.weights().iter().map(|w| f64::from(*w)).collect();
-    let pairs = pair_weights(&weights);
     let mut out = out.chunks_exact_mut(HALVES);
-    for (e, nodes) in samples.chunks_exact(weights.len().max(1)).enumerate() {
-        let points = nodes.chunks(NODES_PER_POINT).zip(&pairs);
+    for (e, nodes) in samples.chunks_exact(model.nodes().len().max(1)).enumerate() {
+        let points = nodes.chunks(NODES_PER_POINT).zip(pairs);
         for ((nodes, pair), out) in points.zip(&mut out) {
             place.write(nodes, pair, model.length_m(e), out);
         }
     }
+}
+
+/// The pairs' weights ([`pair_weights`]) of `model`'s quadrature, widened
+/// to f64: the same for every batch of a system, so found once per group.
+pub fn lane_pair_weights(model: &LaneModel) -> Vec<PairWeights> {
+    let weights: Vec<f64> = model.weights().iter().map(|w| f64::from(*w)).collect();
+    pair_weights(&weights)
 }
 
 /// Each lane's root motion for the head moving as `head` (padding lanes
@@ -555,7 +569,16 @@ pub fn rest_density(
             let count = q.len() * points_per_element(model.nodes().len());
             let mut batch = vec![PointLanes::default(); count * HALVES];
             let mut motion = vec![[V3::zero(); 2]; samples];
-            gather_batch(model, roots, &head, (q, &v), None, &mut batch, &mut motion);
+            let pairs = lane_pair_weights(model);
+            let kept = (None, pairs.as_slice());
+            gather_batch(
+                model,
+                roots,
+                &head,
+                (q, &v),
+                kept,
+                (&mut batch, &mut motion),
+            );
             let lanes = batch.iter().flat_map(|p| (0..4).map(|k| p.lane(k)));
             points.extend(lanes.filter(|p| p.mass_kg > 0.0));
             let length_m = (0..view.n).fold(Lanes::splat(0.0), |sum, e| sum + model.length_m(e));

@@ -79,14 +79,7 @@ impl VolumePull<'_> {
     /// (N/m): ρS (μ u_rel + a), its point's. The rest, −μ ρS J q̇, is in
     /// the step matrix. A sample past the slices' ends feels nothing.
     pub fn known_n_per_m(&self, i: usize, mass_per_length: f64) -> DVec3 {
-        let p = self.point(i);
-        let (Some(u), Some(a)) = (
-            self.relative_target_m_per_s.get(p),
-            self.push_m_per_s2.get(p),
-        ) else {
-            return DVec3::ZERO;
-        };
-        mass_per_length * (self.friction_per_s * *u + *a)
+        self.known_at(i, mass_per_length).unwrap_or(DVec3::ZERO)
     }
 
     /// The whole force per unit length on sample `i` moving at `velocity`
@@ -99,16 +92,19 @@ impl VolumePull<'_> {
         carried: DVec3,
         mass_per_length: f64,
     ) -> DVec3 {
-        if self.point(i)
-            >= self
-                .relative_target_m_per_s
-                .len()
-                .min(self.push_m_per_s2.len())
-        {
-            return DVec3::ZERO;
-        }
-        self.known_n_per_m(i, mass_per_length)
-            - mass_per_length * self.friction_per_s * (velocity - carried)
+        self.known_at(i, mass_per_length)
+            .map_or(DVec3::ZERO, |known| {
+                known - mass_per_length * self.friction_per_s * (velocity - carried)
+            })
+    }
+
+    /// ρS (μ u_rel + a) at sample `i`'s point, or `None` past the slices'
+    /// ends.
+    fn known_at(&self, i: usize, mass_per_length: f64) -> Option<DVec3> {
+        let p = self.point(i);
+        let u = self.relative_target_m_per_s.get(p)?;
+        let a = self.push_m_per_s2.get(p)?;
+        Some(mass_per_length * (self.friction_per_s * *u + *a))
     }
 
     /// The point sample `i` feels.
