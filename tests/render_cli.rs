@@ -94,7 +94,7 @@ fn a_render_shows_hair_on_top_of_the_head_and_the_face_below() {
 
 /// Where a point lands in the 128 × 128 front view, in pixels.
 fn pixel_of(p: glam::Vec3) -> (u32, u32) {
-    let camera: helixhair_app::camera_arg::CameraArg = "front".parse().expect("a named view");
+    let camera: helixhair_app::cli::camera_arg::CameraArg = "front".parse().expect("a named view");
     let clip = camera.camera().clip_from_world(1.0) * p.extend(1.0);
     let (x, y) = (clip.x / clip.w, clip.y / clip.w);
     (

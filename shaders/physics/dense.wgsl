@@ -1,6 +1,6 @@
 // Dense step on the GPU (appended to common.wgsl and chain.wgsl): the whole 3N×3N step
 // matrix S = s·M + diag(D) assembled and Cholesky-factored by one workgroup
-// per strand. The arithmetic is crates/physics/src/batch/dense.rs; the CPU
+// per strand. The arithmetic is crates/physics/src/batch/step/dense.rs; the CPU
 // twins are crates/physics/src/gpu/dense_twin.rs. Three stages per step:
 //   stage_frames   (chain.wgsl) one invocation per strand: the root-to-tip
 //                  frame chain and A_Q (about the root: Dense keeps root

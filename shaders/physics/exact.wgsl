@@ -1,5 +1,5 @@
 // Exact step on the GPU (append to common.wgsl): one invocation per strand
-// runs the three sweeps of crates/physics/src/batch/exact.rs (root to tip:
+// runs the three sweeps of crates/physics/src/batch/step/exact.rs (root to tip:
 // element data; tip to root: suffix sums and the 6×6 articulated-inertia
 // elimination; root to tip: back-substitution and integration). Per-element
 // intermediates live in storage buffers: a strand has up to 200 elements,

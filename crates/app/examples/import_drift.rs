@@ -15,8 +15,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use anyhow::Context as _;
-use helixhair_app::groom::head_collider;
-use helixhair_app::headless::{HeadlessSim, SimOverrides};
+use helixhair_app::head::groom::head_collider;
+use helixhair_app::sim::headless::{HeadlessSim, SimOverrides};
 use helixhair_app::style::Style;
 
 fn main() -> anyhow::Result<()> {

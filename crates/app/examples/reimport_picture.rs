@@ -17,8 +17,8 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use glam::Vec3;
-use helixhair_app::camera_arg::CameraArg;
-use helixhair_app::render_cmd::write_picture;
+use helixhair_app::cli::camera_arg::CameraArg;
+use helixhair_app::cli::render::write_picture;
 use helixhair_formats::{CurveSet, Format, ReadOptions, StrandValue, read};
 use helixhair_render::head_generate::default_head;
 use helixhair_render::{

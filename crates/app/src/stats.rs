@@ -1,5 +1,5 @@
 //! Small statistics shared by the faces that time things: the headless
-//! report ([`crate::sim_report`]), the window's readouts and the bench.
+//! report ([`crate::sim::report`]), the window's readouts and the bench.
 
 /// Median of `values` (mean of the middle two for an even count; 0 if
 /// empty).

@@ -2,10 +2,10 @@
 //! model built into the binary, and against a fresh run: the chosen
 //! setting must really meet the target on the scene it was measured on.
 
-use helixhair_app::auto_choice::choose;
 use helixhair_app::bench::accuracy::REFERENCE;
 use helixhair_app::bench::scenes::{CurlClass, RunSetting, Scene, run_scene, tip_rms_error};
-use helixhair_app::error_model::ErrorModel;
+use helixhair_app::sim::auto_choice::choose;
+use helixhair_app::sim::error_model::ErrorModel;
 use helixhair_physics::StrandParams;
 
 /// One percent of the strand's length: a tip error an artist cannot see on

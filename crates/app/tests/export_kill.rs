@@ -33,7 +33,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use helixhair_app::export::{ExportRecorder, ExportSpec, FrameChoice, StrandChoice};
-use helixhair_app::render_cmd::grown_sim;
+use helixhair_app::sim::grown::grown_sim;
 use helixhair_app::{Groom, HeadlessSim, SimOverrides};
 use helixhair_formats::{Format, ReadOptions, read};
 use support::kill::{Rng, clear_leftovers, run_and_kill};

@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::{DVec3, Vec3};
+use helixhair_app::export::command::simulate_and_export;
 use helixhair_app::export::{ExportSpec, FrameChoice, StrandChoice, capture_curves, sequence_path};
-use helixhair_app::export_cmd::simulate_and_export;
-use helixhair_app::groom::Groom;
+use helixhair_app::head::groom::Groom;
 use helixhair_app::{HeadlessSim, SimOverrides, Style};
 use helixhair_formats::{CurveSet, Format, Imported, ReadOptions, StrandValue, TriangleMesh, read};
 use helixhair_render::head_generate::default_head;
@@ -45,7 +45,7 @@ fn curly() -> Style {
 
 fn shaken_sim(style: &Style) -> HeadlessSim {
     let mut sim = HeadlessSim::new(style, SimOverrides::default()).expect("builds");
-    sim.play(helixhair_app::head_clip::Clip::Shake);
+    sim.play(helixhair_app::motion::clip::Clip::Shake);
     sim
 }
 
@@ -316,7 +316,7 @@ fn pixar_reads(path: &Path, ends: &[Vec<Vec<Vec3>>], head: &TriangleMesh) {
     }
     assert_eq!(frames.len(), STEPS + 1, "pxr sees every time sample");
     // The shake clip's head pose at each frame's time, from the clip itself.
-    let clip = helixhair_app::head_clip::Clip::Shake;
+    let clip = helixhair_app::motion::clip::Clip::Shake;
     let v0 = head.vertices_m[0].as_dvec3();
     for (frame, (points, head_v0)) in frames.iter().enumerate() {
         for (s, strand) in ends[frame].iter().enumerate() {

@@ -138,7 +138,7 @@ fn every_field_and_variant_is_documented() {
 
 #[test]
 fn every_groom_field_and_method_is_documented() {
-    use helixhair_app::style_groom::{
+    use helixhair_app::style::groom::{
         RenderStrands, ScalpPlacement, ScalpRegion, StrandInterpolation,
     };
     let doc = doc();

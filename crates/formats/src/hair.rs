@@ -35,8 +35,8 @@ use crate::bytes::{LeBytes, f32_in, put_f32, put_u32};
 use crate::curve_set::{Curve, CurveSet, StrandValue};
 use crate::error::{ReadError, ReadErrorKind, WriteError};
 use crate::format::Format;
+use crate::imported::{Imported, Units, finish};
 use crate::options::ReadOptions;
-use crate::read::{Imported, Units, finish};
 
 /// The header's size in bytes.
 pub const HAIR_HEADER_BYTES: u64 = 128;
@@ -183,11 +183,11 @@ pub fn read_hair(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadEr
 /// Writes one frame as a `.hair` file (see the module docs).
 pub fn write_hair(out: &mut impl Write, curves: &CurveSet) -> Result<(), WriteError> {
     let invalid = |message: String| WriteError::invalid(Format::Hair, message);
-    crate::write_checks::finite_points(Format::Hair, curves)?;
+    crate::write::checks::finite_points(Format::Hair, curves)?;
     let with_width =
-        crate::write_checks::all_or_none(Format::Hair, curves, "width", |c| c.width_m.is_some())?;
+        crate::write::checks::all_or_none(Format::Hair, curves, "width", |c| c.width_m.is_some())?;
     let with_colour =
-        crate::write_checks::all_or_none(Format::Hair, curves, "colour", |c| c.colour.is_some())?;
+        crate::write::checks::all_or_none(Format::Hair, curves, "colour", |c| c.colour.is_some())?;
     if let Some(index) = curves
         .curves
         .iter()

@@ -37,6 +37,7 @@ pub mod curve_set;
 pub mod error;
 pub mod format;
 pub mod hair;
+pub mod imported;
 pub mod mesh;
 pub mod obj;
 pub mod options;
@@ -46,7 +47,6 @@ pub mod tfx;
 pub mod usda;
 mod warnings;
 pub mod write;
-mod write_checks;
 
 pub use animation::{Animation, Frame};
 pub use curve_set::{Curve, CurveSet, Metadata, StrandValue, UpAxis};

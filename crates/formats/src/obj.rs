@@ -35,8 +35,8 @@ use glam::Vec3;
 use crate::curve_set::{Curve, CurveSet};
 use crate::error::{Location, ReadError, ReadErrorKind, WriteError};
 use crate::format::Format;
+use crate::imported::{Imported, Units, finish};
 use crate::options::ReadOptions;
-use crate::read::{Imported, Units, finish};
 
 /// Reads an OBJ file's polylines.
 pub fn read_obj(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadError> {
@@ -137,7 +137,7 @@ pub fn read_obj(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadErr
 
 /// Writes one frame as OBJ polylines (see the module docs).
 pub fn write_obj(out: &mut impl Write, curves: &CurveSet) -> Result<(), WriteError> {
-    crate::write_checks::finite_points(Format::Obj, curves)?;
+    crate::write::checks::finite_points(Format::Obj, curves)?;
     let mut text = String::with_capacity(curves.point_count() * 40);
     use std::fmt::Write as _;
     let _ = writeln!(

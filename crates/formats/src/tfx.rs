@@ -40,8 +40,8 @@ use crate::bytes::{LeBytes, f32_in, put_f32, put_u32};
 use crate::curve_set::{Curve, CurveSet, StrandValue};
 use crate::error::{ReadError, ReadErrorKind, WriteError};
 use crate::format::Format;
+use crate::imported::{Imported, Units, finish};
 use crate::options::ReadOptions;
-use crate::read::{Imported, Units, finish};
 
 /// The 4.x header's size in bytes.
 pub const TFX_V4_HEADER_BYTES: u64 = 160;
@@ -217,9 +217,9 @@ pub fn write_tfx(out: &mut impl Write, curves: &CurveSet) -> Result<(), WriteErr
             curves.curves[index].points_m.len()
         )));
     }
-    crate::write_checks::finite_points(Format::Tfx, curves)?;
+    crate::write::checks::finite_points(Format::Tfx, curves)?;
     let with_colour =
-        crate::write_checks::all_or_none(Format::Tfx, curves, "colour", |c| c.colour.is_some())?;
+        crate::write::checks::all_or_none(Format::Tfx, curves, "colour", |c| c.colour.is_some())?;
     let strands = u32::try_from(curves.curves.len()).map_err(|_| {
         invalid(format!(
             "{} strands do not fit a u32 count",

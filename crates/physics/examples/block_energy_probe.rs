@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 use helixhair_physics::energy::energies;
-use helixhair_physics::mass::{MassData, mass_blocks};
+use helixhair_physics::step::mass::{MassData, mass_blocks};
 use helixhair_physics::{
     Method, RigidMotion, RootPose, StepScheme, Strand, StrandModel, StrandParams,
 };

@@ -22,8 +22,8 @@
 //! ("f32 round-off on straight strands").
 
 use glam::DVec3;
-use helixhair_physics::batch::exact::{Elimination, step_exact};
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use helixhair_physics::batch::step::exact::{Elimination, step_exact};
 use helixhair_physics::batch::vec::V3;
 use helixhair_physics::batch::{BatchSystem, Real};
 use helixhair_physics::model::StrandModel;

@@ -9,10 +9,10 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use helixhair_physics::forces::{ForceInputs, generalized_forces};
-use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::motion::HeadTrajectory;
-use helixhair_physics::reconstruct::{Kinematics, reconstruct};
+use helixhair_physics::step::forces::{ForceInputs, generalized_forces};
+use helixhair_physics::step::mass::{MassData, dense_mass, mass_blocks};
+use helixhair_physics::step::reconstruct::{Kinematics, reconstruct};
 use helixhair_physics::{
     ElementLayout, NaturalShape, Oscillation, RigidMotion, RootPose, StrandModel, StrandParams,
 };

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use crate::model::StrandModel;
-use crate::reconstruct::Kinematics;
+use crate::step::reconstruct::Kinematics;
 
 /// Energies in joules.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]

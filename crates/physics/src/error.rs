@@ -25,3 +25,18 @@ impl ParamError {
         }
     }
 }
+
+/// Checks that `value` is finite and inside `[min, max]`, naming `field`.
+pub fn check_range(field: &str, value: f64, min: f64, max: f64) -> Result<(), ParamError> {
+    if !value.is_finite() {
+        return Err(ParamError::new(field, value, "must be a finite number"));
+    }
+    if value < min || value > max {
+        return Err(ParamError::new(
+            field,
+            value,
+            format!("must lie in [{min}, {max}]"),
+        ));
+    }
+    Ok(())
+}

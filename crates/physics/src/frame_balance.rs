@@ -17,7 +17,8 @@
 //! At the end of a frame, [`measure`] sums over the quadrature samples:
 //! the energy E = T + U_elastic + U_gravity, the momentum P and the angular
 //! momentum L about the root point, the external forces (gravity, air
-//! drag, the head's contact push) with their torque and their power, and
+//! drag, the head's contact push, the external hook a brush drives,
+//! [`add_external`]) with their torque and their power, and
 //! the fastest point relative to the root's rigid motion.
 //!
 //! The root holds the strand with a force F and a torque τ. Newton's laws
@@ -60,7 +61,7 @@ use glam::DVec3;
 use crate::collision::ContactInputs;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
-use crate::reconstruct::Kinematics;
+use crate::step::reconstruct::Kinematics;
 
 /// What a strand's state is, measured from its reconstruction. With a
 /// collider, E includes the implicit contact springs' stored energy
@@ -122,6 +123,19 @@ pub struct MeasureInputs<'a> {
     /// The head's collider, if any: the push measured is the implicit one
     /// the f64 reference steps with ([`ContactInputs::implicit_force`]).
     pub contact: Option<ContactInputs<'a>>,
+}
+
+/// Adds the external hook's force (`forces_n_per_m`, per sample, as
+/// [`crate::Strand::set_external_forces`] takes it; empty: none), its
+/// torque about the root point and its power at the state of `kin` to
+/// `out`, as the measure counts gravity's and the air's.
+pub fn add_external(out: &mut StrandMeasure, kin: &Kinematics, forces_n_per_m: &[DVec3]) {
+    for (s, f) in kin.samples.iter().zip(forces_n_per_m) {
+        let f = *f * s.weight_m;
+        out.external_force_n += f;
+        out.external_torque_n_m += s.position_m.cross(f);
+        out.external_power_w += f.dot(s.velocity_m_per_s);
+    }
 }
 
 /// Measures a strand with strains `q` whose reconstruction for a root

@@ -32,34 +32,24 @@
 #![warn(missing_docs)]
 
 pub mod batch;
-pub mod block_velocity_terms;
 pub mod collision;
 pub mod energy;
 pub mod engine;
 pub mod error;
 pub mod fit;
-pub mod forces;
 pub mod frame_balance;
+pub mod geometry;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod guard;
 pub mod hair_system;
-pub mod helix;
-pub mod helix_rates;
-pub mod jet;
-pub mod mass;
 pub mod model;
 pub mod motion;
 pub mod natural_shape;
 pub mod params;
-pub mod quadrature;
-pub mod reconstruct;
 pub mod settings;
-pub mod shape;
-pub mod solve;
 pub mod step;
 pub mod strand;
-pub mod velocity_terms;
 pub mod volume;
 
 pub use energy::Energies;

@@ -5,8 +5,8 @@
 use glam::DVec3;
 
 use crate::error::ParamError;
+use crate::geometry::quadrature::Quadrature;
 use crate::params::StrandParams;
-use crate::quadrature::Quadrature;
 
 /// Per-element constants of a strand, shared by every strand of a group.
 #[derive(Clone, Debug, PartialEq)]

@@ -11,7 +11,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ParamError;
-use crate::params::check_range;
+use crate::error::check_range;
 
 /// Largest natural curvature or twist magnitude in m⁻¹ (a 1 mm curl radius).
 pub const MAX_NATURAL_STRAIN_PER_M: f64 = 1000.0;

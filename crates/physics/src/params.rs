@@ -10,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::ParamError;
+use crate::error::{ParamError, check_range};
 use crate::natural_shape::NaturalShape;
 
 /// How the strand's length is cut into elements.
@@ -89,21 +89,6 @@ impl Default for StrandParams {
 
 /// Largest element count a strand may have; dense solves grow as N³.
 pub const MAX_ELEMENTS: usize = 200;
-
-/// Checks that `value` is finite and inside `[min, max]`, naming `field`.
-pub fn check_range(field: &str, value: f64, min: f64, max: f64) -> Result<(), ParamError> {
-    if !value.is_finite() {
-        return Err(ParamError::new(field, value, "must be a finite number"));
-    }
-    if value < min || value > max {
-        return Err(ParamError::new(
-            field,
-            value,
-            format!("must lie in [{min}, {max}]"),
-        ));
-    }
-    Ok(())
-}
 
 impl StrandParams {
     /// Checks every field for NaN, infinities and values outside the

@@ -5,11 +5,11 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ParamError;
-use crate::params::check_range;
+use crate::error::check_range;
 use crate::volume::InteractionSettings;
 
 /// How the step matrix (M + hC + h²K) Δv = rhs is solved; see `docs/physics.md`
-/// section 5 and [`crate::solve`].
+/// section 5 and [`crate::step::solve`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Method {
@@ -123,7 +123,7 @@ pub struct SimSettings {
 
 /// How a step treats the generalized forces that depend on the strain rates
 /// q̇: the centrifugal and Coriolis terms (quadratic in q̇) and the terms
-/// linear in q̇ from the root's rotation (`crate::velocity_terms`).
+/// linear in q̇ from the root's rotation (`crate::step::velocity_terms`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum StepScheme {
     /// Frozen at the start of the step (Bertails 2006): explicit in q̇.

@@ -6,16 +6,17 @@ use glam::DVec3;
 
 use crate::collision::ContactInputs;
 use crate::energy::{Energies, energies};
-use crate::forces::ForceInputs;
-use crate::frame_balance::{MeasureInputs, StrandMeasure, measure};
+use crate::frame_balance::{MeasureInputs, StrandMeasure, add_external, measure};
 use crate::guard::GuardState;
 use crate::model::StrandModel;
 use crate::motion::{RigidMotion, RootPose};
-use crate::reconstruct::{Kinematics, reconstruct};
 use crate::settings::{Method, StepScheme};
+use crate::step::forces::ForceInputs;
+use crate::step::reconstruct::{Kinematics, reconstruct};
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
 use crate::volume::VolumePull;
-use crate::volume::balance::{PullWork, SampleMotion, add_pull, pull_work};
+use crate::volume::balance::{PullWork, add_pull, pull_work};
+use crate::volume::pair_points::SampleMotion;
 
 /// A Super-Helix strand clamped to a root on the head.
 #[derive(Clone, Debug)]
@@ -110,6 +111,7 @@ impl Strand {
             &mut self.measure_kinematics,
         );
         let mut out = measure(&self.model, &self.q, &self.measure_kinematics, root, inputs);
+        add_external(&mut out, &self.measure_kinematics, &self.external_n_per_m);
         if let Some(pull) = self.volume.pull(&self.model) {
             add_pull(&mut out, &self.model, &self.measure_kinematics, root, &pull);
         }
@@ -129,8 +131,12 @@ impl Strand {
 
     /// Sets the per-sample external force per unit length (N/m; one entry
     /// per quadrature sample, element by element), or clears it with an
-    /// empty slice.
+    /// empty slice. The guard's measure counts its work; a kept measure of
+    /// the state under the old forces is dropped.
     pub fn set_external_forces(&mut self, forces_n_per_m: &[DVec3]) {
+        if self.external_n_per_m.as_slice() != forces_n_per_m {
+            self.cached_measure = None;
+        }
         self.external_n_per_m.clear();
         self.external_n_per_m.extend_from_slice(forces_n_per_m);
     }

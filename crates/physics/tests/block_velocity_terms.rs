@@ -8,10 +8,10 @@ mod common;
 use common::*;
 use glam::DVec3;
 use helixhair_physics::RigidMotion;
-use helixhair_physics::block_velocity_terms::BlockVelocityTerms;
-use helixhair_physics::mass::{MassData, mass_blocks};
-use helixhair_physics::reconstruct::{Kinematics, reconstruct_with_rates};
-use helixhair_physics::velocity_terms::{Derivative, VelocityTerms};
+use helixhair_physics::step::block_velocity_terms::BlockVelocityTerms;
+use helixhair_physics::step::mass::{MassData, mass_blocks};
+use helixhair_physics::step::reconstruct::{Kinematics, reconstruct_with_rates};
+use helixhair_physics::step::velocity_terms::{Derivative, VelocityTerms};
 
 /// Central differences with step ε (relative): O(ε²) truncation.
 const FD_STEP: f64 = 1e-5;

@@ -7,9 +7,9 @@ mod common;
 use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::energy::energies;
-use helixhair_physics::helix::skew;
-use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
+use helixhair_physics::geometry::helix::skew;
 use helixhair_physics::motion::HeadTrajectory;
+use helixhair_physics::step::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::{Oscillation, RigidMotion};
 
 /// Central differences with step ε err by O(ε²) plus round-off O(u/ε).
@@ -148,7 +148,7 @@ fn velocities_match_strain_differences_with_a_fixed_root() {
 
 fn mass_data(
     m: &helixhair_physics::StrandModel,
-    kin: &helixhair_physics::reconstruct::Kinematics,
+    kin: &helixhair_physics::step::reconstruct::Kinematics,
 ) -> MassData {
     let mut out = MassData::default();
     mass_blocks(m, kin, &mut out);

@@ -13,15 +13,15 @@ mod common;
 use common::gpu::context;
 use common::{Rng, curl, outward_roots as roots, shake};
 use glam::DVec3;
-use helixhair_physics::batch::dense::{DenseScratch, step_dense};
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use helixhair_physics::batch::step::dense::{DenseScratch, step_dense};
 use helixhair_physics::batch::vec::V3;
 use helixhair_physics::gpu::dense_twin::{mass_matrix, stage_dense, stage_elements, stage_frames};
 use helixhair_physics::gpu::kernels::GpuState;
 use helixhair_physics::gpu::layout::{DenseOwnGpu, FrameGpu, JacobiansGpu};
 use helixhair_physics::gpu::twin::stage_exact;
 use helixhair_physics::gpu::{GpuContext, GpuError, GpuSystem, Stepper};
-use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
+use helixhair_physics::step::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::{
     HairSystem, HeadTrajectory, Method, RigidMotion, RootPose, SimSettings, StepScheme,
     StrandModel, StrandParams,

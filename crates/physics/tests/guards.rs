@@ -210,3 +210,35 @@ fn a_healthy_run_is_left_alone_and_matches_the_unguarded_one() {
     assert_eq!(raw.strands()[0].q(), guarded.strands()[0].q());
     assert_eq!(raw.strands()[0].v(), guarded.strands()[0].v());
 }
+
+#[test]
+fn a_brush_push_is_work_the_guard_counts_not_energy_from_nowhere() {
+    // A strong push on every sample (the external hook a brush drives:
+    // twice gravity, sideways) puts real energy into the strand. The
+    // guard's balance counts the push's work (frame_balance::add_external),
+    // so it must not mistake that energy for a blow-up.
+    let p = hanging_curl(10);
+    let root = at_rest(glam::DMat3::IDENTITY);
+    let mut guarded = system(Method::Exact, &p, Some(Guard::default()));
+    let samples = guarded.strands()[0].kinematics(&root).samples.len();
+    let rho_s = p.mass_per_length();
+    let push = vec![DVec3::new(0.0, 0.0, 2.0 * 9.81 * rho_s); samples];
+    guarded.strands_mut()[0].set_external_forces(&push);
+    let tip_before = *guarded.strands()[0]
+        .boundary_points_world(&root)
+        .last()
+        .unwrap();
+    let (finite, events) = run(&mut guarded, &root, 60);
+    let tip_after = *guarded.strands()[0]
+        .boundary_points_world(&root)
+        .last()
+        .unwrap();
+    assert!(finite);
+    assert!(events.is_empty(), "the push's work was counted: {events:?}");
+    // The push really moved the hair (the check above is not vacuous).
+    assert!(
+        tip_after.z - tip_before.z > 0.02,
+        "the tip moved {} m along the push",
+        tip_after.z - tip_before.z
+    );
+}

@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use glam::{DMat3, DVec3};
-use helixhair_physics::helix::{centreline_and_jacobian, rotation};
+use helixhair_physics::geometry::helix::{centreline_and_jacobian, rotation};
 use helixhair_physics::natural_shape::{helix_radius_and_step, helix_strains};
 
 /// The golden value is quoted to 7 decimals.
@@ -27,7 +27,7 @@ fn golden_value_matches_the_brief() {
 
 /// RK4 on the frame equations in material form: R' = R[k]×, r' = R e₀.
 fn integrate(k: DVec3, length: f64, steps: usize) -> (DVec3, DMat3) {
-    let skew = helixhair_physics::helix::skew(k);
+    let skew = helixhair_physics::geometry::helix::skew(k);
     let h = length / steps as f64;
     let (mut r, mut frame) = (DVec3::ZERO, DMat3::IDENTITY);
     let f = |m: DMat3| (m * skew, m.col(0));

@@ -17,10 +17,11 @@ use common::sphere::{RADIUS_M, sphere_field};
 use common::*;
 use glam::DVec3;
 use helixhair_physics::collision::ContactSettings;
+use helixhair_physics::engine::RestContact;
 use helixhair_physics::engine::{Engine, EngineKind};
-use helixhair_physics::fit::{RestContact, SagFreeInputs, SagFreeStatus, sag_free};
-use helixhair_physics::forces::project_end_point_forces;
+use helixhair_physics::fit::{SagFreeInputs, SagFreeStatus, sag_free};
 use helixhair_physics::model::StrandModel;
+use helixhair_physics::step::forces::project_end_point_forces;
 use helixhair_physics::{NaturalShape, RigidMotion, RootPose, SimSettings};
 
 /// Relative agreement of the end-point projection with the central

@@ -8,9 +8,9 @@ use common::*;
 use glam::DVec3;
 use helixhair_physics::Method;
 use helixhair_physics::StepScheme;
-use helixhair_physics::mass::{MassData, dense_mass, mass_blocks, mass_times};
-use helixhair_physics::reconstruct::Kinematics;
-use helixhair_physics::solve::{Solver, StepSolver};
+use helixhair_physics::step::mass::{MassData, dense_mass, mass_blocks, mass_times};
+use helixhair_physics::step::reconstruct::Kinematics;
+use helixhair_physics::step::solve::{Solver, StepSolver};
 
 /// Exact and Dense solve the same matrix; they differ by round-off, which
 /// grows with the step matrix's condition number (up to ~1e8 here for

@@ -10,8 +10,8 @@ mod common;
 use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::RigidMotion;
-use helixhair_physics::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
-use helixhair_physics::velocity_terms::{Derivative, VelocityTerms};
+use helixhair_physics::step::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
+use helixhair_physics::step::velocity_terms::{Derivative, VelocityTerms};
 
 /// Agreement relative to the largest entry of G x (round-off only).
 const ROUNDOFF_REL: f64 = 1e-9;

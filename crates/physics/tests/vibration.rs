@@ -7,7 +7,7 @@ mod common;
 
 use common::*;
 use glam::{DMat3, DVec3};
-use helixhair_physics::mass::{MassData, dense_mass, mass_blocks};
+use helixhair_physics::step::mass::{MassData, dense_mass, mass_blocks};
 use helixhair_physics::{Method, Strand};
 use nalgebra::{DMatrix, SymmetricEigen};
 

@@ -14,10 +14,11 @@ use serde::Serialize;
 
 use super::BenchContext;
 use super::chart::{Axis, LineChart, REFERENCE_COLOUR, Series, draw_line_chart, series_per_method};
-use super::error_model_build::{error_model_from_rows, save_error_model};
+use super::error_model_build::{error_model_from_entries, save_error_model};
 use super::pareto::pareto_front;
 use super::scenes::{CurlClass, RunSetting, Scene, run_scene, tip_rms_error};
 use super::table::write_csv;
+use crate::sim::error_model::ErrorEntry;
 use crate::stats::median;
 
 /// The reference setting: Dense, 64 elements, 16 substeps (h = 1/960 s).
@@ -76,6 +77,23 @@ pub struct AccuracyRow {
     pub finite: bool,
     /// Whether the setting is on the scene's Pareto front.
     pub pareto: bool,
+}
+
+/// The rows of the `bounce-CLASS` scenes as the error model's entries.
+pub fn error_entries(rows: &[AccuracyRow]) -> Vec<ErrorEntry> {
+    rows.iter()
+        .filter_map(|r| {
+            let class = r.scene.strip_prefix("bounce-")?;
+            Some(ErrorEntry {
+                class: class.into(),
+                method: Method::from_name(&r.method)?,
+                elements: r.elements,
+                substeps: r.substeps,
+                error: r.error,
+                cost_ms_per_sim_sec: r.cost_ms_per_sim_sec,
+            })
+        })
+        .collect()
 }
 
 /// The scenes: the three the charts show, then the other curl classes.
@@ -182,7 +200,7 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
     }
     write_csv(&ctx.file("accuracy.csv"), &rows)?;
     save_error_model(
-        &error_model_from_rows(&rows, reference, duration),
+        &error_model_from_entries(error_entries(&rows), reference, duration),
         &ctx.file("error_model.ron"),
     )?;
     super::iterations::run(ctx, duration)

@@ -2,22 +2,22 @@
 //! `bounce-CLASS` scenes turned into a [`ErrorModel`] and written as RON.
 //!
 //! The data type and its reading live with the automatic choice
-//! ([`crate::error_model`], [`crate::auto_choice`]), which the headless
+//! ([`crate::sim::error_model`], [`crate::sim::auto_choice`]), which the headless
 //! `sim` path uses without the bench; only the writing is here.
 
 use std::path::Path;
 
 use anyhow::Context as _;
-use helixhair_physics::{Method, StrandParams};
+use helixhair_physics::StrandParams;
 
-use super::accuracy::AccuracyRow;
 use super::scenes::{CurlClass, RunSetting, SCENE_LENGTH_M};
 use crate::atomic_write::write_atomically;
-use crate::error_model::{ClassCurvature, ErrorEntry, ErrorModel, max_curvature_per_m};
+use crate::sim::error_model::{ClassCurvature, ErrorEntry, ErrorModel, max_curvature_per_m};
 
-/// The model from the accuracy study's rows of the `bounce-CLASS` scenes.
-pub fn error_model_from_rows(
-    rows: &[AccuracyRow],
+/// The model from the accuracy study's measured entries (its rows of the
+/// `bounce-CLASS` scenes, [`super::accuracy::error_entries`]).
+pub fn error_model_from_entries(
+    entries: Vec<ErrorEntry>,
     reference: RunSetting,
     duration_secs: f64,
 ) -> ErrorModel {
@@ -29,20 +29,6 @@ pub fn error_model_from_rows(
                 natural_shape: c.shape(),
                 ..StrandParams::default()
             }),
-        })
-        .collect();
-    let entries = rows
-        .iter()
-        .filter_map(|r| {
-            let class = r.scene.strip_prefix("bounce-")?;
-            Some(ErrorEntry {
-                class: class.into(),
-                method: Method::from_name(&r.method)?,
-                elements: r.elements,
-                substeps: r.substeps,
-                error: r.error,
-                cost_ms_per_sim_sec: r.cost_ms_per_sim_sec,
-            })
         })
         .collect();
     ErrorModel {

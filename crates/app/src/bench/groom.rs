@@ -52,9 +52,9 @@ use serde::Serialize;
 use super::BenchContext;
 use super::chart::{Axis, LineChart, Series, draw_line_chart};
 use super::table::write_csv;
-use crate::groom::Groom;
-use crate::headless::{HeadlessSim, SimOverrides};
-use crate::render_cmd::load_head;
+use crate::head::groom::Groom;
+use crate::head::load_head;
+use crate::sim::headless::{HeadlessSim, SimOverrides};
 use crate::stats::median;
 use crate::style::Style;
 

@@ -27,14 +27,11 @@ pub mod modes;
 pub mod pareto;
 pub mod scenes;
 pub mod soak;
-pub mod soak_motion;
 pub mod stability;
 pub mod table;
 pub mod throughput;
 pub mod timing;
 pub mod volume;
-pub mod volume_cost;
-pub mod volume_measures;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -166,7 +163,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
                 volume::run(&mut ctx, volume::Part::Settle, input.as_ref())
             }
             Study::VolumeShake => volume::run(&mut ctx, volume::Part::Shake, None),
-            Study::VolumeCost => volume_cost::cost(&mut ctx),
+            Study::VolumeCost => volume::cost::cost(&mut ctx),
             Study::Soak => {
                 let engines = if args.soak_engines.is_empty() {
                     &EngineKind::ALL[..]

@@ -20,8 +20,8 @@
 //! frame stays under [`FRAME_BUDGET_MS`].
 
 use glam::DVec3;
-use helixhair_physics::batch::dense::{DenseScratch, step_dense};
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use helixhair_physics::batch::step::dense::{DenseScratch, step_dense};
 use helixhair_physics::batch::vec::V3;
 use helixhair_physics::batch::{BatchSystem, LANES, Lanes};
 use helixhair_physics::gpu::{GpuContext, GpuSystem};

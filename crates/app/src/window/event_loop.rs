@@ -12,7 +12,7 @@
 //!    a finished drag becomes one undo step;
 //! 4. egui is painted to the surface (and, for `--screenshot`, read back);
 //!    on a software adapter the panels are repainted only where they
-//!    changed ([`super::panel_layer`]).
+//!    changed ([`crate::window::present::panel_layer`]).
 //!
 //! The loop redraws continuously (`about_to_wait` requests the next frame);
 //! the surface's vsync paces it.
@@ -29,17 +29,18 @@ use winit::window::{Window, WindowId};
 
 use crate::style::Style;
 
-use super::app_state::{AppState, CompareMethods};
-use super::default_style::default_style;
-use super::drawn::DrawnCache;
-use super::frame_profile::FrameProfile;
-use super::preview::{quality, wants_preview};
-use super::screenshot::save_png;
-use super::ui::{ViewState, draw};
-use super::unsaved::Leave;
-use super::viewport::posed_head;
-use super::window_gpu::WindowGpu;
 use super::{HEADLESS_HINT, WindowArgs};
+use crate::window::live::drawn::DrawnCache;
+use crate::window::panels::ui::draw;
+use crate::window::panels::view_state::ViewState;
+use crate::window::present::frame_profile::FrameProfile;
+use crate::window::present::preview::{quality, wants_preview};
+use crate::window::present::screenshot::save_png;
+use crate::window::present::viewport::posed_head;
+use crate::window::present::window_gpu::WindowGpu;
+use crate::window::state::app_state::{AppState, CompareMethods};
+use crate::window::state::default_style::default_style;
+use crate::window::state::unsaved::Leave;
 
 /// Frames run before a screenshot when `--frames` is not given.
 const SCREENSHOT_FRAMES: u32 = 120;

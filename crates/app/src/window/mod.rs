@@ -35,53 +35,21 @@
 //! points to the headless commands; the binary prints it and exits with
 //! status 1, so scripts notice.
 
-pub mod app_state;
-pub mod collision;
-pub mod default_style;
-pub mod density_view;
-pub mod document;
-pub mod drawn;
-pub mod egui_paint;
 pub mod event_loop;
-pub mod export_dialog;
-pub mod export_job;
-pub mod file_menu;
-pub mod file_picker;
-pub mod frame_profile;
-pub mod guard_status;
-pub mod head_motion;
-pub mod head_of_style;
-pub mod import_job;
-pub mod imported_summary;
-pub mod interaction_panel;
-pub mod job;
-pub mod live_sim;
-pub mod motion_recorder;
-pub mod panel_layer;
-pub mod presets;
-pub mod preview;
-pub mod readout_panel;
-pub mod readouts;
-pub mod resample;
-pub mod screenshot;
-pub mod set_rest;
-pub mod style_panel;
-pub mod tool_bar;
-pub mod ui;
-pub mod undo;
-pub mod unsaved;
-pub mod value_slider;
-pub mod viewport;
-pub mod window_gpu;
+pub mod jobs;
+pub mod live;
+pub mod panels;
+pub mod present;
+pub mod state;
 
 use std::path::PathBuf;
 
 use clap::Args;
 use clap::builder::TypedValueParser as _;
 
-use self::default_style::DEFAULT_GUIDES;
-use self::head_motion::Clip;
-use self::viewport::DEFAULT_RENDER_STRANDS;
+use self::live::head_motion::Clip;
+use self::present::viewport::DEFAULT_RENDER_STRANDS;
+use self::state::default_style::DEFAULT_GUIDES;
 
 pub use event_loop::run_window;
 

@@ -46,8 +46,8 @@ pub use curves::{USD_FALLBACK_METERS_PER_UNIT, USD_FALLBACK_TIME_CODES_PER_SECON
 
 use crate::error::{Location, ReadError, ReadErrorKind};
 use crate::format::Format;
+use crate::imported::Imported;
 use crate::options::ReadOptions;
-use crate::read::Imported;
 
 /// Reads a `.usda` layer's `BasisCurves` prims.
 pub fn read_usda(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadError> {

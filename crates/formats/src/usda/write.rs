@@ -10,7 +10,7 @@ use crate::curve_set::{CurveSet, StrandValue, bounds_of};
 use crate::error::WriteError;
 use crate::format::Format;
 use crate::mesh::{MeshPose, TriangleMesh};
-use crate::write_checks::{all_or_none, finite_points};
+use crate::write::checks::{all_or_none, finite_points};
 
 /// Writes one layer:
 ///

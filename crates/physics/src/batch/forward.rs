@@ -17,7 +17,6 @@
 //! every sample, the two agree to round-off, and this form needs no
 //! matrix-free product M q̇ (one sweep fewer).
 
-use super::contact::{EndPointForce, NoContact};
 use super::geometry::{
     Coefficients, coefficients_at, local_end_with, local_point, local_point_with,
 };
@@ -207,7 +206,7 @@ pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
 }
 
 /// [`own_sums`] written into `el` in place, with `hook`'s force at each
-/// quadrature sample (the hair–hair model's pull, [`super::pull`];
+/// quadrature sample (the hair–hair model's pull, [`crate::batch::volume::pull`];
 /// nothing unless `H::SAMPLE_FORCES`; the hook sees each sample's place
 /// relative to the root, `hook_origin_m` being where `s`'s point lies
 /// relative to it: the element's start when `s` was moved there for local
@@ -392,5 +391,52 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
         el.contact_axis = V3::zero();
         end_force.at_end::<LOCAL>(e, &next, el);
         s = next;
+    }
+}
+
+/// A force applied at each element's end point during the forward sweep.
+pub trait EndPointForce<T> {
+    /// Called once element `e`'s data `el` is complete (own sums, A_Q,
+    /// B_Q), with `end` the state at its end point.
+    /// `LOCAL`: `el` holds local moments (see
+    /// [`forward_with`]).
+    fn at_end<const LOCAL: bool>(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>);
+
+    /// Whether [`Self::sample_force`] adds anything: a compile-time
+    /// switch, so that without the hair–hair model ([`crate::batch::volume::pull`]) the
+    /// sample loop is exactly as before.
+    const SAMPLE_FORCES: bool = false;
+
+    /// An extra drag rate, 1/s, taken implicitly through the mass scale
+    /// (the hair–hair friction μ, [`crate::batch::volume::pull`]).
+    #[inline(always)]
+    fn drag_rate_per_s(&self) -> f32 {
+        0.0
+    }
+
+    /// An extra force per unit length on quadrature node `j` of element
+    /// `e` at `r` (relative to the root point, m) moving at `velocity`
+    /// (world, m/s), N/m; read only when [`Self::SAMPLE_FORCES`].
+    #[inline(always)]
+    fn sample_force(&self, _e: usize, _j: usize, _r: V3<T>, _velocity: V3<T>) -> V3<T>
+    where
+        T: Real,
+    {
+        V3::zero()
+    }
+}
+
+/// No collider: nothing happens at the end points.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoContact;
+
+impl<T> EndPointForce<T> for NoContact {
+    #[inline(always)]
+    fn at_end<const LOCAL: bool>(
+        &mut self,
+        _e: usize,
+        _end: &FrameState<T>,
+        _el: &mut ElementData<T>,
+    ) {
     }
 }

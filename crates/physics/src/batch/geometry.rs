@@ -2,7 +2,7 @@
 //! and what one element contributes at an arc length σ, with time
 //! derivatives written out instead of carried on jets.
 //!
-//! The f64 reference ([`crate::helix`], [`crate::reconstruct`]) runs the
+//! The f64 reference ([`crate::geometry::helix`], [`crate::step::reconstruct`]) runs the
 //! whole sweep on jets, so every frame is a jet of three matrices. Here the
 //! frame's time derivatives are carried as its angular velocity ω and
 //! acceleration α (world vectors, Ṙ = \[ω\]×R), as in articulated-body
@@ -189,7 +189,7 @@ fn y_at<T: Real>(sigma: T, k: V3<T>) -> T {
 /// The coefficients at arc length `sigma` of an element with strains `k`
 /// (with A where `with_a`), exactly as [`local_point`] and [`local_end`]
 /// compute them: a step that visits the same points several times at the
-/// same q (GMRES, [`super::implicit`]) evaluates them once and passes
+/// same q (GMRES, [`crate::batch::step::implicit`]) evaluates them once and passes
 /// them to [`local_point_with`] and [`local_end_with`].
 #[inline(always)]
 pub fn coefficients_at<T: Real>(sigma: T, k: V3<T>, with_a: bool) -> Coefficients<T> {

@@ -6,15 +6,16 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use super::batch_step::{BatchStep, Scratch, step_pulled};
-use super::contact::{LaneContact, NoContact, SkinTest};
+use super::contact::{LaneContact, SkinTest};
+use super::forward::NoContact;
 use super::guard::{check_and_reset, measure_lanes, set_at_rest};
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
-use super::pull::SamplePull;
 use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView, KeptSamples, carried};
+use crate::batch::step::{BatchStep, Scratch, step_pulled};
+use crate::batch::volume::pull::SamplePull;
 use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
 use crate::motion::{RigidMotion, RootPose};

@@ -9,7 +9,7 @@
 //! over the quadrature samples each lane's kinetic, elastic and
 //! gravitational energy, momentum, angular momentum about the root, the
 //! external forces with their torque and power (gravity, drag and the
-//! hair–hair model's pull, [`super::pull`]), whether the head's contact
+//! hair–hair model's pull, [`crate::batch::volume::pull`]), whether the head's contact
 //! acts at any element end point, as the step applies it (a frame in
 //! contact is judged by finiteness and speed alone, so the contact's force
 //! itself is not summed), and the fastest point relative to the root's
@@ -42,12 +42,12 @@ use glam::DVec3;
 
 use super::forward::{FrameState, sweep_samples};
 use super::lane_model::Constants;
-use super::lane_screen::LaneScreen;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
-use super::near_cells::SkinTest;
-use super::pull::{RootVelocity, SamplePull, add_pull_work};
 use super::vec::{V3, lane_of, set_lane};
+use crate::batch::contact::lane_screen::LaneScreen;
+use crate::batch::contact::near_cells::SkinTest;
+use crate::batch::volume::pull::{RootVelocity, SamplePull, add_pull_work};
 use crate::frame_balance::{SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
@@ -88,7 +88,7 @@ thread_local! {
 /// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
 /// moving as `root` (lanes) with root points at `root_positions_m`
 /// (world), under `env`'s gravity and air, with the head's `contact` if any
-/// and the hair–hair model's `pull` if on ([`super::pull`]). With
+/// and the hair–hair model's `pull` if on ([`crate::batch::volume::pull`]). With
 /// `samples` (N × nodes entries), each quadrature sample's position
 /// relative to its root and world velocity is kept there as the sweep
 /// finds it: the hair–hair model's gather of the next frame starts from
@@ -247,7 +247,7 @@ impl LaneMeasures<'_> {
 /// any element end point of a batch whose end points (relative to each
 /// lane's root) and velocities are `ends`. The step's contact: a force at
 /// each end point, carrying half of each element beside it
-/// ([`super::contact`]), screened in lanes first ([`super::lane_screen`]),
+/// ([`super::contact`]), screened in lanes first ([`crate::batch::contact::lane_screen`]),
 /// then as the step screens (exact: a rejected point has no force), then
 /// the implicit push: where it acts is where the Exact steps' contact
 /// acts, and a superset of where the explicit penalty does.

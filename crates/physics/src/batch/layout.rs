@@ -128,7 +128,7 @@ impl<T: Real> RootMotion<T> {
 }
 
 /// What the root-to-tip sweep leaves for each element: its beyond
-/// Jacobians and its own sums (see [`crate::mass`] and [`crate::forces`]
+/// Jacobians and its own sums (see [`crate::step::mass`] and [`crate::step::forces`]
 /// for the algebra).
 #[derive(Clone, Copy, Debug)]
 pub struct ElementData<T> {

@@ -107,28 +107,20 @@
 //! `tests/batch_volume.rs` (its known answers, and agreement with the
 //! reference running it).
 
-mod batch_step;
-pub mod block_diagonal;
 pub mod contact;
-pub mod dense;
-pub mod exact;
 pub mod forward;
 pub mod geometry;
 mod group;
 pub mod guard;
-pub mod implicit;
 pub mod lane_model;
-pub mod lane_screen;
 pub mod lanes;
 pub mod layout;
-pub mod near_cells;
-pub mod pull;
+pub mod step;
 pub mod suffix;
 mod system;
 pub mod vec;
 pub mod velocity_terms;
 pub mod volume;
-pub mod volume_read;
 
 pub use lane_model::{Constants, LaneModel};
 pub use lanes::{LANES, Lanes, Real};

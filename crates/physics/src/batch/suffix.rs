@@ -3,8 +3,8 @@
 //!
 //! With J = A_Q − \[r\]×B_Q for every sample past element Q, the diagonal
 //! block and generalized force of element Q need only the suffix mass
-//! moments (m, c, I) and the suffix force and torque (see [`crate::mass`],
-//! [`crate::forces`]):
+//! moments (m, c, I) and the suffix force and torque (see [`crate::step::mass`],
+//! [`crate::step::forces`]):
 //!
 //! X_b = m A − \[c\]×B,  Y_b = \[c\]×A + I B,
 //! M_QQ = D_Q + AᵀX_b + BᵀY_b,  Q_Q = Σ_own GᵀF + AᵀF_b + Bᵀτ_b.

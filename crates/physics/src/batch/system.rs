@@ -21,9 +21,7 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 
-use super::batch_step::{BatchStep, krylov_bytes_per_element};
 use super::contact::{NearCells, SkinTest};
-use super::exact::Elimination;
 use super::forward::{FrameState, advance};
 use super::group::{FrameCheck, Group};
 use super::lane_model::LaneModel;
@@ -31,6 +29,8 @@ use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
 use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView};
+use crate::batch::step::exact::Elimination;
+use crate::batch::step::{BatchStep, krylov_bytes_per_element};
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
 use crate::frame_balance::SteppedFrame;

@@ -1,5 +1,5 @@
 //! Stage "velocity terms" on the fast path: the product G z of the
-//! velocity-implicit step, in f32 lanes (see [`crate::velocity_terms`] for
+//! velocity-implicit step, in f32 lanes (see [`crate::step::velocity_terms`] for
 //! the f64 reference and the physics).
 //!
 //! # How it works

@@ -27,7 +27,7 @@
 //! the bracket (the predicted push, [`ContactInputs::implicit_force`]) on
 //! the right-hand side and h (h k + c) Jᵀ n nᵀ J on the left, a
 //! mass-like term the solvers take with the mass data
-//! ([`crate::mass::add_sample_weights`]). Then α can be large
+//! ([`crate::step::mass::add_sample_weights`]). Then α can be large
 //! ([`ContactSettings::implicit_stiffness_ratio`]): the step stays stable
 //! for any α, as it does for any K. A sample that will cross into the skin
 //! during the step (d + h min(v_rel·n, 0) < skin) is in contact from the

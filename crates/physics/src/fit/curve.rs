@@ -1,7 +1,7 @@
 //! A Super-Helix evaluated at arbitrary arc lengths, with the derivatives a
 //! least-squares fit needs.
 //!
-//! The step's reconstruction ([`crate::reconstruct`]) samples each element
+//! The step's reconstruction ([`crate::step::reconstruct`]) samples each element
 //! at fixed quadrature nodes; a fit instead compares the strand with the
 //! imported polyline at the arc lengths where its points lie, which move as
 //! the fit proceeds. The algebra is the same (`docs/physics.md` sections 2
@@ -12,7 +12,9 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::helix::{HelixCoefficients, centreline_jacobian_with, left_jacobian_with, skew};
+use crate::geometry::helix::{
+    HelixCoefficients, centreline_jacobian_with, left_jacobian_with, skew,
+};
 
 /// Centreline h(σ, k), its Jacobian (when asked) and the frame's turn
 /// exp(σ[k]×), from one evaluation of the coefficients A, B, C (the fit

@@ -18,7 +18,7 @@
 use glam::{DMat3, DVec3};
 
 use super::curve::UniformHelixChain;
-use crate::helix::rotation;
+use crate::geometry::helix::rotation;
 use crate::motion::RootPose;
 
 /// Chord lengths along a polyline: s_0 = 0, s_i = Σ_{j<i} |P_{j+1} − P_j|.

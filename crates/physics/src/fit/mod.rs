@@ -27,7 +27,6 @@
 pub mod curve;
 pub mod initial;
 pub mod refine;
-pub mod rest_contact;
 pub mod sag_free;
 pub mod stiffen;
 
@@ -35,7 +34,6 @@ use glam::DVec3;
 use thiserror::Error;
 
 pub use curve::UniformHelixChain;
-pub use rest_contact::{ContactPoints, RestContact};
 pub use sag_free::{SagFree, SagFreeInputs, SagFreeStatus, sag_free};
 pub use stiffen::{StiffenOptions, StiffenedRest, sag_free_stiffened, stiffness_scale_for_margin};
 

@@ -38,7 +38,7 @@ use glam::{DMat3, DVec3};
 use nalgebra::{DMatrix, DVector};
 
 use super::curve::UniformHelixChain;
-use crate::helix::{rotation, skew};
+use crate::geometry::helix::{rotation, skew};
 
 /// Most Levenberg–Marquardt iterations: exact fits converge in 5 to 15;
 /// a curve the chain cannot follow stops earlier, on the decrease test.

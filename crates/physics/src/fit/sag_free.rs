@@ -16,7 +16,7 @@
 //! pushes on it, and the rest shape must hold the shape against that push
 //! too: Q(q) then includes the contact's generalized force at rest,
 //! exactly as the engine that will hold the strand applies it
-//! ([`super::rest_contact`], which explains why nothing less will do).
+//! ([`crate::engine::rest_contact`], which explains why nothing less will do).
 //!
 //! Two things can go wrong, and both are reported ([`SagFreeStatus`]):
 //!
@@ -40,13 +40,13 @@
 use glam::DVec3;
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use crate::forces::project_sample_forces;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::natural_shape::MAX_NATURAL_STRAIN_PER_M;
+use crate::step::forces::project_sample_forces;
 
-use super::rest_contact::RestContact;
-use crate::reconstruct::{Kinematics, reconstruct};
+use crate::engine::rest_contact::RestContact;
+use crate::step::reconstruct::{Kinematics, reconstruct};
 
 /// Step of the central differences of Q, m⁻¹: Q is smooth in q on the
 /// scale of the strains themselves (1–1000 m⁻¹), so the O(h²) error is

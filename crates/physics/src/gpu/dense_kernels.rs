@@ -2,7 +2,7 @@
 //! limits, which [`super::GpuSystem`] builds like the other methods'.
 //!
 //! How it works (`shaders/physics/dense.wgsl`, arithmetic of
-//! [`crate::batch::dense`]). Three dispatches per step:
+//! [`crate::batch::step::dense`]). Three dispatches per step:
 //!
 //! | stage | invocations | what it does |
 //! | --- | --- | --- |
@@ -21,7 +21,7 @@
 //! elements is refused with [`GpuError::TooManyElements`].
 
 use super::GpuError;
-use super::kernels::Span;
+use super::layout::Span;
 use super::layout::{DenseOwnGpu, FrameGpu, JacobiansGpu};
 
 /// `shaders/physics/dense.wgsl`: the three Dense stages.

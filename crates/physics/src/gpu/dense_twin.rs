@@ -1,14 +1,14 @@
 //! CPU twins of the Dense kernel (`shaders/physics/dense.wgsl`): one
 //! function per entry point, same name, bindings in binding order, with the
-//! f32 arithmetic of [`crate::batch::dense`] at width 1. Dense still takes
+//! f32 arithmetic of [`crate::batch::step::dense`] at width 1. Dense still takes
 //! its moments about the root (A_P must be paired with X_Q, Y_Q of every
 //! Q > P, so local moments would move A_P to each Q's end point); its
 //! `stage_frames` stores the root-based A_Q and a zero span, unlike
 //! Block-diagonal's ([`super::twin::stage_frames`]).
 
-use crate::batch::dense::{DenseScratch, assemble, columns, ldlt_solve};
 use crate::batch::forward::own_sums;
 use crate::batch::layout::ElementData;
+use crate::batch::step::dense::{DenseScratch, assemble, columns, ldlt_solve};
 use crate::batch::suffix::{integrate, mass_scale, step_terms};
 use crate::batch::vec::V3;
 
@@ -121,7 +121,7 @@ pub fn stage_dense(
 /// Not a stage: the mass matrix M (row-major 3N×3N, both triangles) of
 /// strand `strand` as `stage_dense` assembles it, before the mass scale
 /// and the step diagonal are applied; for checking the assembly against
-/// the f64 reference's [`crate::mass::dense_mass`].
+/// the f64 reference's [`crate::step::mass::dense_mass`].
 pub fn mass_matrix(
     params: &ParamsGpu,
     strand: usize,

@@ -21,6 +21,7 @@ use std::borrow::Cow;
 use helixhair_gpu::upload_buffer;
 
 use super::dense_kernels::{self, DENSE_WGSL};
+use super::layout::Span;
 use super::layout::{
     BeyondGpu, ElementConstGpu, EliminationGpu, FrameGpu, JacobiansGpu, OffDiagonalGpu, OwnGpu,
     ParamsGpu, RootPoseGpu,
@@ -59,17 +60,6 @@ const WORKGROUP: u32 = 64;
 
 /// A state read back: (q, q̇), one vec4 per element, strand-major.
 pub type GpuState = (Vec<[f32; 4]>, Vec<[f32; 4]>);
-
-/// How many invocations a stage runs.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum Span {
-    /// One invocation per strand (workgroups of 64).
-    PerStrand,
-    /// One invocation per element (workgroups of 64).
-    PerElement,
-    /// One workgroup per strand.
-    WorkgroupPerStrand,
-}
 
 fn f4(v: glam::DVec3) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, 0.0]

@@ -205,3 +205,14 @@ pub fn m4(m: &M3<f32>) -> Mat3Gpu {
 pub fn m3(m: &Mat3Gpu) -> M3<f32> {
     M3::from_cols(v3(m[0]), v3(m[1]), v3(m[2]))
 }
+
+/// How many invocations a stage runs.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Span {
+    /// One invocation per strand (workgroups of 64).
+    PerStrand,
+    /// One invocation per element (workgroups of 64).
+    PerElement,
+    /// One workgroup per strand.
+    WorkgroupPerStrand,
+}

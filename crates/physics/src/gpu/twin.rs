@@ -4,10 +4,10 @@
 //! ([`crate::batch`], at width 1). The parity tests run a step both ways and
 //! compare; a twin is also the reference when a kernel is changed.
 
-use crate::batch::contact::NoContact;
-use crate::batch::exact::{Elimination, step_exact_with};
+use crate::batch::forward::NoContact;
 use crate::batch::forward::{FrameState, advance_local, own_sums, root_jacobian};
 use crate::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use crate::batch::step::exact::{Elimination, step_exact_with};
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use crate::batch::vec::V3;
 
@@ -265,7 +265,7 @@ pub fn stage_solve(
 }
 
 /// Twin of `stage_exact`: per strand, the three sweeps of
-/// [`crate::batch::exact`]. The kernel keeps its per-element intermediates
+/// [`crate::batch::step::exact`]. The kernel keeps its per-element intermediates
 /// in bindings 5–8; the twin keeps them in local scratch.
 pub fn stage_exact(
     params: &ParamsGpu,

@@ -18,9 +18,10 @@ use glam::DVec3;
 use crate::frame_balance::StrandMeasure;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
-use crate::reconstruct::Kinematics;
+use crate::step::reconstruct::Kinematics;
 
 use super::friction::VolumePull;
+use super::pair_points::SampleMotion;
 
 /// Adds `pull`'s force, torque and power at the state of `kin`
 /// (reconstructed for a root moving as `root`) to `out`.
@@ -82,19 +83,6 @@ impl PullWork {
         measure.external_torque_n_m += new.torque_n_m - old.torque_n_m;
         measure.external_power_w += new.power_w - old.power_w;
     }
-}
-
-/// One quadrature sample's place and motion, what the pull's work needs:
-/// the reference's gather keeps them from the reconstruction it makes
-/// anyway ([`super::reference`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SampleMotion {
-    /// Position relative to the strand's root point, world axes, metres.
-    pub position_m: DVec3,
-    /// Velocity, world, m/s.
-    pub velocity_m_per_s: DVec3,
-    /// Quadrature weight times element length, metres.
-    pub weight_m: f64,
 }
 
 /// `pull`'s work on a strand of ρS `mass_per_length` whose quadrature

@@ -35,7 +35,7 @@
 //! [`friction::VolumePull`], which the step adds to its forces and to its drag
 //! rate), and `crate::batch::volume` the f32 batch engine's (an f32 gather per
 //! SIMD batch, the same f64 splat and read, and a per-sample pull in the batch
-//! step, `crate::batch::pull`). [`state`] is what both keep between frames;
+//! step, `crate::batch::volume::pull`). [`state`] is what both keep between frames;
 //! [`balance`] counts the model's work in the guard's energy balance, and
 //! exchanges the old pull's work for the new one's in the reused start-of-frame
 //! measure.

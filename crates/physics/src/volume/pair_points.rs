@@ -51,7 +51,6 @@
 
 use glam::DVec3;
 
-use super::balance::SampleMotion;
 use super::splat::SamplePoint;
 use crate::motion::RigidMotion;
 
@@ -147,4 +146,17 @@ fn pair_mean(nodes: &[SampleMotion], share: &[f64; NODES_PER_POINT]) -> (DVec3, 
         .map(|(s, w)| (*w * s.position_m, *w * s.velocity_m_per_s));
     let first = terms.next().unwrap_or((DVec3::ZERO, DVec3::ZERO));
     terms.fold(first, |(x, v), (dx, dv)| (x + dx, v + dv))
+}
+
+/// One quadrature sample's place and motion, what the pull's work needs:
+/// the reference's gather keeps them from the reconstruction it makes
+/// anyway ([`super::reference`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleMotion {
+    /// Position relative to the strand's root point, world axes, metres.
+    pub position_m: DVec3,
+    /// Velocity, world, m/s.
+    pub velocity_m_per_s: DVec3,
+    /// Quadrature weight times element length, metres.
+    pub weight_m: f64,
 }

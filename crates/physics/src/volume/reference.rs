@@ -17,15 +17,15 @@ use std::time::Instant;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::balance::SampleMotion;
 use super::friction::HeadVelocity;
+use super::pair_points::SampleMotion;
 use super::pair_points::{Placement, pair_points};
 use super::rest::RestDensity;
 use super::settings::InteractionSettings;
 use super::splat::SamplePoint;
 use super::state::ModelState;
 use crate::motion::RigidMotion;
-use crate::reconstruct::{Kinematics, reconstruct};
+use crate::step::reconstruct::{Kinematics, reconstruct};
 use crate::strand::Strand;
 
 /// The model's state on a reference engine.

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::ParamError;
-use crate::params::check_range;
+use crate::error::check_range;
 
 /// How strands of one head interact through the volume grid
 /// ([`crate::volume`]). Part of [`crate::SimSettings`] (`sim.interaction`

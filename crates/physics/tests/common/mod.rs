@@ -10,8 +10,8 @@ pub mod volume_scene;
 use std::sync::Arc;
 
 use glam::{DMat3, DVec3};
-use helixhair_physics::forces::{ForceInputs, generalized_forces};
-use helixhair_physics::reconstruct::{Kinematics, reconstruct};
+use helixhair_physics::step::forces::{ForceInputs, generalized_forces};
+use helixhair_physics::step::reconstruct::{Kinematics, reconstruct};
 use helixhair_physics::{
     Method, NaturalShape, Oscillation, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
 };

@@ -18,8 +18,9 @@ use helixhair_gpu::upload_buffer;
 
 use super::context::{GpuContext, GpuError};
 use super::frame_data::{FrameUniforms, IndexedGeometry, head_vertices};
-use super::passes::{PICTURE_FORMATS, Pipelines};
+use super::passes::Pipelines;
 use super::readback::{RgbaImage, copy_to_buffer, read_buffer};
+use super::settings::PICTURE_FORMATS;
 use super::settings::RenderSettings;
 use super::targets::{Targets, begin};
 use crate::ribbons::ribbon_mesh;

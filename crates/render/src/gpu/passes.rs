@@ -17,13 +17,6 @@ use super::shaders::{self, ShaderFile};
 
 /// Depth format of the light's depth map and of the main pass.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Colour format of the picture by default (shaders write linear light;
-/// the format encodes sRGB).
-pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
-/// The picture formats the renderer draws: [`COLOUR_FORMAT`], or the same
-/// bytes in a window surface's usual order.
-pub const PICTURE_FORMATS: [wgpu::TextureFormat; 2] =
-    [COLOUR_FORMAT, wgpu::TextureFormat::Bgra8UnormSrgb];
 /// Format of the light's first-hair depth, read back by later passes. Half
 /// floats resolve depth to about 5e-4 of the light's depth range (a few
 /// tenths of a millimetre over a head), well under the first opacity
@@ -31,11 +24,6 @@ pub const PICTURE_FORMATS: [wgpu::TextureFormat; 2] =
 pub const FIRST_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of the four opacity layers.
 pub const OPACITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Samples per pixel of the main pass by default (antialiasing, and partial
-/// coverage of strands thinner than a pixel through the sample mask);
-/// [`RenderSettings::msaa_samples`](super::settings::RenderSettings::msaa_samples)
-/// may ask for 1.
-pub const MSAA_SAMPLES: u32 = 4;
 
 /// The bind group layouts of groups 0, 1 and 2.
 #[derive(Debug)]

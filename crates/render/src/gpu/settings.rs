@@ -1,6 +1,17 @@
 //! Picture size and quality settings of the offscreen renderer.
 
-use super::passes::{COLOUR_FORMAT, MSAA_SAMPLES};
+/// Colour format of the picture by default (shaders write linear light;
+/// the format encodes sRGB).
+pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The picture formats the renderer draws: [`COLOUR_FORMAT`], or the same
+/// bytes in a window surface's usual order.
+pub const PICTURE_FORMATS: [wgpu::TextureFormat; 2] =
+    [COLOUR_FORMAT, wgpu::TextureFormat::Bgra8UnormSrgb];
+/// Samples per pixel of the main pass by default (antialiasing, and partial
+/// coverage of strands thinner than a pixel through the sample mask);
+/// [`RenderSettings::msaa_samples`]
+/// may ask for 1.
+pub const MSAA_SAMPLES: u32 = 4;
 
 /// Picture size and quality settings.
 #[derive(Clone, Copy, Debug, PartialEq)]

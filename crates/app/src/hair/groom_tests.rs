@@ -1,0 +1,147 @@
+//! Tests of growing roots on the scalp and of the drawn hair.
+
+use std::path::Path;
+
+use glam::{DVec3, Vec3};
+use helixhair_render::head_generate::default_head;
+use helixhair_render::head_shell::HeadShell;
+
+use crate::hair::drawn::{clump_onto, drape_over, drawn_hair_full, root_width_m};
+use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
+use crate::head::groom::{Groom, combed_direction, grow_scalp_roots, scalp_roots};
+use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::style::Style;
+
+const STYLE: &str = r#"(
+    version: 1,
+    name: "t",
+    groups: [
+        (name: "top", scalp: (count: 30, comb: (0.0, 0.0, -1.0), lift_deg: 20.0, region: (towards: (0.0, 1.0, 0.0), to_deg: 45.0)),
+         render: (count: 200)),
+        (name: "one", roots: [(position_m: (0.0, 0.0, -0.1), direction: (0.0, 0.0, -1.0))], render: (count: 10)),
+        (name: "bare", roots: [(position_m: (0.1, 0.0, 0.0), direction: (1.0, 0.0, 0.0))]),
+    ],
+)"#;
+
+fn style() -> Style {
+    Style::from_ron(STYLE, Path::new("t.ron")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_combed_root_leans_along_the_comb_at_its_lift() {
+    let d = combed_direction(DVec3::Y, DVec3::new(0.0, -5.0, -2.0), 30.0);
+    assert!((d.length() - 1.0).abs() < 1e-12);
+    assert!(
+        (d.dot(DVec3::Y) - 0.5).abs() < 1e-12,
+        "30° off the surface: {d}"
+    );
+    assert!(d.z < 0.0 && d.x.abs() < 1e-12, "towards the comb: {d}");
+    // A comb along the normal still gives a direction at the lift angle.
+    let d = combed_direction(DVec3::Y, DVec3::Y, 30.0);
+    assert!((d.dot(DVec3::Y) - 0.5).abs() < 1e-12, "{d}");
+}
+
+#[test]
+fn scalp_roots_lie_in_their_region_and_grow_outwards() {
+    let head = default_head();
+    let style = style();
+    let placement = style.groups[0].scalp.as_ref().expect("scalp");
+    let roots = scalp_roots(placement, &head);
+    assert_eq!(roots.len(), 30);
+    for root in &roots {
+        assert!(
+            root.position_m.angle_between(DVec3::Y).to_degrees() < 47.0,
+            "{}",
+            root.position_m
+        );
+        let out = -root.direction.dot(root.reference);
+        assert!((out - 20f64.to_radians().sin()).abs() < 1e-6, "lift: {out}");
+        assert!(root.direction.z < 0.05, "combed back: {}", root.direction);
+    }
+    let grown = grow_scalp_roots(&style, &head);
+    let counts: Vec<usize> = grown.groups.iter().map(|g| g.roots.len()).collect();
+    assert_eq!(counts, [30, 1, 1]);
+    assert!(grown.groups.iter().all(|g| g.scalp.is_none()));
+    // The headless simulation grows them on the default head itself.
+    let sim = HeadlessSim::new(&style, SimOverrides::default()).expect("builds");
+    assert_eq!(sim.engine().strand_count(), 32);
+}
+
+#[test]
+fn drawn_hair_has_the_styled_counts_and_stays_outside_the_head() {
+    let groom = Groom::new(style(), default_head());
+    let shell = &groom.shell;
+    // Without a collider the guides fall through the head; the drawn
+    // strands still drape over it.
+    let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default()).expect("builds");
+    sim.run(30).expect("finite");
+    let hair = drawn_hair_full(&groom, sim.engine());
+    // 200 and 10 as styled; the group without `render` gets the default.
+    let want = 200 + 10 + DEFAULT_DRAWN_STRANDS;
+    assert_eq!(hair.strands.strand_count(), want);
+    assert_eq!(hair.colours.len(), want);
+    assert!(hair.root_width_m >= root_width_m(100_000));
+    for strand in hair.strands.iter() {
+        for &p in &strand[1..] {
+            let d = p - shell.centre_m();
+            assert!(
+                d.length() >= shell.radius_m(d.normalize()) + 1e-3,
+                "{p} inside the head"
+            );
+        }
+    }
+}
+
+#[test]
+fn draping_keeps_outside_points_where_they_are() {
+    let shell = HeadShell::new(&default_head().mesh);
+    let line: Vec<Vec3> = (0..5)
+        .map(|k| Vec3::new(0.5, 0.0, 0.1 * k as f32))
+        .collect();
+    let mut draped = line.clone();
+    drape_over(&mut draped, &shell);
+    assert_eq!(draped, line);
+}
+
+#[test]
+fn simulated_guides_rest_on_the_head_through_its_collider() {
+    let groom = Groom::new(style(), default_head());
+    let collider = std::sync::Arc::new(groom.collider().expect("the default head is closed"));
+    let inside = collider.sample(DVec3::ZERO).map(|(d, _)| d);
+    assert!(
+        inside.is_some_and(|d| d < 0.0),
+        "the head's centre is inside: {inside:?}"
+    );
+    let mut sim = HeadlessSim::new(&groom.grown, SimOverrides::default()).expect("builds");
+    sim.engine_mut().set_collider(Some(collider.clone()));
+    sim.run(60).expect("stays finite");
+    // Hair falling onto the head stops at its surface, within the contact
+    // penalty's give: about g h² / α = 11 mm at rest for one 1/60 s step
+    // (ContactSettings), more while a falling strand is caught; without the
+    // collider strands fall right through (tens of centimetres).
+    let deepest = (0..sim.engine().strand_count())
+        .flat_map(|i| sim.engine().boundary_points_world(i))
+        .filter_map(|p| collider.sample(p).map(|(d, _)| d))
+        .fold(f64::MAX, f64::min);
+    assert!(
+        deepest > -0.03,
+        "a guide point is {deepest} m inside the head"
+    );
+}
+
+#[test]
+fn clumping_gathers_a_strand_onto_its_guide_towards_the_tip() {
+    let guide: Vec<Vec3> = (0..11)
+        .map(|k| Vec3::new(0.0, -0.01 * k as f32, 0.0))
+        .collect();
+    let mut strand: Vec<Vec3> = guide.iter().map(|p| *p + Vec3::X * 0.02).collect();
+    clump_onto(&mut strand, &guide, 0.8);
+    // The root stays; the offset shrinks linearly along the length to
+    // 1 − 0.8 of itself at the tip.
+    assert_eq!(strand[0], Vec3::new(0.02, 0.0, 0.0));
+    for (k, p) in strand.iter().enumerate() {
+        let want = 0.02 * (1.0 - 0.8 * k as f32 / 10.0);
+        assert!((p.x - want).abs() < 1e-6, "point {k}: {p}");
+        assert!((p.y + 0.01 * k as f32).abs() < 1e-6, "point {k}: {p}");
+    }
+}

@@ -1,0 +1,98 @@
+//! The one builder from a style file to a running simulation: the style
+//! grown on its head, and the engine colliding with that head.
+//!
+//! `render`, `export`, `sim` with a head, the bench and the window's drawn
+//! hair all start here, so a style means the same hair everywhere: the
+//! head is the command line's `--head`, else the one an imported groom
+//! names (`imported.head`), else the default head; a placement that finds
+//! no scalp is refused with the style's file, line and field.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use anyhow::Context as _;
+use helixhair_render::obj::NO_SCALP_HINT;
+
+use crate::head::groom::Groom;
+use crate::head::load_head;
+use crate::head::of_style::{head_pivot_m, style_head_path};
+use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::style::Style;
+use crate::style::error::{StyleError, StyleErrorKind};
+use crate::style::field_path::FieldPath;
+use crate::style::source_map::SourceMap;
+
+/// Refuses a scalp placement that found no scalp to grow on (a `region`
+/// that misses the head's scalp), naming the style's file, line and field
+/// as a style error does.
+fn check_placements(groom: &Groom, style_path: &Path, head: Option<&Path>) -> anyhow::Result<()> {
+    let head = head.map_or_else(
+        || "the default head".to_owned(),
+        |p| p.display().to_string(),
+    );
+    let no_scalp = groom.head.scalp_triangles.is_empty();
+    for (i, (group, grown)) in groom.groups().enumerate() {
+        let Some(scalp) = &group.scalp else { continue };
+        if grown.roots.len() > group.roots.len() && !no_scalp {
+            continue;
+        }
+        let at = FieldPath::root().field("groups").index(i).field("scalp");
+        let field = if scalp.region.is_some() {
+            at.field("region")
+        } else {
+            at
+        };
+        // The file was just read; if it has gone since, report without a line.
+        let src = std::fs::read_to_string(style_path).unwrap_or_default();
+        let (position, field) = SourceMap::new(&src).locate(&field);
+        return Err(StyleError::Located {
+            path: style_path.to_owned(),
+            position,
+            field,
+            kind: StyleErrorKind::InvalidValue,
+            message: if no_scalp {
+                format!("grows hair on the scalp of {head}, but {NO_SCALP_HINT}")
+            } else {
+                format!("places no roots: it covers none of the scalp of {head}")
+            },
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// The style at `style_path` grown on `head` (an OBJ, or the default
+/// head), and its simulation colliding with that head: what `render` and
+/// `export` step.
+pub fn grown_sim(
+    style_path: &Path,
+    head: Option<&Path>,
+    overrides: SimOverrides,
+) -> anyhow::Result<(Groom, HeadlessSim)> {
+    let style = Style::load(style_path)?;
+    // Without `--head`, an imported groom's own head (`imported.head`).
+    let head = head
+        .map(Path::to_path_buf)
+        .or_else(|| style_head_path(&style, style_path));
+    let head = head.as_deref();
+    // A style that grows no hair on the scalp (an imported groom brings its
+    // own roots) takes any mesh as its head, every face scalp when it has
+    // no `scalp` group.
+    let own_head = head.is_some() && !crate::head::groom::needs_head(&style);
+    let head_mesh = match head {
+        Some(path) if own_head => helixhair_render::obj::load_mesh_obj(path)?,
+        path => load_head(path)?,
+    };
+    let groom = Groom::new(style, head_mesh);
+    check_placements(&groom, style_path, head)?;
+    let mut sim = HeadlessSim::new(&groom.grown, overrides)
+        .with_context(|| format!("cannot simulate {}", style_path.display()))?;
+    if own_head {
+        sim.set_head_pivot(head_pivot_m(&groom.grown));
+    }
+    let collider = groom
+        .collider()
+        .context("cannot build the head's collision field")?;
+    sim.engine_mut().set_collider(Some(Arc::new(collider)));
+    Ok((groom, sim))
+}

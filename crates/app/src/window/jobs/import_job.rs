@@ -1,0 +1,118 @@
+//! File → "Import groom…" and a groom dropped on the window: the same
+//! import as `helixhair import GROOM --out STYLE` ([`import_groom`]: read,
+//! fit Super-Helices, sag-free rest shape, every strand simulated), run on
+//! a worker thread with a progress bar over the strands fitted (Sintel's
+//! 11,400 strands take minutes on two cores). The style is written beside
+//! the groom (or, where that folder is read-only, in the working folder)
+//! under a name not yet taken, and then opened like any style, through the
+//! unsaved-changes question.
+
+use std::path::{Path, PathBuf};
+
+use helixhair_formats::Format;
+use helixhair_physics::fit::FitOptions;
+
+use crate::export::check_writable;
+use crate::import::command::{ImportArgs, import_groom};
+
+use super::job::{Job, JobDone};
+
+/// Whether `path` names a groom the import reads (by its extension).
+pub fn import_extension(path: &Path) -> bool {
+    Format::from_path(path).is_some()
+        && !path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("ron"))
+}
+
+/// Where the style of `groom` goes: `NAME.ron` beside it, or `NAME-2.ron`,
+/// … when taken; in the working folder when the groom's folder cannot be
+/// written.
+pub fn style_path_for(groom: &Path) -> anyhow::Result<PathBuf> {
+    let stem = groom
+        .file_stem()
+        .map_or_else(|| "imported".into(), |s| s.to_string_lossy().into_owned());
+    let beside = groom
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .map_or_else(|| PathBuf::from("."), Path::to_owned);
+    let folder = if check_writable(&beside.join("probe")).is_ok() {
+        beside
+    } else {
+        std::env::current_dir()?
+    };
+    let free = (1..10_000)
+        .map(|k| match k {
+            1 => folder.join(format!("{stem}.ron")),
+            k => folder.join(format!("{stem}-{k}.ron")),
+        })
+        .find(|p| !p.exists());
+    free.ok_or_else(|| anyhow::anyhow!("no free style name for {stem} in {}", folder.display()))
+}
+
+/// Starts importing `groom` on a worker thread; the job's result is the
+/// style file written.
+pub fn start_import(groom: &Path) -> anyhow::Result<Job<JobDone>> {
+    let out = style_path_for(groom)?;
+    let defaults = FitOptions::default();
+    let args = ImportArgs {
+        groom: groom.to_owned(),
+        head: None,
+        fit_tolerance: defaults.tolerance_over_length,
+        max_elements: defaults.max_elements,
+        no_sag_free: false,
+        no_stiffen: false,
+        guides: None,
+        out: out.clone(),
+        json: None,
+    };
+    let label = format!(
+        "Importing {} (fitting strands) into {}",
+        groom.display(),
+        out.display()
+    );
+    Job::spawn(label, move |progress| {
+        import_groom(&args, progress)?;
+        Ok(JobDone::Imported(out))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::style::Style;
+    use helixhair_formats::{Curve, CurveSet};
+
+    #[test]
+    fn a_groom_imported_in_the_window_becomes_a_style_beside_it() {
+        let dir = std::env::temp_dir().join(format!("helixhair-import-job-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let groom = dir.join("two.obj");
+        let curves = CurveSet::new(
+            (0..2)
+                .map(|k| Curve {
+                    points_m: (0..6)
+                        .map(|i| glam::Vec3::new(0.02 * k as f32, -0.02 * i as f32, 0.0))
+                        .collect(),
+                    width_m: None,
+                    colour: None,
+                })
+                .collect(),
+        );
+        let mut bytes = Vec::new();
+        helixhair_formats::write(&mut bytes, Format::Obj, &curves).unwrap();
+        std::fs::write(&groom, bytes).unwrap();
+        std::fs::write(dir.join("two.ron"), "taken").unwrap();
+        assert!(import_extension(&groom) && !import_extension(&dir.join("two.ron")));
+        let job = start_import(&groom).unwrap();
+        let JobDone::Imported(style) = job.wait().unwrap() else {
+            panic!("an import")
+        };
+        assert_eq!(style, dir.join("two-2.ron"), "the taken name is left alone");
+        let loaded = Style::load(&style).unwrap();
+        let imported = loaded.groups[0].imported.as_ref().unwrap();
+        assert_eq!(imported.strands.len(), 2);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,467 @@
+//! The simulation behind the window: an [`Engine`] (the f64 reference
+//! `HairSystem` or the f32 batch path, [`helixhair_physics::engine`]) that follows the
+//! style as it is edited, without a reset.
+//!
+//! The physics builds a strand's model (mass, stiffness, rest shape) once,
+//! when the strand is added. A live edit therefore rebuilds the engine from
+//! the edited style and carries every strand's state over: strains q and
+//! rates q̇ are copied when the element layout is unchanged, and resampled
+//! by arc length ([`super::resample`]) when the element count or layout
+//! changed, so the hair keeps its shape and motion and then relaxes towards
+//! its new rest shape. The same carrying-over moves the hair from one
+//! engine to the other when the style's `engine` changes (the batch engine
+//! rounds the state to f32). A changed solver on the reference engine needs
+//! no rebuild at all (`HairSystem::set_method` keeps shapes); the batch
+//! engine has one solver for all strands and is rebuilt. Only a change in
+//! the number of roots starts strands afresh, at their rest shape.
+//!
+//! The compare view runs both sides on the reference engine, whatever the
+//! style says ([`LiveSim::set_overrides`]): it compares solvers the batch
+//! engine does not have.
+//!
+//! Simulated time keeps running across rebuilds: the engine's clock starts
+//! at zero each time, so the head trajectory is read at the app's time
+//! ([`LiveSim::now_secs`]) through a shifted view of it.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use helixhair_physics::engine::{Engine, EngineKind};
+use helixhair_physics::{Energies, GuardEvent, HeadTrajectory, Method, RigidMotion, StageTimes};
+use helixhair_render::{HeadMesh, StrandBuffers};
+
+use crate::head::groom::{grow_scalp_roots, needs_head};
+use crate::style::Style;
+
+use super::collision::HeadCollider;
+use super::head_motion::FrameHead;
+use crate::sim::resample::resample_per_element;
+use crate::sim::strands::{add_strands, style_strands};
+
+/// A hair system kept in step with an edited style.
+#[derive(Clone, Debug)]
+pub struct LiveSim {
+    engine: Engine,
+    head: Arc<HeadMesh>,
+    built: Style,
+    built_grown: Style,
+    engine_override: Option<EngineKind>,
+    method_override: Option<Method>,
+    clock_offset_secs: f64,
+    collider: Option<HeadCollider>,
+}
+
+/// A head trajectory read `offset_secs` later than asked.
+struct Shifted<'a> {
+    head: &'a FrameHead,
+    offset_secs: f64,
+}
+
+impl HeadTrajectory for Shifted<'_> {
+    fn motion_at(&self, t_secs: f64) -> RigidMotion {
+        self.head.motion_at(t_secs + self.offset_secs)
+    }
+}
+
+impl LiveSim {
+    /// Builds the engine of `style` (its `engine`, or `engine_override`),
+    /// solved by `method_override` instead of the style's solver when
+    /// given (the compare view's runs). Groups placed on the scalp
+    /// (`scalp` in the style) grow their roots on `head`.
+    pub fn new(
+        style: &Style,
+        head: Arc<HeadMesh>,
+        engine_override: Option<EngineKind>,
+        method_override: Option<Method>,
+    ) -> Result<Self, String> {
+        let grown = grow(style, &head);
+        let engine = build(&grown, engine_override, method_override)?;
+        Ok(Self {
+            engine,
+            head,
+            built: style.clone(),
+            built_grown: grown,
+            engine_override,
+            method_override,
+            clock_offset_secs: 0.0,
+            collider: None,
+        })
+    }
+
+    /// The engine and its hair system.
+    pub fn engine(&self) -> &Engine {
+        &self.engine
+    }
+
+    /// Which engine runs.
+    pub fn kind(&self) -> EngineKind {
+        self.engine.kind()
+    }
+
+    /// Simulated time since the app started, seconds.
+    pub fn now_secs(&self) -> f64 {
+        self.clock_offset_secs + self.engine.time_secs()
+    }
+
+    /// The solver in use.
+    pub fn method(&self) -> Method {
+        self.engine.settings().method
+    }
+
+    /// Sets the head collider (also kept across rebuilds).
+    pub fn set_collider(&mut self, collider: Option<HeadCollider>) {
+        if let Some(c) = &collider {
+            c.attach(&mut self.engine);
+        }
+        self.collider = collider;
+    }
+
+    /// Runs on `engine` with `method` from now on instead of the style's
+    /// (both `None`: the style's own), keeping every strand's shape and
+    /// motion. Fails, changing nothing, if the engine cannot run the
+    /// solver.
+    pub fn set_overrides(
+        &mut self,
+        engine: Option<EngineKind>,
+        method: Option<Method>,
+    ) -> Result<(), String> {
+        let kind = engine.unwrap_or(self.built.engine);
+        let solver = method.unwrap_or(self.built.sim.method);
+        if !kind.runs(solver) {
+            return Err(format!(
+                "the {} engine cannot run the `{}` solver",
+                kind.label(),
+                solver.label()
+            ));
+        }
+        let (old_engine, old_method) = (self.engine_override, self.method_override);
+        self.engine_override = engine;
+        self.method_override = method;
+        if let (EngineKind::Reference, Engine::Reference(system)) = (kind, &mut self.engine) {
+            system.set_method(solver);
+            return Ok(());
+        }
+        let style = self.built.clone();
+        self.rebuild(&style).inspect_err(|_| {
+            self.engine_override = old_engine;
+            self.method_override = old_method;
+        })
+    }
+
+    /// Brings the engine in line with `style` (which must be valid),
+    /// keeping the strands' state; returns whether anything changed.
+    pub fn sync(&mut self, style: &Style) -> Result<bool, String> {
+        if *style == self.built {
+            return Ok(false);
+        }
+        let mut only_method = self.built.clone();
+        only_method.sim.method = style.sim.method;
+        if only_method == *style
+            && let Engine::Reference(system) = &mut self.engine
+        {
+            self.built = style.clone();
+            system.set_method(self.method_override.unwrap_or(style.sim.method));
+            return Ok(true);
+        }
+        self.rebuild(style)?;
+        Ok(true)
+    }
+
+    /// A new engine for `style`, every strand's state carried over from the
+    /// current one when the root counts match.
+    fn rebuild(&mut self, style: &Style) -> Result<(), String> {
+        let grown = grow(style, &self.head);
+        let mut engine = build(&grown, self.engine_override, self.method_override)?;
+        let old = &self.engine;
+        let counts = |s: &Style| {
+            s.groups
+                .iter()
+                .map(|g| g.simulated_count())
+                .collect::<Vec<_>>()
+        };
+        // Same strands in every group (an edit of values, not of counts):
+        // every strand's state carried over, its strains stretched onto
+        // new elements where their lengths changed.
+        if counts(&grown) == counts(&self.built_grown) {
+            for index in 0..old.strand_count() {
+                let old_lengths = &old.strand_model(index).lengths_m;
+                let new_lengths = &engine.strand_model(index).lengths_m;
+                let (old_q, old_v) = (old.q(index), old.v(index));
+                let (q, v) = if old_lengths == new_lengths {
+                    (old_q, old_v)
+                } else {
+                    (
+                        resample_per_element(&old_q, old_lengths, new_lengths),
+                        resample_per_element(&old_v, old_lengths, new_lengths),
+                    )
+                };
+                engine.set_state(index, &q, &v);
+            }
+        }
+        self.clock_offset_secs += self.engine.time_secs();
+        self.engine = engine;
+        if let Some(c) = &self.collider {
+            c.attach(&mut self.engine);
+        }
+        self.built = style.clone();
+        self.built_grown = grown;
+        Ok(())
+    }
+
+    /// Steps one frame with the head moving as `head` says (read at the
+    /// app's time).
+    pub fn step(&mut self, head: &FrameHead) {
+        let shifted = Shifted {
+            head,
+            offset_secs: self.clock_offset_secs,
+        };
+        self.engine.step_frame(&shifted);
+    }
+
+    /// Stage times of the last frame; `None` on the batch engine, whose
+    /// stages are fused into sweeps and not timed apart.
+    pub fn stage_times(&self) -> Option<StageTimes> {
+        self.engine.reference().map(|s| s.last_stage_times())
+    }
+
+    /// What the guard did in the last frame (nothing on the batch engine,
+    /// which has no guard).
+    pub fn guard_events(&self) -> &[GuardEvent] {
+        self.engine
+            .reference()
+            .map_or(&[], |s| s.last_guard_events())
+    }
+
+    /// Energies of the current state; `None` on the batch engine (they
+    /// would cost about a reference frame each displayed frame).
+    pub fn energies(&self) -> Option<Energies> {
+        self.engine.reference().map(|s| s.energies())
+    }
+
+    /// Element steps one frame takes: elements × substeps.
+    pub fn element_steps_per_frame(&self) -> usize {
+        self.engine.element_count() * self.engine.settings().substeps as usize
+    }
+
+    /// Every strand's boundary points in world coordinates, as `f32`
+    /// polylines for the renderer.
+    pub fn strand_buffers(&self) -> StrandBuffers {
+        let mut out = StrandBuffers::default();
+        for i in 0..self.engine.strand_count() {
+            out.push_strand(
+                self.engine
+                    .boundary_points_world(i)
+                    .into_iter()
+                    .map(|p| p.as_vec3()),
+            );
+        }
+        out
+    }
+
+    /// The style the engine was built from, scalp placements grown into
+    /// roots (strand i of the engine is the i-th root or imported guide).
+    pub fn grown_style(&self) -> &Style {
+        &self.built_grown
+    }
+
+    /// The head collider, if set.
+    pub fn collider(&self) -> Option<&HeadCollider> {
+        self.collider.as_ref()
+    }
+
+    /// Stops every strand where it is: shapes kept, rates set to zero.
+    pub fn stop(&mut self) {
+        for i in 0..self.engine.strand_count() {
+            let q = self.engine.q(i);
+            let rest = vec![DVec3::ZERO; q.len()];
+            self.engine.set_state(i, &q, &rest);
+        }
+    }
+
+    /// Tip positions, world coordinates (for the compare view).
+    pub fn tips_m(&self) -> Vec<DVec3> {
+        (0..self.engine.strand_count())
+            .filter_map(|i| self.engine.boundary_points_world(i).last().copied())
+            .collect()
+    }
+}
+
+/// Root mean square and largest distance between matching tips of two
+/// runs, metres.
+pub fn tip_difference_m(a: &[DVec3], b: &[DVec3]) -> (f64, f64) {
+    let n = a.len().min(b.len());
+    if n == 0 {
+        return (0.0, 0.0);
+    }
+    let d: Vec<f64> = a.iter().zip(b).map(|(p, q)| (*p - *q).length()).collect();
+    let rms = (d.iter().map(|x| x * x).sum::<f64>() / n as f64).sqrt();
+    (rms, d.iter().copied().fold(0.0, f64::max))
+}
+
+/// `style` with scalp placements grown into roots on `head` (the style
+/// itself when it has none).
+fn grow(style: &Style, head: &HeadMesh) -> Style {
+    if needs_head(style) {
+        grow_scalp_roots(style, head)
+    } else {
+        style.clone()
+    }
+}
+
+fn build(
+    style: &Style,
+    engine_override: Option<EngineKind>,
+    method_override: Option<Method>,
+) -> Result<Engine, String> {
+    let mut settings = style.sim.clone();
+    if let Some(method) = method_override {
+        settings.method = method;
+    }
+    let kind = engine_override.unwrap_or(style.engine);
+    let mut system = Engine::new(kind, settings).map_err(|e| format!("sim: {e}"))?;
+    let strands = style_strands(style, |_, group| group.params.clone());
+    add_strands(&mut system, &strands).map_err(|(at, e)| format!("{at}: {e}"))?;
+    Ok(system)
+}
+
+#[cfg(test)]
+mod tests {
+    use helixhair_physics::NaturalShape;
+    use helixhair_render::head_generate::default_head;
+
+    use super::super::head_motion::HeadDriver;
+    use super::*;
+    use crate::window::state::default_style::default_style;
+
+    fn run(sim: &mut LiveSim, frames: usize) {
+        let head = HeadDriver::default();
+        for _ in 0..frames {
+            sim.step(&head.frame(sim.now_secs()));
+        }
+    }
+
+    #[test]
+    fn edits_keep_the_state_and_the_clock() {
+        let mut style = default_style(12);
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
+        run(&mut sim, 10);
+        let before = sim.strand_buffers();
+        let t = sim.now_secs();
+        // A stiffness edit: same elements, so the shape carries over exactly.
+        style.groups[0].params.youngs_modulus_pa *= 2.0;
+        assert!(sim.sync(&style).unwrap());
+        assert_eq!(sim.strand_buffers(), before);
+        assert_eq!(sim.now_secs(), t);
+        // Doubling the elements: the same curve, to round-off.
+        style.groups[0].params.elements *= 2;
+        sim.sync(&style).unwrap();
+        let after = sim.strand_buffers();
+        for s in 0..before.strand_count() {
+            let (a, b) = (before.strand(s), after.strand(s));
+            assert!((*a.last().unwrap() - *b.last().unwrap()).length() < 1e-5);
+        }
+        // A solver change needs no rebuild and keeps the shape.
+        style.sim.method = Method::BlockDiagonal;
+        sim.sync(&style).unwrap();
+        assert_eq!(sim.method(), Method::BlockDiagonal);
+        assert_eq!(sim.strand_buffers(), after);
+        assert!(!sim.sync(&style).unwrap());
+    }
+
+    #[test]
+    fn a_new_curl_is_reached_without_a_reset() {
+        let mut style = default_style(4);
+        style.groups[0].params.natural_shape = NaturalShape::Straight;
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
+        style.groups[0].params.natural_shape = NaturalShape::Helix {
+            radius_m: 0.01,
+            step_m: 0.02,
+        };
+        sim.sync(&style).unwrap();
+        // Still straight right after the edit...
+        let k0 = sim.engine().q(0)[0];
+        assert!(k0.length() < 1e-9);
+        // ...and curling towards the helix's curvature R/(R² + c²) after.
+        run(&mut sim, 120);
+        let kappa = sim.engine().q(0)[0].y;
+        let c = 0.02 / std::f64::consts::TAU;
+        let want = 0.01 / (0.01f64.powi(2) + c * c);
+        assert!(kappa > 0.5 * want, "κ₁ = {kappa}, rest {want}");
+    }
+
+    #[test]
+    fn scalp_placed_groups_grow_once_and_keep_their_state_on_edits() {
+        let src = include_str!("../../../../../assets/styles/groomed/curly.ron");
+        let mut style = Style::from_ron(src, std::path::Path::new("curly.ron")).unwrap();
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
+        // The placements' counts, grown into strands (the file lists none).
+        let placed: usize = style
+            .groups
+            .iter()
+            .filter_map(|g| g.scalp.as_ref().map(|p| p.count as usize))
+            .sum();
+        assert_eq!(sim.engine().strand_count(), placed);
+        run(&mut sim, 5);
+        let before = sim.strand_buffers();
+        style.groups[0].params.air_drag *= 2.0;
+        sim.sync(&style).unwrap();
+        assert_eq!(sim.strand_buffers(), before);
+    }
+
+    /// Moving the hair between engines rounds its state to f32 and back:
+    /// tips move by at most this, metres (f32 round-off on 20 cm strands is
+    /// about 1e-8 m per element; a reset would move them centimetres).
+    const ENGINE_SWITCH_TOL_M: f64 = 1e-6;
+
+    #[test]
+    fn switching_engines_keeps_the_shape_and_the_compare_view_runs_the_reference() {
+        let mut style = default_style(10);
+        let mut sim = LiveSim::new(&style, Arc::new(default_head()), None, None).unwrap();
+        run(&mut sim, 10);
+        let before = sim.tips_m();
+        let t = sim.now_secs();
+        style.engine = EngineKind::Batch;
+        assert!(sim.sync(&style).unwrap());
+        assert_eq!(sim.kind(), EngineKind::Batch);
+        assert_eq!(sim.now_secs(), t);
+        let (_, max) = tip_difference_m(&before, &sim.tips_m());
+        assert!(max < ENGINE_SWITCH_TOL_M, "tips moved {max} m");
+        assert!(sim.stage_times().is_none() && sim.energies().is_none());
+        run(&mut sim, 10);
+        assert!(sim.engine().is_finite());
+        // The batch engine's solver change rebuilds, keeping the shape.
+        let before = sim.tips_m();
+        style.sim.method = Method::BlockDiagonal;
+        sim.sync(&style).unwrap();
+        assert_eq!(
+            (sim.kind(), sim.method()),
+            (EngineKind::Batch, Method::BlockDiagonal)
+        );
+        assert!(tip_difference_m(&before, &sim.tips_m()).1 < ENGINE_SWITCH_TOL_M);
+        // The compare view's override: the reference engine with Dense...
+        sim.set_overrides(Some(EngineKind::Reference), Some(Method::Dense))
+            .unwrap();
+        assert_eq!(
+            (sim.kind(), sim.method()),
+            (EngineKind::Reference, Method::Dense)
+        );
+        assert!(tip_difference_m(&before, &sim.tips_m()).1 < ENGINE_SWITCH_TOL_M);
+        // ...and back to the style's own.
+        sim.set_overrides(None, None).unwrap();
+        assert_eq!(sim.kind(), EngineKind::Batch);
+        // The batch engine cannot run Dense: refused, nothing changes.
+        assert!(sim.set_overrides(None, Some(Method::Dense)).is_err());
+        assert_eq!(
+            (sim.kind(), sim.method()),
+            (EngineKind::Batch, Method::BlockDiagonal)
+        );
+    }
+
+    #[test]
+    fn tip_difference_is_rms_and_max() {
+        let a = [DVec3::ZERO, DVec3::ZERO];
+        let b = [DVec3::new(3.0, 0.0, 0.0), DVec3::new(0.0, 4.0, 0.0)];
+        let (rms, max) = tip_difference_m(&a, &b);
+        assert!((rms - (12.5f64).sqrt()).abs() < 1e-12 && max == 4.0);
+    }
+}

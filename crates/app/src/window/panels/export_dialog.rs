@@ -1,0 +1,85 @@
+//! The export dialog of File → "Export frame…" and "Record animation…":
+//! the file (its extension picks the format), simulated or drawn strands,
+//! points per strand and, for a recording, the frame count.
+
+use crate::export::{MAX_POINTS_PER_STRAND, StrandChoice};
+use crate::hair::sampling::MIN_POINTS_PER_STRAND;
+
+/// Frames "Record animation…" offers first: two seconds at 60 Hz.
+pub const DEFAULT_RECORD_FRAMES: usize = 120;
+
+/// Most frames one recording takes (ten minutes at 60 Hz).
+pub const MAX_RECORD_FRAMES: usize = 36_000;
+
+/// The export dialog's fields.
+#[derive(Clone, Debug)]
+pub struct ExportDialog {
+    /// Record an animation (true) or export the frame on screen.
+    pub animation: bool,
+    /// The file to write, as typed.
+    pub path: String,
+    /// Simulated or drawn strands.
+    pub strands: StrandChoice,
+    /// Points per strand.
+    pub points_per_strand: usize,
+    /// Frames to record.
+    pub frames: usize,
+}
+
+/// What the user did in the dialog this frame.
+pub enum DialogAnswer {
+    /// Nothing yet.
+    Stay,
+    /// Closed it.
+    Cancel,
+    /// Asked to export.
+    Go,
+}
+
+/// Draws the dialog.
+pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAnswer {
+    let mut answer = DialogAnswer::Stay;
+    let title = if dialog.animation {
+        "Record animation"
+    } else {
+        "Export frame"
+    };
+    egui::Window::new(title)
+        .collapsible(false)
+        .default_width(460.0)
+        .show(ctx, |ui| {
+            ui.horizontal(|ui| {
+                ui.label("file");
+                ui.add(egui::TextEdit::singleline(&mut dialog.path).desired_width(360.0));
+            });
+            ui.small(".usda (USD curves with the head), .hair, .tfx or .obj; a folder is made if missing");
+            ui.horizontal(|ui| {
+                ui.label("strands");
+                ui.radio_value(&mut dialog.strands, StrandChoice::Simulated, "simulated");
+                ui.radio_value(&mut dialog.strands, StrandChoice::Drawn, "drawn");
+            });
+            ui.horizontal(|ui| {
+                ui.label("points per strand");
+                ui.add(egui::DragValue::new(&mut dialog.points_per_strand).range(
+                    MIN_POINTS_PER_STRAND..=MAX_POINTS_PER_STRAND,
+                ));
+            });
+            if dialog.animation {
+                ui.horizontal(|ui| {
+                    ui.label("frames");
+                    ui.add(egui::DragValue::new(&mut dialog.frames).range(1..=MAX_RECORD_FRAMES));
+                    ui.small("under the head's current motion, hands off");
+                });
+            }
+            ui.horizontal(|ui| {
+                let verb = if dialog.animation { "Record" } else { "Export" };
+                if ui.button(verb).clicked() {
+                    answer = DialogAnswer::Go;
+                }
+                if ui.button("Cancel").clicked() {
+                    answer = DialogAnswer::Cancel;
+                }
+            });
+        });
+    answer
+}

@@ -1,0 +1,270 @@
+//! The File menu and what it opens: styles in and out, hair out as curve
+//! files ([`crate::window::jobs::export_job`]), grooms in ([`crate::window::jobs::import_job`]), and the
+//! head's motion recorded, saved and played back
+//! ([`crate::window::live::motion_recorder`], docs/motion-format.md).
+//!
+//! Everything that drops the edited style (Open…, a dropped style, an
+//! imported groom opening as a style) goes through
+//! [`AppState::request_leave`], which asks first when edits are unsaved.
+//! One file job runs at a time; while it runs, a progress window with
+//! Cancel shows and the window goes on simulating and drawing.
+
+use std::path::{Path, PathBuf};
+
+use egui::Ui;
+
+use crate::export::{DEFAULT_POINTS_PER_STRAND, StrandChoice};
+use crate::motion::file::Motion;
+use crate::motion::playback::Playback;
+
+use super::export_dialog::{DEFAULT_RECORD_FRAMES, DialogAnswer, ExportDialog, export_dialog};
+use super::file_picker::{FilePicker, PickerMode};
+use crate::window::jobs::export_job::{ExportRequest, start_export};
+use crate::window::jobs::import_job::{import_extension, start_import};
+use crate::window::jobs::job::{Job, JobDone, progress_ui};
+use crate::window::live::motion_recorder::MotionRecorder;
+use crate::window::state::app_state::AppState;
+use crate::window::state::unsaved::Leave;
+
+/// The File menu's windows between frames.
+#[derive(Debug, Default)]
+pub struct FileWindows {
+    /// The export dialog, while open.
+    pub export: Option<ExportDialog>,
+    /// The file job running.
+    pub job: Option<Job<JobDone>>,
+    /// The last head motion recorded, until saved or replaced.
+    pub recorded: Option<Motion>,
+}
+
+/// A picker for `mode`, in the style file's folder with its name.
+pub fn open_picker(app: &AppState, mode: PickerMode) -> FilePicker {
+    let (folder, name) = match app.doc.path() {
+        Some(p) => (
+            p.parent().map(|d| d.to_owned()).unwrap_or_default(),
+            p.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        ),
+        None => (
+            std::env::current_dir().unwrap_or_default(),
+            format!("{}.ron", app.doc.style().name),
+        ),
+    };
+    FilePicker::new(mode, folder, name)
+}
+
+/// A file next to the style's (or in the working folder) named after the
+/// style, with `extension`.
+fn beside_style(app: &AppState, extension: &str) -> PathBuf {
+    let (folder, stem) = match app.doc.path() {
+        Some(p) => (
+            p.parent().map(Path::to_owned).unwrap_or_default(),
+            p.file_stem()
+                .map_or_else(|| "hair".into(), |s| s.to_string_lossy().into_owned()),
+        ),
+        None => (
+            std::env::current_dir().unwrap_or_default(),
+            app.doc.style().name.clone(),
+        ),
+    };
+    folder.join(format!("{stem}.{extension}"))
+}
+
+fn picker(app: &AppState, mode: PickerMode, name: String) -> FilePicker {
+    let mut p = open_picker(app, mode);
+    p.set_name(name);
+    p
+}
+
+/// The File menu (in the tool bar).
+pub fn file_menu(
+    ui: &mut Ui,
+    app: &mut AppState,
+    picker_slot: &mut Option<FilePicker>,
+    files: &mut FileWindows,
+) {
+    ui.menu_button("File", |ui| {
+        if ui.button("Open…").clicked() {
+            *picker_slot = Some(open_picker(app, PickerMode::Open));
+        }
+        if ui.button("Save").clicked() {
+            if app.doc.path().is_some() {
+                app.save(None);
+            } else {
+                *picker_slot = Some(open_picker(app, PickerMode::SaveAs));
+            }
+        }
+        if ui.button("Save as…").clicked() {
+            *picker_slot = Some(open_picker(app, PickerMode::SaveAs));
+        }
+        ui.separator();
+        let idle = files.job.is_none();
+        if ui
+            .add_enabled(idle, egui::Button::new("Import groom…"))
+            .clicked()
+        {
+            *picker_slot = Some(picker(app, PickerMode::ImportGroom, String::new()));
+        }
+        for (animation, label) in [(false, "Export frame…"), (true, "Record animation…")] {
+            if ui.add_enabled(idle, egui::Button::new(label)).clicked() {
+                files.export = Some(ExportDialog {
+                    animation,
+                    path: beside_style(app, "usda").display().to_string(),
+                    strands: StrandChoice::Simulated,
+                    points_per_strand: DEFAULT_POINTS_PER_STRAND,
+                    frames: DEFAULT_RECORD_FRAMES,
+                });
+            }
+        }
+        ui.separator();
+        motion_items(ui, app, picker_slot, files);
+    });
+}
+
+fn motion_items(
+    ui: &mut Ui,
+    app: &mut AppState,
+    picker_slot: &mut Option<FilePicker>,
+    files: &mut FileWindows,
+) {
+    match &app.head.recorder {
+        None => {
+            if ui.button("Record head motion").clicked() {
+                app.head.recorder = Some(MotionRecorder::default());
+                app.message = Some("recording the head's motion: drag it with Alt".into());
+            }
+        }
+        Some(rec) => {
+            let label = format!("Stop recording ({:.1} s)", rec.duration_secs());
+            if ui.button(label).clicked() {
+                stop_recording(app, files);
+            }
+        }
+    }
+    if ui
+        .add_enabled(
+            files.recorded.is_some(),
+            egui::Button::new("Save head motion…"),
+        )
+        .clicked()
+    {
+        let name = beside_style(app, "motion.ron");
+        let name = name
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        *picker_slot = Some(picker(app, PickerMode::SaveMotion, name));
+    }
+    if ui.button("Play motion file…").clicked() {
+        *picker_slot = Some(picker(app, PickerMode::PlayMotion, String::new()));
+    }
+}
+
+/// Ends the recording and keeps it for "Save head motion…".
+pub fn stop_recording(app: &mut AppState, files: &mut FileWindows) {
+    let Some(rec) = app.head.recorder.take() else {
+        return;
+    };
+    files.recorded = rec.motion("recorded in the window");
+    app.message = Some(match &files.recorded {
+        Some(m) => format!(
+            "recorded {} keys over {:.2} s: File > Save head motion… to keep them",
+            m.keys.len(),
+            m.duration_secs()
+        ),
+        None => "nothing recorded (the simulation was paused)".into(),
+    });
+}
+
+/// Acts on a path chosen in the picker.
+pub fn picked(app: &mut AppState, files: &mut FileWindows, mode: PickerMode, path: PathBuf) {
+    match mode {
+        PickerMode::Open => app.request_leave(Leave::Open(path)),
+        PickerMode::SaveAs => app.saved_as(&path),
+        PickerMode::ImportGroom => start_import_job(app, files, path),
+        PickerMode::PlayMotion => play_motion_file(app, &path),
+        PickerMode::SaveMotion => {
+            app.message = Some(match &files.recorded {
+                Some(m) => match m.save(&path) {
+                    Ok(()) => format!("head motion saved to {}", path.display()),
+                    Err(e) => e.to_string(),
+                },
+                None => "no head motion recorded".into(),
+            });
+        }
+    }
+}
+
+/// Plays a motion file from now (errors name the file, line and field).
+pub fn play_motion_file(app: &mut AppState, path: &Path) {
+    match Playback::File(path.to_owned()).load() {
+        Ok(playback) => {
+            let now = app.now_secs();
+            app.head.play_motion(playback, now);
+            app.message = Some(format!("playing {}", path.display()));
+        }
+        Err(e) => app.message = Some(e.to_string()),
+    }
+}
+
+/// A file dropped on the window: a groom is imported, anything else is
+/// opened as a style.
+pub fn dropped(app: &mut AppState, files: &mut FileWindows, path: PathBuf) {
+    if import_extension(&path) {
+        start_import_job(app, files, path);
+    } else {
+        app.request_leave(Leave::Open(path));
+    }
+}
+
+fn start_import_job(app: &mut AppState, files: &mut FileWindows, groom: PathBuf) {
+    if files.job.is_some() {
+        app.message = Some("another file job is running; wait for it or cancel it".into());
+        return;
+    }
+    match start_import(&groom) {
+        Ok(job) => files.job = Some(job),
+        Err(e) => app.message = Some(format!("{e:#}")),
+    }
+}
+
+/// The export dialog, the progress window, and a finished job's result.
+pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWindows) {
+    if let Some(dialog) = &mut files.export {
+        match export_dialog(ctx, dialog) {
+            DialogAnswer::Stay => {}
+            DialogAnswer::Cancel => files.export = None,
+            DialogAnswer::Go => {
+                let request = ExportRequest {
+                    path: PathBuf::from(dialog.path.trim()),
+                    strands: dialog.strands,
+                    points_per_strand: dialog.points_per_strand,
+                    frames: if dialog.animation { dialog.frames } else { 0 },
+                };
+                match start_export(app, &request) {
+                    Ok(job) => {
+                        files.job = Some(job);
+                        files.export = None;
+                    }
+                    Err(e) => app.message = Some(format!("{e:#}")),
+                }
+            }
+        }
+    }
+    let Some(job) = &mut files.job else {
+        return;
+    };
+    if progress_ui(ctx, &job.label, &job.progress) {
+        job.cancel();
+    }
+    let Some(result) = job.poll() else {
+        ctx.request_repaint();
+        return;
+    };
+    files.job = None;
+    match result {
+        Ok(JobDone::Exported(outcome)) => app.message = Some(outcome.summary()),
+        Ok(JobDone::Imported(style)) => app.request_leave(Leave::Open(style)),
+        Err(e) => app.message = Some(format!("{e:#}")),
+    }
+}

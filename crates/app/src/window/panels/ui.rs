@@ -1,0 +1,332 @@
+//! The window's layout: a tool bar on top, the style on the left, head and
+//! readouts on the right, messages at the bottom, and the 3D view (or the
+//! compare view's two) filling the rest.
+//!
+//! The 3D pictures are textures the renderer drew this frame; the view
+//! only shows them and turns pointer gestures into camera and head moves
+//! ([`crate::window::present::viewport`]). Keyboard shortcuts: Ctrl+Z undo, Ctrl+Shift+Z or
+//! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, F frame the head, Space pause.
+
+use egui::{Key, Modifiers, PointerButton, Sense, Ui};
+
+use super::file_menu::{dropped as dropped_file, file_windows, open_picker, picked};
+use super::file_picker::PickerMode;
+use super::imported_summary::group_shapes_strands;
+use super::readout_panel::readouts;
+use super::style_panel::{count_field, group_params, sim_settings};
+use super::tool_bar::tool_bar;
+use super::view_state::ViewState;
+use crate::window::live::head_motion::Clip;
+use crate::window::present::viewport::{framed_camera, move_head, orbit, pan, turn_head};
+use crate::window::state::app_state::AppState;
+use crate::window::state::default_style::regrow_roots;
+use crate::window::state::unsaved::{AfterAnswer, confirm_dialog};
+
+/// Draws the whole window for one frame.
+pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    if view.framed_on_m != app.head.pivot_m {
+        view.framed_on_m = app.head.pivot_m;
+        view.camera = framed_camera(view.framed_on_m);
+    }
+    shortcuts(ui.ctx(), app, view);
+    egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, app, view));
+    egui::Panel::bottom("messages").show(ui, |ui| {
+        if let Some(e) = &app.invalid {
+            ui.colored_label(
+                egui::Color32::from_rgb(255, 120, 90),
+                format!("not simulated: {e}"),
+            );
+        }
+        if let Some(guard) = app.guard.sentence() {
+            let colour = if app.guard.losses() > 0 {
+                egui::Color32::from_rgb(255, 190, 90)
+            } else {
+                ui.visuals().text_color()
+            };
+            ui.colored_label(colour, guard);
+        }
+        ui.label(app.message.as_deref().unwrap_or("ready"));
+    });
+    egui::Panel::left("style")
+        .default_size(330.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| style_column(ui, app, view));
+        });
+    egui::Panel::right("readouts")
+        .default_size(330.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                head_controls(ui, app);
+                ui.separator();
+                readouts(ui, app);
+            });
+        });
+    egui::CentralPanel::no_frame().show(ui, |ui| view_area(ui, app, view));
+    super::density_view::show(ui.ctx(), app);
+    if let Some(picker) = &mut view.picker {
+        let (chosen, keep) = picker.show(ui.ctx());
+        let mode = picker.mode;
+        if !keep {
+            view.picker = None;
+        }
+        if let Some(path) = chosen {
+            picked(app, &mut view.files, mode, path);
+        }
+    }
+    let dropped = ui
+        .ctx()
+        .input(|i| i.raw.dropped_files.first().map(|f| f.path().to_owned()));
+    if let Some(path) = dropped {
+        dropped_file(app, &mut view.files, path);
+    }
+    file_windows(ui.ctx(), app, &mut view.files);
+    if let Some(answer) = confirm_dialog(ui.ctx(), app)
+        && app.answer_leave(answer) == AfterAnswer::PickSaveAs
+    {
+        view.picker = Some(open_picker(app, PickerMode::SaveAs));
+    }
+}
+
+fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
+    let typing = ctx.egui_wants_keyboard_input();
+    ctx.input_mut(|i| {
+        if i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z)
+            || i.consume_key(Modifiers::COMMAND, Key::Y)
+        {
+            app.doc.redo();
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::Z) {
+            app.doc.undo();
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::S) {
+            app.save(None);
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::O) {
+            view.picker = Some(open_picker(app, PickerMode::Open));
+        }
+        if !typing && i.consume_key(Modifiers::NONE, Key::F) {
+            view.camera = framed_camera(app.head.pivot_m);
+        }
+        if !typing && i.consume_key(Modifiers::NONE, Key::Space) {
+            app.paused = !app.paused;
+        }
+    });
+}
+
+fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    let before = app.doc.style().clone();
+    let mut notes = Vec::new();
+    ui.heading("Simulation");
+    sim_settings(ui, app.doc.style_mut(), &mut notes);
+    ui.horizontal(|ui| {
+        count_field(ui, "guide strands", &mut view.guides, MAX_GUIDES);
+        if ui.button("regrow on scalp").clicked() {
+            let (head, count) = (&app.head_mesh, view.guides);
+            app.doc.edit(|s| regrow_roots(s, head, count));
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.heading("Groups");
+        if ui.small_button("expand all").clicked() {
+            view.open_groups = Some(true);
+        }
+        if ui.small_button("collapse all").clicked() {
+            view.open_groups = Some(false);
+        }
+    });
+    let open_groups = view.open_groups.take();
+    let groups = app.doc.style().groups.len();
+    for g in 0..groups {
+        let group = &app.doc.style().groups[g];
+        let title = format!("group `{}` ({})", group.name, strand_count_words(group));
+        egui::CollapsingHeader::new(title)
+            .id_salt(("group", g))
+            .default_open(g == 0)
+            .open(open_groups)
+            .show(ui, |ui| {
+                // A preset is mostly a curl, which an imported strand does
+                // not take (its rest shape is the groom's).
+                if group_shapes_strands(&app.doc.style().groups[g]) {
+                    preset_row(ui, app, view, g);
+                }
+                group_params(ui, &mut app.doc.style_mut().groups[g], &mut notes);
+            });
+    }
+    if let Some(note) = typed_value_check(app, &before) {
+        notes.push(note);
+    }
+    if let Some(last) = notes.pop() {
+        app.message = Some(last);
+    }
+}
+
+/// Most guide strands the "regrow on scalp" field accepts (as `--guides`
+/// and a group's `scalp.count`).
+const MAX_GUIDES: usize = 5000;
+
+/// How many strands a group has, in words: listed roots, roots grown on
+/// the scalp, or both.
+pub fn strand_count_words(group: &crate::style::StrandGroup) -> String {
+    if let Some(imported) = &group.imported {
+        let guides = imported.guides().count();
+        let all = imported.strands.len();
+        let roots = group.roots.len();
+        let extra = if roots > 0 {
+            format!(" + {roots} listed")
+        } else {
+            String::new()
+        };
+        return if guides == all {
+            format!("{all} imported strands{extra}")
+        } else {
+            format!("{all} imported strands, {guides} simulated{extra}")
+        };
+    }
+    let listed = group.roots.len();
+    match &group.scalp {
+        None => format!("{listed} strands"),
+        Some(scalp) if listed == 0 => format!("{} strands grown on the scalp", scalp.count),
+        Some(scalp) => format!("{listed} listed + {} grown on the scalp", scalp.count),
+    }
+}
+
+/// A typed value the style format refuses (out of its range) is taken
+/// back, and the message names the field and its allowed range. Sliders
+/// cannot leave the format's range, so only typed values land here.
+fn typed_value_check(app: &mut AppState, before: &crate::style::Style) -> Option<String> {
+    if app.doc.style() == before || before.validate().is_err() {
+        return None;
+    }
+    let problem = app.doc.validity().err()?;
+    *app.doc.style_mut() = before.clone();
+    Some(format!("not applied: {problem}"))
+}
+
+/// The preset buttons, the preset name field and "save as preset".
+fn preset_row(ui: &mut Ui, app: &mut AppState, view: &mut ViewState, g: usize) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label("preset:");
+        let presets: Vec<_> = app
+            .presets
+            .iter()
+            .chain(&app.user_presets)
+            .cloned()
+            .collect();
+        for p in presets {
+            let hint = format!(
+                "this group's parameters; the style's substeps (all groups) rise to at least {}",
+                p.min_substeps
+            );
+            if ui.button(&p.name).on_hover_text(hint).clicked() {
+                app.apply_preset(g, &p);
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("preset name");
+        ui.text_edit_singleline(&mut view.preset_name);
+        if ui.button("save as preset").clicked() {
+            let name = view.preset_name.trim().to_string();
+            if !name.is_empty() {
+                app.save_user_preset(g, &name);
+            }
+        }
+    });
+}
+
+fn head_controls(ui: &mut Ui, app: &mut AppState) {
+    ui.heading("Head");
+    ui.horizontal(|ui| {
+        for clip in Clip::ALL {
+            if ui.button(clip.name()).clicked() {
+                app.play(clip);
+            }
+        }
+    });
+    let pose = &mut app.head.target;
+    ui.add(
+        egui::Slider::new(&mut pose.turn_rad, -1.4..=1.4)
+            .text("turn")
+            .suffix(" rad"),
+    );
+    ui.add(
+        egui::Slider::new(&mut pose.tilt_rad, -0.7..=0.7)
+            .text("tilt")
+            .suffix(" rad"),
+    );
+    if ui.button("centre head").clicked() {
+        *pose = Default::default();
+    }
+    if ui
+        .button("set current shape as rest")
+        .on_hover_text("freeze the hair as it is now: its shape becomes the equilibrium (undoable)")
+        .clicked()
+    {
+        app.set_current_shape_as_rest();
+    }
+    ui.small("Alt + left drag turns the head, Alt + right drag moves it.");
+}
+
+fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
+    let rect = ui.available_rect_before_wrap();
+    let ppp = ui.ctx().pixels_per_point();
+    let halves = if app.compare.is_some() { 2 } else { 1 };
+    let width_pt = rect.width() / halves as f32;
+    view.view_px = [
+        ((width_pt * ppp) as u32).max(1),
+        ((rect.height() * ppp) as u32).max(1),
+    ];
+    let response = ui.allocate_rect(rect, Sense::click_and_drag());
+    for (k, texture) in view.textures.iter().take(halves).enumerate() {
+        if let Some(id) = texture {
+            let sub = egui::Rect::from_min_size(
+                rect.min + egui::vec2(width_pt * k as f32, 0.0),
+                egui::vec2(width_pt, rect.height()),
+            );
+            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+            ui.painter().image(*id, sub, uv, egui::Color32::WHITE);
+        }
+    }
+    if let Some((_, m)) = &app.compare {
+        for (k, method) in [m.left, m.right].into_iter().enumerate() {
+            ui.painter().text(
+                rect.min + egui::vec2(width_pt * k as f32 + 8.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                method.label(),
+                egui::FontId::proportional(16.0),
+                egui::Color32::WHITE,
+            );
+        }
+    }
+    let delta = response.drag_delta();
+    let alt = ui.input(|i| i.modifiers.alt);
+    let shift = ui.input(|i| i.modifiers.shift);
+    let height = rect.height();
+    if response.dragged_by(PointerButton::Primary) {
+        if alt {
+            turn_head(&mut app.head.target, delta.x, delta.y);
+        } else if shift {
+            pan(&mut view.camera, delta.x, delta.y, height);
+        } else {
+            orbit(&mut view.camera, delta.x, delta.y);
+        }
+    }
+    if response.dragged_by(PointerButton::Secondary) || response.dragged_by(PointerButton::Middle) {
+        if alt {
+            move_head(&mut app.head.target, &view.camera, delta.x, delta.y, height);
+        } else {
+            pan(&mut view.camera, delta.x, delta.y, height);
+        }
+    }
+    if response.hovered() {
+        let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
+        let factor = (-scroll * 0.002).exp() / zoom;
+        if (factor - 1.0).abs() > 1e-6 {
+            view.camera.zoom(factor);
+        }
+    }
+}
+
+#[cfg(test)]
+#[path = "ui_tests.rs"]
+mod tests;

@@ -1,0 +1,537 @@
+//! The physics engine a run steps: the f64 reference [`HairSystem`] or the
+//! f32 [`BatchSystem`], behind one small API: the one simulation core that
+//! every face of the app (the headless `helixhair sim`, `helixhair render`,
+//! the window's live run and the bench) stands on.
+//!
+//! # The two engines
+//!
+//! | | [`EngineKind::Reference`] | [`EngineKind::Batch`] |
+//! | --- | --- | --- |
+//! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`crate::batch::LANES`] strands per SIMD batch, rayon over batches |
+//! | solvers | every [`Method`], per strand | Exact and Block-diagonal, one for all strands |
+//! | extras | stability guard with retries, head collider, hair–hair model, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points (implicit on Exact), hair–hair model (same grid arithmetic, [`crate::batch::volume`]) |
+//! | speed | the baseline | an order of magnitude more element-steps per second per core (measured in `docs/RESULTS.md`, section 8) |
+//!
+//! The reference is what every solver study and the guard were built on,
+//! and stays the default; the batch engine is what makes a full head of
+//! thousands of strands interactive. Both start every strand at its rest
+//! shape, at rest, and read the same head trajectory, so with Exact they
+//! solve the same equations (Exact equals Dense to round-off) and differ
+//! only by f32 round-off.
+//!
+//! # What the uniform API hides
+//!
+//! - **State** is handed out and taken in f64 ([`Engine::q`],
+//!   [`Engine::set_state`]); the batch engine rounds to f32 on the way in.
+//!   That is what lets the window carry a strand's shape across an edit
+//!   that rebuilds the engine, or switches engines.
+//! - **Geometry**: the batch engine keeps each strand's f64
+//!   [`StrandModel`] and root next to its lanes, so [`Engine::strand_model`]
+//!   and [`Engine::energies`] answer for both (the batch engine's energies
+//!   are reconstructed in f64 from its f32 state, on demand: too slow to do
+//!   every frame for thousands of strands, cheap once for a report).
+//! - **What only one engine has** (the reference's stage timings and guard
+//!   events, the batch guard's resets) is reached through
+//!   [`Engine::reference`] and [`Engine::batch`], so a caller must say what
+//!   it shows for the other.
+//!
+//! # The head collider
+//!
+//! [`Engine::set_collider`] is the one place a collider reaches the
+//! physics. Both engines collide with it: the reference at every
+//! quadrature sample, the batch engine at element end points
+//! ([`crate::batch::contact`]), both with the implicit contact (its
+//! stiffness and damping in the step matrix) except the batch engine's
+//! Block-diagonal, which keeps the explicit penalty.
+
+pub mod rest_contact;
+
+pub use rest_contact::{ContactPoints, RestContact};
+
+use std::ops::Range;
+use std::sync::Arc;
+
+use crate::batch::BatchSystem;
+use crate::batch::layout::BatchModel;
+use crate::collision::SignedDistanceField;
+use crate::step::reconstruct::{Kinematics, reconstruct};
+use crate::volume::{ModelState, RestDensity, VolumeField};
+use crate::{
+    Energies, HairSystem, HeadTrajectory, InteractionSettings, Method, ParamError, RigidMotion,
+    RootPose, SimSettings, Strand, StrandModel, StrandParams,
+};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// Which physics engine steps the hair.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum EngineKind {
+    /// The f64 [`HairSystem`]: every solver, the stability guard, the head
+    /// collider, stage timings and energies. The default.
+    #[default]
+    Reference,
+    /// The f32 SIMD [`BatchSystem`] on all cores: Exact or Block-diagonal
+    /// only, many times the reference's throughput (`docs/RESULTS.md`).
+    Batch,
+}
+
+impl EngineKind {
+    /// Both engines, the default first.
+    pub const ALL: [EngineKind; 2] = [EngineKind::Reference, EngineKind::Batch];
+
+    /// The solvers the batch engine runs.
+    pub const BATCH_METHODS: [Method; 2] = [Method::Exact, Method::BlockDiagonal];
+
+    /// The name `--engine` takes and the JSON report writes: `reference`
+    /// or `batch`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Reference => "reference",
+            Self::Batch => "batch",
+        }
+    }
+
+    /// The engine of a [`Self::label`] name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.label() == name)
+    }
+
+    /// Whether this engine can run `method`.
+    pub fn runs(self, method: Method) -> bool {
+        match self {
+            Self::Reference => true,
+            Self::Batch => Self::BATCH_METHODS.contains(&method),
+        }
+    }
+}
+
+/// A hair system on one of the two engines (see the [module docs](self)).
+#[derive(Clone, Debug)]
+pub enum Engine {
+    /// The f64 reference.
+    Reference(HairSystem),
+    /// The f32 batch path, with each strand's f64 model and root.
+    Batch {
+        /// The lanes.
+        system: BatchSystem,
+        /// Per strand, in index order: its model (shared within a group)
+        /// and its root, for geometry and energies in f64.
+        strands: Vec<(Arc<StrandModel>, RootPose)>,
+    },
+}
+
+impl Engine {
+    /// An empty system on `kind`. Fails if a setting is out of range, or
+    /// (field `method`) if the batch engine cannot run the solver.
+    pub fn new(kind: EngineKind, settings: SimSettings) -> Result<Self, ParamError> {
+        Ok(match kind {
+            EngineKind::Reference => Self::Reference(HairSystem::new(settings)?),
+            EngineKind::Batch => Self::Batch {
+                system: BatchSystem::new(settings)?,
+                strands: Vec::new(),
+            },
+        })
+    }
+
+    /// Which engine this is.
+    pub fn kind(&self) -> EngineKind {
+        match self {
+            Self::Reference(_) => EngineKind::Reference,
+            Self::Batch { .. } => EngineKind::Batch,
+        }
+    }
+
+    /// Adds strands sharing `params`, one per root, at rest in their
+    /// natural shape; returns their indices.
+    pub fn add_group(
+        &mut self,
+        params: &StrandParams,
+        roots: &[RootPose],
+    ) -> Result<Range<usize>, ParamError> {
+        match self {
+            Self::Reference(system) => system.add_group(params, roots),
+            Self::Batch { system, strands } => {
+                let model = Arc::new(StrandModel::new(
+                    params,
+                    system.settings().quadrature_points,
+                )?);
+                let range = system.add_strands(&BatchModel::new(&model), roots);
+                strands.extend(roots.iter().map(|r| (model.clone(), *r)));
+                Ok(range)
+            }
+        }
+    }
+
+    /// The reference system, when this is the reference engine.
+    pub fn reference(&self) -> Option<&HairSystem> {
+        match self {
+            Self::Reference(system) => Some(system),
+            Self::Batch { .. } => None,
+        }
+    }
+
+    /// The batch system, when this is the batch engine.
+    pub fn batch(&self) -> Option<&BatchSystem> {
+        match self {
+            Self::Reference(_) => None,
+            Self::Batch { system, .. } => Some(system),
+        }
+    }
+
+    /// Mutable access to the reference system, when this is the reference
+    /// engine.
+    pub fn reference_mut(&mut self) -> Option<&mut HairSystem> {
+        match self {
+            Self::Reference(system) => Some(system),
+            Self::Batch { .. } => None,
+        }
+    }
+
+    /// The settings (the batch engine's solver is one of
+    /// [`EngineKind::BATCH_METHODS`]).
+    pub fn settings(&self) -> &SimSettings {
+        match self {
+            Self::Reference(system) => system.settings(),
+            Self::Batch { system, .. } => system.settings(),
+        }
+    }
+
+    /// Makes the strands collide with `collider` (or with nothing).
+    ///
+    /// The single call site through which a head collider reaches either
+    /// engine.
+    pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
+        match self {
+            Self::Reference(system) => system.set_collider(collider),
+            Self::Batch { system, .. } => system.set_collider(collider),
+        }
+    }
+
+    /// The head's collider, if any.
+    pub fn collider(&self) -> Option<&Arc<SignedDistanceField>> {
+        match self {
+            Self::Reference(system) => system.collider(),
+            Self::Batch { system, .. } => system.collider(),
+        }
+    }
+
+    /// The head as a support for a strand at rest, with this engine's
+    /// contact law ([`RestContact`]): what "set current shape as rest"
+    /// solves the rest shape against. `None` without a collider.
+    pub fn rest_contact(&self) -> Option<RestContact<'_>> {
+        let contact = match self {
+            Self::Reference(system) => system.contact_settings(),
+            Self::Batch { system, .. } => system.contact_settings(),
+        };
+        let collider = self.collider()?;
+        Some(RestContact::for_engine(
+            self.kind(),
+            self.settings(),
+            contact,
+            collider,
+            *self.head(),
+        ))
+    }
+
+    /// Sets either engine's stability guard (`None`: no checks; a study
+    /// that times the guard's share turns it off).
+    pub fn set_guard(&mut self, guard: Option<crate::guard::Guard>) {
+        match self {
+            Self::Reference(system) => system.set_guard(guard),
+            Self::Batch { system, .. } => system.set_guard(guard),
+        }
+    }
+
+    /// Turns the hair–hair model ([`crate::volume`]) on, retunes it or
+    /// turns it off, on either engine.
+    pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
+        match self {
+            Self::Reference(system) => system.set_interaction(settings),
+            Self::Batch { system, .. } => system.set_interaction(settings),
+        }
+    }
+
+    /// The hair–hair model's rest density and the field of the last frame,
+    /// once a frame has run with the model on.
+    pub fn volume_field(&self) -> Option<(&RestDensity, &VolumeField)> {
+        let state = self.volume_state()?;
+        state.rest().map(|rest| (rest, state.field()))
+    }
+
+    /// Wall time of the hair–hair model's pass in the last frame, seconds
+    /// (zero when it is off).
+    pub fn volume_secs(&self) -> f64 {
+        self.volume_state().map_or(0.0, ModelState::last_secs)
+    }
+
+    fn volume_state(&self) -> Option<&ModelState> {
+        match self {
+            Self::Reference(system) => system.volume().map(|v| v.state()),
+            Self::Batch { system, .. } => system.volume().map(|v| v.state()),
+        }
+    }
+
+    /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
+    /// along `head`.
+    pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        match self {
+            Self::Reference(system) => system.step_frame(head),
+            Self::Batch { system, .. } => system.step_frame(head),
+        }
+    }
+
+    /// Number of strands.
+    pub fn strand_count(&self) -> usize {
+        match self {
+            Self::Reference(system) => system.strands().len(),
+            Self::Batch { system, .. } => system.strand_count(),
+        }
+    }
+
+    /// Super-Helix elements over all strands.
+    pub fn element_count(&self) -> usize {
+        match self {
+            Self::Reference(system) => system.element_count(),
+            Self::Batch { system, .. } => system.element_count(),
+        }
+    }
+
+    /// Whether every strand's state is finite.
+    pub fn is_finite(&self) -> bool {
+        match self {
+            Self::Reference(system) => system.is_finite(),
+            Self::Batch { system, .. } => system.is_finite(),
+        }
+    }
+
+    /// Simulated time since the engine was built, seconds.
+    pub fn time_secs(&self) -> f64 {
+        match self {
+            Self::Reference(system) => system.time_secs(),
+            Self::Batch { system, .. } => system.time_secs(),
+        }
+    }
+
+    /// The head's motion at the current time.
+    pub fn head(&self) -> &RigidMotion {
+        match self {
+            Self::Reference(system) => system.head(),
+            Self::Batch { system, .. } => system.head(),
+        }
+    }
+
+    /// The N + 1 element boundary points of strand `index`, world
+    /// coordinates, root first (the batch engine's in f32, widened).
+    /// Panics if `index` is out of range.
+    pub fn boundary_points_world(&self, index: usize) -> Vec<DVec3> {
+        match self {
+            Self::Reference(system) => system.boundary_points_world(index),
+            Self::Batch { system, .. } => system
+                .boundary_points_world(index)
+                .into_iter()
+                .map(|p| p.as_dvec3())
+                .collect(),
+        }
+    }
+
+    /// Strains q of strand `index`, m⁻¹. Panics if out of range.
+    pub fn q(&self, index: usize) -> Vec<DVec3> {
+        match self {
+            Self::Reference(system) => system.strands()[index].q().to_vec(),
+            Self::Batch { system, .. } => system.q(index),
+        }
+    }
+
+    /// Strain rates q̇ of strand `index`, m⁻¹/s. Panics if out of range.
+    pub fn v(&self, index: usize) -> Vec<DVec3> {
+        match self {
+            Self::Reference(system) => system.strands()[index].v().to_vec(),
+            Self::Batch { system, .. } => system.v(index),
+        }
+    }
+
+    /// Sets strand `index`'s strains and rates (lengths must match its
+    /// element count; the batch engine rounds them to f32).
+    pub fn set_state(&mut self, index: usize, q: &[DVec3], v: &[DVec3]) {
+        match self {
+            Self::Reference(system) => system.strands_mut()[index].set_state(q, v),
+            Self::Batch { system, .. } => system.set_state(index, q, v),
+        }
+    }
+
+    /// Sets the strains strand `index` rests in, which the hair–hair
+    /// model's rest density is built from ([`crate::Strand::rest_pose`]:
+    /// its natural strains unless told; an imported sag-free strand rests
+    /// in its groomed shape). Panics if out of range or of the wrong
+    /// length.
+    pub fn set_rest_pose(&mut self, index: usize, q: &[DVec3]) {
+        match self {
+            Self::Reference(system) => system.set_rest_pose(index, q),
+            Self::Batch { system, .. } => system.set_rest_pose(index, q),
+        }
+    }
+
+    /// Strand `index`'s model. Panics if out of range.
+    pub fn strand_model(&self, index: usize) -> &Arc<StrandModel> {
+        match self {
+            Self::Reference(system) => system.strands()[index].model(),
+            Self::Batch { strands, .. } => &strands[index].0,
+        }
+    }
+
+    /// Strand `index`'s root, head coordinates. Panics if out of range.
+    pub fn root(&self, index: usize) -> &RootPose {
+        match self {
+            Self::Reference(system) => system.strands()[index].root(),
+            Self::Batch { strands, .. } => &strands[index].1,
+        }
+    }
+
+    /// Frames, points and velocities of strand `index` at the current head
+    /// pose, reconstructed in f64 (for the batch engine, from its f32
+    /// state).
+    pub fn kinematics(&self, index: usize) -> (RigidMotion, Kinematics) {
+        let motion = self.head().carry(self.root(index));
+        let mut kin = Kinematics::default();
+        reconstruct(
+            self.strand_model(index),
+            &self.q(index),
+            &self.v(index),
+            &motion,
+            &mut kin,
+        );
+        (motion, kin)
+    }
+
+    /// Energies of the current state summed over strands. Every frame's
+    /// work on the reference; on the batch engine each strand is rebuilt
+    /// in f64 from its f32 state, which costs about a reference frame:
+    /// call it for a report, not every displayed frame.
+    pub fn energies(&self) -> Energies {
+        match self {
+            Self::Reference(system) => system.energies(),
+            Self::Batch { system, strands } => {
+                let gravity = system.settings().gravity_m_per_s2;
+                let mut total = Energies::default();
+                for (i, (model, root)) in strands.iter().enumerate() {
+                    let mut strand = Strand::new(model.clone(), *root, Method::Exact);
+                    strand.set_state(&system.q(i), &system.v(i));
+                    total.accumulate(&strand.energies(&system.head().carry(root), gravity));
+                }
+                total
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Oscillation;
+
+    use super::*;
+
+    fn roots() -> Vec<RootPose> {
+        (0..11)
+            .map(|i| {
+                let a = i as f64 * 0.5;
+                let position = DVec3::new(0.1 * a.cos(), 0.05, 0.1 * a.sin());
+                RootPose::from_direction(position, position, DVec3::Y)
+            })
+            .collect()
+    }
+
+    fn engine(kind: EngineKind) -> Engine {
+        // The batch engine steps velocity-explicit (docs/gpu.md): the
+        // reference runs the same scheme for the comparison.
+        let settings = SimSettings {
+            scheme: crate::StepScheme::VelocityExplicit,
+            ..SimSettings::default()
+        };
+        let mut engine = Engine::new(kind, settings).expect("valid settings");
+        engine
+            .add_group(&StrandParams::default(), &roots())
+            .expect("valid params");
+        engine
+    }
+
+    /// After a second of head shake with Exact, the f32 engine's tips lie
+    /// within this of the f64 engine's, metres: f32 round-off only,
+    /// measured at most 1.8e-7 m on these 20 cm strands; 1e-6 m keeps a
+    /// margin of five without hiding a real difference (a wrong root or
+    /// element would be centimetres off).
+    const TIP_TOL_M: f64 = 1e-6;
+
+    #[test]
+    fn both_engines_agree_on_a_head_shake_with_exact() {
+        let head = Oscillation {
+            axis: DVec3::Y,
+            amplitude_rad: 0.5,
+            frequency_hz: 1.5,
+        };
+        let (mut reference, mut batch) = (engine(EngineKind::Reference), engine(EngineKind::Batch));
+        assert_eq!(reference.strand_count(), batch.strand_count());
+        assert_eq!(reference.element_count(), batch.element_count());
+        for _ in 0..60 {
+            reference.step_frame(&head);
+            batch.step_frame(&head);
+        }
+        assert!(reference.is_finite() && batch.is_finite());
+        assert!((reference.time_secs() - batch.time_secs()).abs() < 1e-9);
+        for i in 0..reference.strand_count() {
+            let a = *reference.boundary_points_world(i).last().expect("a tip");
+            let b = *batch.boundary_points_world(i).last().expect("a tip");
+            assert!((a - b).length() < TIP_TOL_M, "strand {i}: {a} vs {b}");
+        }
+        // Energies: the batch engine's, rebuilt in f64, match the reference.
+        let (e_ref, e_batch) = (reference.energies(), batch.energies());
+        let scale = e_ref.gravity_j.abs();
+        assert!((e_ref.total_j() - e_batch.total_j()).abs() < 1e-4 * scale);
+    }
+
+    #[test]
+    fn state_round_trips_through_either_engine() {
+        let (mut reference, mut batch) = (engine(EngineKind::Reference), engine(EngineKind::Batch));
+        let q: Vec<DVec3> = (0..10).map(|e| DVec3::new(1.0, e as f64, -2.0)).collect();
+        let v = vec![DVec3::splat(0.5); 10];
+        reference.set_state(3, &q, &v);
+        batch.set_state(3, &q, &v);
+        assert_eq!(reference.q(3), q);
+        assert_eq!(batch.q(3), q, "these values are exact in f32");
+        assert_eq!(batch.v(3), v);
+        let (a, b) = (
+            reference.boundary_points_world(3),
+            batch.boundary_points_world(3),
+        );
+        for (p, r) in a.iter().zip(&b) {
+            assert!((*p - *r).length() < 1e-6, "{p} vs {r}");
+        }
+    }
+
+    #[test]
+    fn the_batch_engine_refuses_other_solvers() {
+        for method in Method::ALL {
+            let settings = SimSettings {
+                method,
+                ..SimSettings::default()
+            };
+            let result = Engine::new(EngineKind::Batch, settings);
+            assert_eq!(result.is_ok(), EngineKind::Batch.runs(method), "{method:?}");
+            if let Err(e) = result {
+                assert_eq!(e.field, "method");
+            }
+        }
+        assert!(
+            Method::ALL
+                .into_iter()
+                .all(|m| EngineKind::Reference.runs(m))
+        );
+    }
+
+    #[test]
+    fn engine_names_round_trip() {
+        for kind in EngineKind::ALL {
+            assert_eq!(EngineKind::from_name(kind.label()), Some(kind));
+        }
+        assert_eq!(EngineKind::from_name("Batch"), None);
+    }
+}

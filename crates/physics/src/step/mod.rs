@@ -1,0 +1,485 @@
+//! One linearly implicit step of one strand: the pipeline of named stages.
+//!
+//! 1. **reconstruct**: shape, velocities, free accelerations and Jacobians
+//!    root to tip ([`crate::step::reconstruct`]).
+//! 2. **forces**: generalized forces Q by suffix sums ([`crate::step::forces`]).
+//! 3. **mass**: mass-matrix data by suffix moments ([`crate::step::mass`]).
+//! 4. **solve**: (sM̃ + hγℓ + h²K) Δv = h[Q − K(q − qⁿ) − (γℓ + hK)v − (ν/ρS)Mv]
+//!    with the chosen [`crate::step::solve::Solver`] and its mass matrix M̃;
+//!    s = 1 + hν/ρS folds the implicit drag, C_drag = (ν/ρS)M, into the mass
+//!    term. The right-hand side uses the exact M (matrix-free, O(N)) for
+//!    every method, so methods differ only in the matrix they solve.
+//! 5. **integrate**: v ← v + Δv, q ← q + h v (docs/physics.md section 5).
+//!
+//! M and Q are frozen at the start of the step; K and the damping are
+//! implicit, so the elastic part is unconditionally stable. With the
+//! default [`StepScheme::VelocityImplicit`], the derivative of Q with
+//! respect to q̇ (centrifugal, Coriolis and root-rotation terms,
+//! [`crate::step::velocity_terms`]) joins the step matrix too: Dense factors the
+//! whole non-symmetric matrix, the O(N) solvers correct their answer by a
+//! few GMRES iterations inside stage "solve". Stage "reconstruct" then
+//! also gives the Jacobians' time derivatives, which make each product
+//! G x three prefix sums and a projection.
+
+pub mod block_velocity_terms;
+pub mod forces;
+pub mod mass;
+pub mod reconstruct;
+pub mod solve;
+pub mod velocity_terms;
+
+use std::time::Instant;
+
+use glam::{DMat3, DVec3};
+
+use crate::geometry::helix::outer;
+use crate::model::StrandModel;
+use crate::settings::{Method, StepScheme};
+use crate::step::block_velocity_terms::BlockVelocityTerms;
+use crate::step::forces::{ForceInputs, generalized_forces};
+use crate::step::mass::{MassData, add_sample_weights, mass_blocks, mass_times, scaled};
+use crate::step::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
+use crate::step::solve::{Solver, StepSolver};
+use crate::step::velocity_terms::{Derivative, VelocityTerms};
+
+/// Wall time spent in each stage, seconds (summed over strands and steps).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Stage "reconstruct".
+    pub reconstruct_secs: f64,
+    /// Stage "forces".
+    pub forces_secs: f64,
+    /// Stage "mass".
+    pub mass_secs: f64,
+    /// Stage "solve".
+    pub solve_secs: f64,
+    /// Stage "integrate".
+    pub integrate_secs: f64,
+}
+
+impl StageTimes {
+    /// Sum of all stages.
+    pub fn total_secs(&self) -> f64 {
+        self.reconstruct_secs
+            + self.forces_secs
+            + self.mass_secs
+            + self.solve_secs
+            + self.integrate_secs
+    }
+
+    /// Adds another record stage by stage.
+    pub fn accumulate(&mut self, o: &StageTimes) {
+        self.reconstruct_secs += o.reconstruct_secs;
+        self.forces_secs += o.forces_secs;
+        self.mass_secs += o.mass_secs;
+        self.solve_secs += o.solve_secs;
+        self.integrate_secs += o.integrate_secs;
+    }
+}
+
+/// Buffers reused from step to step, so stepping allocates nothing.
+#[derive(Clone, Debug)]
+pub struct StepWorkspace {
+    /// Output of stage "reconstruct" for the last step.
+    pub kinematics: Kinematics,
+    /// Output of stage "mass" for the last step.
+    pub mass: MassData,
+    /// Generalized forces of the last step.
+    pub forces: Vec<DVec3>,
+    /// The solver, with its factorisation of the last step.
+    pub solver: Solver,
+    /// How the step treats the velocity-dependent forces.
+    pub scheme: StepScheme,
+    velocity_terms: VelocityTerms,
+    block_terms: BlockVelocityTerms,
+    krylov: Krylov,
+    contact_weights: Vec<(usize, DMat3)>,
+    step_mass: MassData,
+    velocity_product: Vec<DVec3>,
+    rhs: Vec<DVec3>,
+    delta_v: Vec<DVec3>,
+    mass_v: Vec<DVec3>,
+    diagonal: Vec<DVec3>,
+}
+
+impl StepWorkspace {
+    /// Empty buffers and a solver for `method`.
+    pub fn new(method: Method) -> Self {
+        Self {
+            kinematics: Kinematics::default(),
+            mass: MassData::default(),
+            forces: Vec::new(),
+            solver: Solver::new(method),
+            scheme: StepScheme::default(),
+            velocity_terms: VelocityTerms::default(),
+            block_terms: BlockVelocityTerms::default(),
+            krylov: Krylov::default(),
+            contact_weights: Vec::new(),
+            step_mass: MassData::default(),
+            velocity_product: Vec::new(),
+            rhs: Vec::new(),
+            delta_v: Vec::new(),
+            mass_v: Vec::new(),
+            diagonal: Vec::new(),
+        }
+    }
+}
+
+/// Everything outside the strand that a step needs.
+#[derive(Clone, Copy, Debug)]
+pub struct StepInputs<'a> {
+    /// Step length h in seconds.
+    pub h_secs: f64,
+    /// Forces environment (root motion, gravity, air, external forces).
+    pub forces: ForceInputs<'a>,
+}
+
+/// Advances `q`, `v` by one step of `inputs.h_secs`.
+pub fn step_strand(
+    model: &StrandModel,
+    q: &mut [DVec3],
+    v: &mut [DVec3],
+    ws: &mut StepWorkspace,
+    inputs: &StepInputs,
+) -> StageTimes {
+    let n = model.elements();
+    let h = inputs.h_secs;
+    let mut times = StageTimes::default();
+
+    let corrections = match ws.scheme {
+        StepScheme::VelocityExplicit => 0,
+        StepScheme::VelocityImplicit { corrections } => corrections,
+    };
+    // The velocity terms' products need the Jacobians' rates (Block-diagonal
+    // keeps its velocity terms explicit and does without).
+    let implicit_velocity = corrections > 0 && !matches!(ws.solver, Solver::BlockDiagonal(_));
+    // Block-diagonal (subtree blocks) takes the velocity terms of its own
+    // Lagrangian instead ([`crate::step::block_velocity_terms`]).
+    let block_lagrangian = corrections > 0 && ws.solver.method() == Method::BlockDiagonal;
+    let t = Instant::now();
+    if implicit_velocity || block_lagrangian {
+        reconstruct_with_rates(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    } else {
+        reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
+    }
+    times.reconstruct_secs = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    ws.forces.resize(n, DVec3::ZERO);
+    generalized_forces(model, &ws.kinematics, &inputs.forces, &mut ws.forces);
+    if block_lagrangian {
+        ws.velocity_product.resize(n, DVec3::ZERO);
+        ws.block_terms.correction(
+            model,
+            &ws.kinematics,
+            v,
+            inputs.forces.root,
+            &mut ws.velocity_product,
+        );
+        for (f, c) in ws.forces.iter_mut().zip(&ws.velocity_product) {
+            *f += *c;
+        }
+    }
+    times.forces_secs = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    mass_blocks(model, &ws.kinematics, &mut ws.mass);
+    times.mass_secs = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    // The hair–hair friction is a drag too (crate::volume::friction).
+    let volume_rate = inputs.forces.volume.map_or(0.0, |v| v.friction_per_s);
+    let drag_rate = model.air_drag / model.mass_per_length + volume_rate;
+    ws.diagonal.clear();
+    ws.diagonal
+        .extend((0..n).map(|e| DVec3::splat(h * model.friction[e]) + h * h * model.stiffness[e]));
+    let root = inputs.forces.root;
+    let mass_scale = 1.0 + h * drag_rate;
+    // Implicit contact: h (h k + c) Jᵀ n nᵀ J joins s M in the step matrix.
+    contact_weights(model, &ws.kinematics, inputs, &mut ws.contact_weights);
+    let in_contact = !ws.contact_weights.is_empty();
+    if in_contact {
+        scaled(&ws.mass, mass_scale, &mut ws.step_mass);
+        add_sample_weights(
+            model,
+            &ws.kinematics,
+            &ws.contact_weights,
+            &mut ws.step_mass,
+        );
+    }
+    let (matrix, scale) = if in_contact {
+        (&ws.step_mass, 1.0)
+    } else {
+        (&ws.mass, mass_scale)
+    };
+    match &mut ws.solver {
+        Solver::Dense(dense) if implicit_velocity => {
+            // The reference: h G assembled column by column (3N products,
+            // O(N²)) and the whole non-symmetric matrix LU-factored.
+            let velocity =
+                dense_velocity_matrix(model, &ws.kinematics, q, v, root, &mut ws.velocity_terms, h);
+            dense.prepare_with(&ws.kinematics, matrix, scale, &ws.diagonal, Some(velocity));
+        }
+        solver => solver.prepare(&ws.kinematics, matrix, scale, &ws.diagonal),
+    }
+    ws.mass_v.resize(n, DVec3::ZERO);
+    mass_times(&ws.kinematics, &ws.mass, v, &mut ws.mass_v);
+    ws.rhs.clear();
+    ws.rhs.extend((0..n).map(|e| {
+        let k = model.stiffness[e];
+        let elastic = k * (q[e] - model.natural[e]);
+        let damping = (DVec3::splat(model.friction[e]) + h * k) * v[e] + drag_rate * ws.mass_v[e];
+        h * (ws.forces[e] - elastic - damping)
+    }));
+    ws.delta_v.resize(n, DVec3::ZERO);
+    let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
+    ws.solver
+        .solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
+    // Block-diagonal's own P is too far from P + hG on a whipping strand
+    // (measured: Richardson's residual grew from the first correction), so
+    // its velocity terms stay explicit: its own Lagrangian's, added to the
+    // forces above.
+    if matches!(ws.solver, Solver::Exact(_) | Solver::Iterative(_)) {
+        velocity_corrections(model, q, v, root, h, corrections, in_contact, ws);
+    }
+    times.solve_secs = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    for ((q, v), dv) in q.iter_mut().zip(v.iter_mut()).zip(&ws.delta_v) {
+        *v += *dv;
+        *q += h * *v;
+    }
+    times.integrate_secs = t.elapsed().as_secs_f64();
+    times
+}
+
+/// h G as a dense 3N×3N matrix, column by column from the matrix-free
+/// product (O(N²)): Dense's share of the velocity-implicit step.
+fn dense_velocity_matrix(
+    model: &StrandModel,
+    kin: &Kinematics,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &crate::motion::RigidMotion,
+    terms: &mut VelocityTerms,
+    h: f64,
+) -> nalgebra::DMatrix<f64> {
+    let n = model.elements();
+    let mut matrix = nalgebra::DMatrix::zeros(3 * n, 3 * n);
+    let mut unit = vec![DVec3::ZERO; n];
+    let mut column = vec![DVec3::ZERO; n];
+    for j in 0..3 * n {
+        unit[j / 3][j % 3] = 1.0;
+        terms.apply(
+            Derivative::JacobianRates,
+            model,
+            kin,
+            q,
+            v,
+            root,
+            &unit,
+            &mut column,
+        );
+        unit[j / 3][j % 3] = 0.0;
+        for (e, c) in column.iter().enumerate() {
+            for i in 0..3 {
+                matrix[(3 * e + i, j)] = h * c[i];
+            }
+        }
+    }
+    matrix
+}
+
+/// The velocity-implicit solve (P + hG) Δv = rhs for the O(N) solvers:
+/// GMRES, right-preconditioned by the solver's own P = s M̃ + D (+ contact),
+/// matrix-free, at most `corrections` iterations, from Δv₀ = P⁻¹ rhs.
+///
+/// Why GMRES and not plain Richardson (Δv ← P⁻¹(rhs − h G Δv)): both cost
+/// one product G x and one solve with P per iteration, but Richardson
+/// diverges where the spectral radius of P⁻¹hG passes 1, which long coiled
+/// strands reach (measured: a 0.66 m curl kept gaining energy with 8
+/// Richardson corrections, which Dense's exact solve never did); GMRES
+/// minimises the residual over the Krylov space instead.
+///
+/// How: with Δv₀ = P⁻¹ rhs the residual is r₀ = −h G Δv₀. Arnoldi runs on
+/// A P⁻¹, and since P z = v exactly, A z = v + h G z needs no product with
+/// P. The small least-squares problem is kept triangular by Givens
+/// rotations, so the residual norm is known at every iteration; the loop
+/// stops once it is below [`GMRES_TOLERANCE`] of |rhs|.
+#[allow(clippy::too_many_arguments)] // the step's state, named as the step names it
+fn velocity_corrections(
+    model: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    root: &crate::motion::RigidMotion,
+    h: f64,
+    corrections: u32,
+    in_contact: bool,
+    ws: &mut StepWorkspace,
+) {
+    let k_max = (corrections as usize).min(MAX_GMRES);
+    if k_max == 0 {
+        return;
+    }
+    let n = q.len();
+    let dot = |a: &[DVec3], b: &[DVec3]| a.iter().zip(b).map(|(x, y)| x.dot(*y)).sum::<f64>();
+    let rhs_norm = dot(&ws.rhs, &ws.rhs).sqrt();
+    let tol = GMRES_TOLERANCE;
+    ws.velocity_product.resize(n, DVec3::ZERO);
+    ws.velocity_terms.apply(
+        Derivative::JacobianRates,
+        model,
+        &ws.kinematics,
+        q,
+        v,
+        root,
+        &ws.delta_v,
+        &mut ws.velocity_product,
+    );
+    // r₀ = −h G Δv₀.
+    let beta = ws
+        .velocity_product
+        .iter()
+        .map(|g| (-h * *g).length_squared())
+        .sum::<f64>()
+        .sqrt();
+    if beta.is_nan() || beta <= tol * rhs_norm {
+        return;
+    }
+    let krylov = &mut ws.krylov;
+    krylov.reserve(k_max, n);
+    for (b, g) in krylov.basis[0].iter_mut().zip(&ws.velocity_product) {
+        *b = -h * *g / beta;
+    }
+    let mut hessenberg = [[0.0; MAX_GMRES]; MAX_GMRES + 1];
+    let mut rotations = [(1.0, 0.0); MAX_GMRES];
+    let mut g = [0.0; MAX_GMRES + 1];
+    g[0] = beta;
+    let mut used = 0;
+    for j in 0..k_max {
+        // z = P⁻¹ v_j; w = A z = v_j + h G z.
+        let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
+        let z = &mut krylov.directions[j];
+        ws.solver.solve(&ws.kinematics, matrix, &krylov.basis[j], z);
+        ws.velocity_terms.apply(
+            Derivative::JacobianRates,
+            model,
+            &ws.kinematics,
+            q,
+            v,
+            root,
+            z,
+            &mut ws.velocity_product,
+        );
+        let (done, rest) = krylov.basis.split_at_mut(j + 1);
+        let w = &mut rest[0];
+        for ((x, b), gz) in w.iter_mut().zip(&done[j]).zip(&ws.velocity_product) {
+            *x = *b + h * *gz;
+        }
+        for (i, b) in done.iter().enumerate() {
+            let hij = dot(w, b);
+            hessenberg[i][j] = hij;
+            for (x, y) in w.iter_mut().zip(b) {
+                *x -= hij * *y;
+            }
+        }
+        let w_norm = dot(w, w).sqrt();
+        hessenberg[j + 1][j] = w_norm;
+        // Apply the earlier rotations to the new column, then a new one.
+        for (i, (c, s)) in rotations.iter().take(j).enumerate() {
+            let (a, b) = (hessenberg[i][j], hessenberg[i + 1][j]);
+            hessenberg[i][j] = c * a + s * b;
+            hessenberg[i + 1][j] = -s * a + c * b;
+        }
+        let (a, b) = (hessenberg[j][j], hessenberg[j + 1][j]);
+        let r = a.hypot(b);
+        let (c, s) = if r == 0.0 { (1.0, 0.0) } else { (a / r, b / r) };
+        rotations[j] = (c, s);
+        hessenberg[j][j] = r;
+        hessenberg[j + 1][j] = 0.0;
+        g[j + 1] = -s * g[j];
+        g[j] *= c;
+        used = j + 1;
+        if !g[j + 1].is_finite() || g[j + 1].abs() <= tol * rhs_norm || w_norm == 0.0 {
+            break;
+        }
+        for x in w.iter_mut() {
+            *x /= w_norm;
+        }
+    }
+    // Back substitution for y, then Δv = Δv₀ + Σ y_j z_j.
+    let mut y = [0.0; MAX_GMRES];
+    for i in (0..used).rev() {
+        let mut sum = g[i];
+        for (l, y_l) in y.iter().enumerate().take(used).skip(i + 1) {
+            sum -= hessenberg[i][l] * y_l;
+        }
+        y[i] = sum / hessenberg[i][i];
+    }
+    if y[..used].iter().all(|x| x.is_finite()) {
+        for (y_j, z) in y[..used].iter().zip(&krylov.directions) {
+            for (dv, zi) in ws.delta_v.iter_mut().zip(z) {
+                *dv += *y_j * *zi;
+            }
+        }
+    }
+}
+
+/// Most GMRES iterations a step runs: the range of
+/// [`StepScheme::VelocityImplicit`]'s `corrections`.
+const MAX_GMRES: usize = crate::settings::MAX_VELOCITY_CORRECTIONS as usize;
+
+/// GMRES's vectors, kept from step to step so that stepping allocates
+/// nothing: the Arnoldi basis v₀…v_k and the preconditioned directions
+/// z_j = P⁻¹ v_j.
+#[derive(Clone, Debug, Default)]
+struct Krylov {
+    basis: Vec<Vec<DVec3>>,
+    directions: Vec<Vec<DVec3>>,
+}
+
+impl Krylov {
+    /// Room for `k` iterations on vectors of `n` triples.
+    fn reserve(&mut self, k: usize, n: usize) {
+        for (vectors, count) in [(&mut self.basis, k + 1), (&mut self.directions, k)] {
+            if vectors.len() < count {
+                vectors.resize(count, Vec::new());
+            }
+            for x in vectors.iter_mut() {
+                x.resize(n, DVec3::ZERO);
+            }
+        }
+    }
+}
+
+/// GMRES stops once its residual is below this fraction of |rhs|.
+/// Measured on the 0.66 m curl of `tests/stable_step.rs` and the shake of
+/// `examples/shake_probe.rs`: at 1e-2 the curl still gained energy on a
+/// frame (which the guard caught), at 1e-3 and below never; each tenfold
+/// tightening costs about one more iteration (0.7 of an explicit step).
+pub const GMRES_TOLERANCE: f64 = 1e-3;
+
+/// The implicit contact's per-sample weights w h (h k + c) n nᵀ, in sample
+/// order (empty without a collider or out of contact).
+fn contact_weights(
+    model: &StrandModel,
+    kin: &Kinematics,
+    inputs: &StepInputs,
+    out: &mut Vec<(usize, DMat3)>,
+) {
+    out.clear();
+    let Some(contact) = &inputs.forces.contact else {
+        return;
+    };
+    let origin = inputs.forces.root.position_m;
+    for (i, s) in kin.samples.iter().enumerate() {
+        if let Some(push) = contact.implicit_force(
+            origin + s.position_m,
+            s.velocity_m_per_s,
+            model.mass_per_length,
+        ) {
+            let w = s.weight_m * inputs.h_secs * push.gain;
+            out.push((i, outer(push.normal, push.normal) * w));
+        }
+    }
+}
