@@ -47,6 +47,7 @@ use helixhair_physics::collision::SignedDistanceField;
 use helixhair_physics::engine::{Engine, EngineKind};
 use helixhair_physics::natural_shape::helix_strains;
 use helixhair_physics::{NaturalShape, StrandParams};
+use rayon::prelude::*;
 
 use crate::brush::freeze::{RestCounts, freeze_strands};
 use crate::brush::sphere::{Reach, closest_on_segment};
@@ -118,8 +119,9 @@ impl StrokeOutcome {
         );
         if self.frozen.total() > 0 {
             line += &format!(
-                ", {} frozen ({})",
+                ", {} frozen in {:.2} s ({})",
                 self.frozen.total(),
+                self.freeze_secs,
                 self.frozen.describe()
             );
         }
@@ -168,8 +170,12 @@ impl GroomSession {
         if session.sim.engine().kind() != EngineKind::Reference {
             session.rebuild(&[])?;
         }
-        // The artist starts from the hair at rest, as it hangs.
-        session.settle(session.frames_of(START_SETTLE_SECS))?;
+        // The artist starts from the hair at rest, as it hangs. A strand
+        // with a rest shape (imported sag-free, or frozen) starts in an
+        // equilibrium already; one in its natural shape falls into its own.
+        if session.strands.iter().any(|s| s.rest_strains.is_none()) {
+            session.settle(session.frames_of(START_SETTLE_SECS))?;
+        }
         Ok(session)
     }
 
@@ -271,33 +277,41 @@ impl GroomSession {
     /// strands that felt a force.
     fn step_with_forces(
         &mut self,
-        accel: impl Fn(usize, usize, DVec3, DVec3) -> DVec3,
-        in_group: impl Fn(&str) -> bool,
+        accel: impl Fn(usize, usize, DVec3, DVec3) -> DVec3 + Sync,
+        in_group: impl Fn(&str) -> bool + Sync,
     ) -> anyhow::Result<Vec<usize>> {
-        let mut touched = Vec::new();
-        let mut forces = Vec::with_capacity(self.strands.len());
-        for (i, strand) in self.strands.iter().enumerate() {
-            if !in_group(&self.groom.grown.groups[strand.group].name) {
-                forces.push(Vec::new());
-                continue;
-            }
-            let (root, kin) = self.sim.engine().kinematics(i);
-            let rho_s = self.sim.engine().strand_model(i).mass_per_length;
-            let per_sample: Vec<DVec3> = kin
-                .samples
-                .iter()
-                .enumerate()
-                .map(|(j, s)| {
-                    rho_s * accel(i, j, root.position_m + s.position_m, s.velocity_m_per_s)
-                })
-                .collect();
-            if per_sample.iter().any(|f| *f != DVec3::ZERO) {
-                touched.push(i);
-                forces.push(per_sample);
-            } else {
-                forces.push(Vec::new());
-            }
-        }
+        // Each strand's forces from its own reconstruction: independent, so
+        // in parallel over strands (a whole groom reconstructs every frame).
+        let engine = self.sim.engine();
+        let groups = &self.groom.grown.groups;
+        let forces: Vec<Vec<DVec3>> = self
+            .strands
+            .par_iter()
+            .enumerate()
+            .map(|(i, strand)| {
+                if !in_group(&groups[strand.group].name) {
+                    return Vec::new();
+                }
+                let (root, kin) = engine.kinematics(i);
+                let rho_s = engine.strand_model(i).mass_per_length;
+                let per_sample: Vec<DVec3> = kin
+                    .samples
+                    .iter()
+                    .enumerate()
+                    .map(|(j, s)| {
+                        rho_s * accel(i, j, root.position_m + s.position_m, s.velocity_m_per_s)
+                    })
+                    .collect();
+                if per_sample.iter().any(|f| *f != DVec3::ZERO) {
+                    per_sample
+                } else {
+                    Vec::new()
+                }
+            })
+            .collect();
+        let touched = (0..forces.len())
+            .filter(|&i| !forces[i].is_empty())
+            .collect();
         let system = self
             .sim
             .engine_mut()

@@ -191,6 +191,22 @@ impl StrandGroup {
         self.roots.iter().map(Root::pose).collect()
     }
 
+    /// The parameters simulated strand `n` has before its edit: the
+    /// group's for a root, its own for an imported guide. `None` past the
+    /// listed roots of a group whose scalp placement is not grown yet (its
+    /// roots come between the listed ones and the imported guides), and
+    /// past the last strand.
+    pub fn base_params(&self, n: usize) -> Option<StrandParams> {
+        let Some(k) = n.checked_sub(self.roots.len()) else {
+            return Some(self.params.clone());
+        };
+        if self.scalp.is_some() {
+            return None;
+        }
+        let imported = self.imported.as_ref()?.guides().nth(k)?;
+        Some(imported.params(&self.params))
+    }
+
     /// Strands the simulation runs for this group (once grown): its listed
     /// roots, then its imported guides.
     pub fn simulated_count(&self) -> usize {

@@ -40,6 +40,7 @@ use helixhair_physics::natural_shape::MAX_NATURAL_STRAIN_PER_M;
 use helixhair_physics::{NaturalShape, StrandParams};
 use serde::{Deserialize, Serialize};
 
+use crate::style::StrandGroup;
 use crate::style::checks::{check_finite, invalid, param_issue};
 use crate::style::error::StyleIssue;
 use crate::style::field_path::FieldPath;
@@ -200,16 +201,14 @@ pub fn edit_mut(edits: &mut Vec<StrandEdit>, strand: usize) -> &mut StrandEdit {
     &mut edits[at]
 }
 
-/// Checks a group's edits against the group's parameters `group` and its
-/// simulated strand count where known (`strands`: `None` for a group
-/// whose roots grow on a scalp not yet seen); issues name
-/// `at[i].field`.
-pub fn validate_edits(
-    edits: &[StrandEdit],
-    group: &StrandParams,
-    strands: Option<usize>,
-    at: &FieldPath,
-) -> Result<(), StyleIssue> {
+/// Checks `group`'s edits; issues name `at[i].field`. The strand numbers
+/// are bounded where the group's strand count is known (no scalp
+/// placement still to grow), and each edit is checked against its
+/// strand's own parameters where they are known
+/// ([`StrandGroup::base_params`]).
+pub fn validate_edits(group: &StrandGroup, at: &FieldPath) -> Result<(), StyleIssue> {
+    let edits = &group.edits;
+    let strands = group.scalp.is_none().then(|| group.simulated_count());
     for (i, edit) in edits.iter().enumerate() {
         let at = at.index(i);
         if i > 0 && edits[i - 1].strand >= edit.strand {
@@ -257,10 +256,13 @@ pub fn validate_edits(
                 return Err(invalid(at.field("root_direction"), "must not be zero"));
             }
         }
+        let Some(base) = group.base_params(edit.strand) else {
+            continue;
+        };
         if let Some(rest) = &edit.rest {
             let expected = match edit.length_m {
-                Some(length_m) => elements_for_length(group, length_m),
-                None => group.elements,
+                Some(length_m) => elements_for_length(&base, length_m),
+                None => base.elements,
             };
             for (name, list) in [("strains", &rest.strains), ("natural", &rest.natural)] {
                 let list_at = at.field("rest").field(name);
@@ -278,7 +280,7 @@ pub fn validate_edits(
                 }
             }
         }
-        edit.params(group)
+        edit.params(&base)
             .validate()
             .map_err(|e| param_issue(&at, &e))?;
     }
@@ -312,6 +314,27 @@ mod tests {
                 radius_m: 0.01,
                 step_m: 0.03
             }
+        );
+    }
+
+    #[test]
+    fn an_imported_strand_is_edited_over_its_own_parameters() {
+        // Two elements of 5 cm: the group's params (default element count)
+        // are not this strand's.
+        let src = "(version: 1, name: \"s\", groups: [(\n    name: \"i\",\n    imported: (source: \"x.tfx\", strands: [(\n        root: (position_m: (0.0, 0.1, 0.0), direction: (0.0, 1.0, 0.0)),\n        element_length_m: 0.05,\n        strains: [(0.0, 1.0, 0.0), (0.0, 1.0, 0.0)],\n        natural: [(0.0, 1.0, 0.0), (0.0, 1.0, 0.0)],\n    )]),\n    edits: [(strand: 0, rest: (strains: [(0.0, 2.0, 0.0), (0.0, 2.0, 0.0)], natural: [(0.0, 3.0, 0.0), (0.0, 3.0, 0.0)]))],\n)])\n";
+        let style = Style::from_ron(src, Path::new("i.ron")).unwrap_or_else(|e| panic!("{e}"));
+        let group = &style.groups[0];
+        let base = group.base_params(0).unwrap();
+        assert_eq!((base.elements, base.length_m), (2, 0.1));
+        assert_eq!(group.edits[0].params(&base).elements, 2);
+        // Past the last strand: refused.
+        let past = src.replace("(strand: 0,", "(strand: 1,");
+        let error = Style::from_ron(&past, Path::new("i.ron"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("field `groups[0].edits[0].strand`"),
+            "{error}"
         );
     }
 

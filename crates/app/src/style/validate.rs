@@ -62,10 +62,7 @@ impl Style {
             if let Some(imported) = &group.imported {
                 validate_imported(imported, &group.params, &at.field("imported"))?;
             }
-            // A scalp placement's count is known only once grown; listed
-            // roots bound the strand numbers now.
-            let known = group.scalp.is_none().then_some(group.roots.len());
-            validate_edits(&group.edits, &group.params, known, &at.field("edits"))?;
+            validate_edits(group, &at.field("edits"))?;
             for (j, root) in group.roots.iter().enumerate() {
                 validate_root(root, &roots.index(j))?;
             }
