@@ -17,7 +17,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use helixhair_e2e::workspace_root;
+use helixhair_e2e::{strongly_connected as cycles, workspace_root};
 
 /// Top-level module → the top-level modules its files name.
 fn module_graph(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
@@ -99,63 +99,6 @@ fn crate_paths(text: &str) -> BTreeSet<String> {
     }
     found.remove("");
     found
-}
-
-/// Strongly connected groups of `graph` with more than one module
-/// (Tarjan's algorithm).
-fn cycles(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
-    struct Walk<'a> {
-        graph: &'a BTreeMap<String, BTreeSet<String>>,
-        index: BTreeMap<&'a str, usize>,
-        low: BTreeMap<&'a str, usize>,
-        stack: Vec<&'a str>,
-        groups: Vec<Vec<String>>,
-    }
-    impl<'a> Walk<'a> {
-        fn visit(&mut self, v: &'a str) {
-            let i = self.index.len();
-            self.index.insert(v, i);
-            self.low.insert(v, i);
-            self.stack.push(v);
-            for w in &self.graph[v] {
-                let w = w.as_str();
-                if !self.index.contains_key(w) {
-                    self.visit(w);
-                    let low = self.low[v].min(self.low[w]);
-                    self.low.insert(v, low);
-                } else if self.stack.contains(&w) {
-                    let low = self.low[v].min(self.index[w]);
-                    self.low.insert(v, low);
-                }
-            }
-            if self.low[v] == self.index[v] {
-                let mut group = Vec::new();
-                while let Some(w) = self.stack.pop() {
-                    group.push(w.to_owned());
-                    if w == v {
-                        break;
-                    }
-                }
-                if group.len() > 1 {
-                    group.sort();
-                    self.groups.push(group);
-                }
-            }
-        }
-    }
-    let mut walk = Walk {
-        graph,
-        index: BTreeMap::new(),
-        low: BTreeMap::new(),
-        stack: Vec::new(),
-        groups: Vec::new(),
-    };
-    for v in graph.keys() {
-        if !walk.index.contains_key(v.as_str()) {
-            walk.visit(v);
-        }
-    }
-    walk.groups
 }
 
 #[test]

@@ -23,7 +23,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use helixhair_e2e::workspace_root;
+use helixhair_e2e::{strongly_connected as circles, workspace_root};
 
 /// Circles allowed because their files are one module's parts, each as
 /// its files' paths under `crates/` (sorted), with why.
@@ -363,63 +363,6 @@ fn file_graph(crate_dir: &Path) -> BTreeMap<String, BTreeSet<String>> {
     graph
 }
 
-/// Strongly connected groups of `graph` with more than one node (Tarjan).
-fn circles(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
-    struct Walk<'a> {
-        graph: &'a BTreeMap<String, BTreeSet<String>>,
-        index: BTreeMap<&'a str, usize>,
-        low: BTreeMap<&'a str, usize>,
-        stack: Vec<&'a str>,
-        groups: Vec<Vec<String>>,
-    }
-    impl<'a> Walk<'a> {
-        fn visit(&mut self, v: &'a str) {
-            let i = self.index.len();
-            self.index.insert(v, i);
-            self.low.insert(v, i);
-            self.stack.push(v);
-            for w in self.graph.get(v).into_iter().flatten() {
-                let w = w.as_str();
-                if !self.index.contains_key(w) {
-                    self.visit(w);
-                    let low = self.low[v].min(self.low[w]);
-                    self.low.insert(v, low);
-                } else if self.stack.contains(&w) {
-                    let low = self.low[v].min(self.index[w]);
-                    self.low.insert(v, low);
-                }
-            }
-            if self.low[v] == self.index[v] {
-                let mut group = Vec::new();
-                while let Some(w) = self.stack.pop() {
-                    group.push(w.to_owned());
-                    if w == v {
-                        break;
-                    }
-                }
-                if group.len() > 1 {
-                    group.sort();
-                    self.groups.push(group);
-                }
-            }
-        }
-    }
-    let mut walk = Walk {
-        graph,
-        index: BTreeMap::new(),
-        low: BTreeMap::new(),
-        stack: Vec::new(),
-        groups: Vec::new(),
-    };
-    for v in graph.keys() {
-        if !walk.index.contains_key(v.as_str()) {
-            walk.visit(v);
-        }
-    }
-    walk.groups.sort();
-    walk.groups
-}
-
 #[test]
 fn the_reader_opens_use_groups_and_resolves_relative_paths() {
     let module = vec!["window".to_owned(), "state".to_owned()];
@@ -443,20 +386,6 @@ fn the_reader_opens_use_groups_and_resolves_relative_paths() {
         .map(|p| p.join("::"))
         .collect();
     assert_eq!(folder, ["window::state::child::Thing".to_owned()].into());
-}
-
-#[test]
-fn the_circle_finder_finds_a_circle() {
-    let graph: BTreeMap<String, BTreeSet<String>> = [
-        ("a", vec!["b"]),
-        ("b", vec!["c"]),
-        ("c", vec!["a"]),
-        ("d", vec!["a"]),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_owned(), v.into_iter().map(String::from).collect()))
-    .collect();
-    assert_eq!(circles(&graph), vec![vec!["a", "b", "c"]]);
 }
 
 #[test]

@@ -70,8 +70,8 @@ pub struct Cli {
 /// The commands of `helixhair`.
 #[derive(Clone, Debug, Subcommand)]
 pub enum Command {
-    /// Simulate a style headless on a still head and report timings, energies
-    /// and final strand shapes.
+    /// Simulate a style headless, on a still head or one moved by `--play`,
+    /// and report timings, energies and final strand shapes.
     Sim(SimArgs),
     /// Measure speed against accuracy: cost per step, error against cost,
     /// stability maps and vibration modes, as CSV files and SVG charts.

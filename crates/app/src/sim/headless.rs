@@ -347,6 +347,7 @@ impl HeadlessSim {
             let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
             let events = batch.last_guard_events();
             self.strands_lost += events.len();
+            let on_exact = self.engine.settings().method == Method::Exact;
             let sentences = events.iter().take(room).map(|event| {
                 // What failed and by how much, and what the batch guard
                 // did (it resets to the strand's rest pose, its natural
@@ -355,6 +356,11 @@ impl HeadlessSim {
                 let (strand, t, cause) = (event.strand, event.time_secs, event.cause);
                 let group = self.group_name(strand);
                 let action = match event.action {
+                    // Advice for what the run does not already use.
+                    GuardAction::Pinned if on_exact => {
+                        "it kept failing, so it was pinned at rest in its rest shape; it is \
+                         no longer simulated (try more substeps)"
+                    }
                     GuardAction::Pinned => {
                         "it kept failing, so it was pinned at rest in its rest shape; it is \
                          no longer simulated (try more substeps or the Exact solver)"

@@ -111,7 +111,11 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
     }
     ui.separator();
     let (log, total) = r.guard_log();
-    ui.label(format!("guard: {total} interventions"));
+    ui.label(if total == 1 {
+        "guard: 1 intervention".to_owned()
+    } else {
+        format!("guard: {total} interventions")
+    });
     egui::ScrollArea::vertical()
         .id_salt("guard log")
         .max_height(120.0)

@@ -86,6 +86,9 @@ pub struct AppState {
     pub quit: bool,
     /// What the stability guard did since the last edit, in words.
     pub guard: GuardStatus,
+    /// The message as last seen and the style it was posted on: once the
+    /// style changes, the message is about a style that is gone.
+    message_posted: (Option<String>, Option<Style>),
 }
 
 impl AppState {
@@ -135,7 +138,21 @@ impl AppState {
             leaving: None,
             quit: false,
             guard: GuardStatus::default(),
+            message_posted: (None, None),
         })
+    }
+
+    /// Clears a status message posted before the last edit: it spoke of
+    /// the style before it (a message posted with an edit stays until
+    /// the next one).
+    fn retire_stale_message(&mut self) {
+        let style = self.doc.style();
+        if self.message != self.message_posted.0 {
+            self.message_posted = (self.message.clone(), Some(style.clone()));
+        } else if self.message.is_some() && self.message_posted.1.as_ref() != Some(style) {
+            self.message = None;
+            self.message_posted = (None, None);
+        }
     }
 
     /// Simulated time, seconds.
@@ -178,7 +195,17 @@ impl AppState {
     /// file, line and field.
     pub fn load(&mut self, path: &Path) {
         self.message = match self.doc.load(path) {
-            Ok(()) => Some(format!("loaded {}", path.display())),
+            Ok(()) => {
+                // Nothing of the last style's runs carries over: its
+                // readouts and guard lines, the guard's count, the compare
+                // view.
+                self.readouts = Readouts::default();
+                self.guard = GuardStatus::default();
+                if self.compare.is_some() {
+                    self.set_compare(None);
+                }
+                Some(format!("loaded {}", path.display()))
+            }
             Err(e) => Some(e.to_string()),
         };
         self.adopt_head();
@@ -233,6 +260,7 @@ impl AppState {
 
     /// One displayed frame of physics (see the module docs).
     pub fn step_frame(&mut self) {
+        self.retire_stale_message();
         self.invalid = self.doc.validity().err();
         if self.invalid.is_none() {
             let style = self.doc.style();

@@ -194,3 +194,51 @@ fn a_preset_that_raises_the_substeps_says_so() {
     assert!(message.contains("substeps"), "{message}");
     assert!(message.contains("from 1 to 3"), "{message}");
 }
+
+/// Issue #32, item 7: a status message outlived the edits after it.
+#[test]
+fn a_message_is_retired_by_the_next_edit() {
+    let mut app = app();
+    app.message = Some("saved somewhere".into());
+    app.step_frame();
+    app.step_frame();
+    assert_eq!(app.message.as_deref(), Some("saved somewhere"));
+    app.doc.edit(|s| s.groups[0].params.length_m = 0.2);
+    app.step_frame();
+    assert_eq!(
+        app.message, None,
+        "the message spoke of the style before the edit"
+    );
+}
+
+/// Issue #32, item 7: the guard's lines and count and the compare view of
+/// one style stayed on screen after opening another.
+#[test]
+fn opening_a_style_starts_its_readouts_and_guard_afresh() {
+    let mut app = app();
+    app.set_compare(Some(CompareMethods {
+        left: Method::Dense,
+        right: Method::BlockDiagonal,
+    }));
+    app.readouts.record_batch_losses(&[3], 4.55, "block");
+    app.guard.record(
+        app.doc.style(),
+        &super::super::guard_status::GuardFrame {
+            retried: vec![],
+            lost: vec![3],
+        },
+    );
+    assert!(app.compare.is_some() && app.guard.sentence().is_some());
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/styles/straight.ron");
+    app.load(&path);
+    assert!(
+        app.message.as_deref().unwrap_or("").starts_with("loaded"),
+        "{:?}",
+        app.message
+    );
+    let (lines, total) = app.readouts.guard_log();
+    assert_eq!((lines.count(), total), (0, 0));
+    assert_eq!(app.guard.sentence(), None);
+    assert!(app.compare.is_none());
+}

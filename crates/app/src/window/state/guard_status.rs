@@ -15,7 +15,7 @@
 
 use std::collections::BTreeSet;
 
-use helixhair_physics::GuardAction;
+use helixhair_physics::{GuardAction, Method};
 
 use crate::style::Style;
 
@@ -89,11 +89,20 @@ impl GuardStatus {
     /// had nothing to do since the last edit.
     pub fn sentence(&self) -> Option<String> {
         if self.losses > 0 {
+            // Advice for what the style does not already use.
+            let on_exact = self
+                .style
+                .as_ref()
+                .is_some_and(|s| s.sim.method == Method::Exact);
+            let advice = if on_exact {
+                "Try more substeps, a shorter time step or fewer elements."
+            } else {
+                "Try more substeps, a shorter time step, fewer elements or the Exact solver."
+            };
             return Some(format!(
                 "Stability guard: since the last edit it reset or pinned {} {} times (and \
                  re-stepped strands {} times): what you see is not the simulation this \
-                 style asks for. Try more substeps, a shorter time step, fewer elements or the \
-                 Exact solver.",
+                 style asks for. {advice}",
                 plural(self.lost_strands.len(), "strand"),
                 self.losses,
                 self.retries
@@ -162,5 +171,23 @@ mod tests {
             sentence.contains("re-stepped 2 strands 2 times"),
             "{sentence}"
         );
+    }
+
+    /// Issue #32, item 7: the advice named the Exact solver when Exact was
+    /// already the style's.
+    #[test]
+    fn the_advice_names_only_what_the_style_does_not_use() {
+        let lost = GuardFrame {
+            retried: vec![],
+            lost: vec![0],
+        };
+        for (method, names_exact) in [(Method::Exact, false), (Method::BlockDiagonal, true)] {
+            let mut style = default_style(4);
+            style.sim.method = method;
+            let mut status = GuardStatus::default();
+            status.record(&style, &lost);
+            let sentence = status.sentence().unwrap();
+            assert_eq!(sentence.contains("Exact solver"), names_exact, "{sentence}");
+        }
     }
 }
