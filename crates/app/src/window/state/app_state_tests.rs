@@ -242,3 +242,29 @@ fn opening_a_style_starts_its_readouts_and_guard_afresh() {
     assert_eq!(app.guard.sentence(), None);
     assert!(app.compare.is_none());
 }
+
+/// Issue #32, item 8: the compare view's defaults (Dense against
+/// Block-diagonal) failed on a 300-guide 15 cm wavy style with a still
+/// head (265 guard interventions, a point at 165 m/s). The defaults now
+/// compare two solvers that run there, and the view still reads their
+/// difference.
+#[test]
+fn the_compare_defaults_compare_two_solvers_that_run() {
+    let wavy = super::super::presets::built_in_presets()
+        .into_iter()
+        .find(|p| p.name == "wavy")
+        .unwrap();
+    let mut style = default_style(300);
+    style.groups[0].params = wavy.params;
+    style.groups[0].params.length_m = 0.15;
+    let mut app = AppState::new(style, None).unwrap();
+    app.set_compare(Some(CompareMethods::default()));
+    for _ in 0..60 {
+        app.step_frame();
+    }
+    let (lines, total) = app.readouts.guard_log();
+    let lines: Vec<_> = lines.take(3).cloned().collect();
+    assert_eq!(total, 0, "the guard stepped in: {lines:?}");
+    let (rms, _) = app.readouts.last().unwrap().difference_m.unwrap();
+    assert!(rms.is_finite(), "{rms}");
+}
