@@ -47,10 +47,32 @@ def BasisCurves "hair" (
 #[test]
 fn usd_fallback_unit_is_the_centimetre() {
     let text = "#usda 1.0\ndef BasisCurves \"h\" {\n  uniform token type = \"linear\"\n  int[] curveVertexCounts = [2]\n  point3f[] points = [(0,0,0), (0,100,0)]\n}\n";
+    let imported = read_usda(text);
     assert_eq!(
-        read_usda(text).curves.curves[0].points_m[1],
+        imported.curves.curves[0].points_m[1],
         Vec3::new(0.0, 1.0, 0.0)
     );
+    // Not silently (issue #32, item 11: a 14 cm groom became 0.1 cm): the
+    // reader says it assumed centimetres and how to say otherwise.
+    assert!(
+        imported
+            .warnings
+            .iter()
+            .any(|w| w.contains("no metersPerUnit") && w.contains("centimetres")),
+        "{:?}",
+        imported.warnings
+    );
+    // A unit given by the caller is no assumption: no warning, the unit used.
+    let options = ReadOptions {
+        metres_per_unit: Some(1.0),
+        ..ReadOptions::default()
+    };
+    let given = read(text.as_bytes(), Format::Usda, &options).expect("reads");
+    assert_eq!(
+        given.curves.curves[0].points_m[1],
+        Vec3::new(0.0, 100.0, 0.0)
+    );
+    assert!(given.warnings.iter().all(|w| !w.contains("metersPerUnit")));
 }
 
 #[test]

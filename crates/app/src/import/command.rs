@@ -76,6 +76,10 @@ pub struct ImportArgs {
     /// following them, instead of simulating every strand.
     #[arg(long, value_name = "K")]
     pub guides: Option<usize>,
+    /// The groom's length unit in metres, instead of what the file
+    /// declares (or its format's default: USD's is centimetres).
+    #[arg(long, value_name = "M")]
+    pub metres_per_unit: Option<f64>,
     /// The style to write (RON).
     #[arg(long, value_name = "STYLE")]
     pub out: PathBuf,
@@ -131,7 +135,11 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     }
     let bytes = std::fs::read(&args.groom)
         .with_context(|| format!("{groom_name}: cannot read the groom"))?;
-    let imported = helixhair_formats::read(&bytes, format, &ReadOptions::default())
+    let read_options = ReadOptions {
+        metres_per_unit: args.metres_per_unit,
+        ..ReadOptions::default()
+    };
+    let imported = helixhair_formats::read(&bytes, format, &read_options)
         .with_context(|| format!("{groom_name}: not a valid groom"))?;
     let read_secs = started.elapsed().as_secs_f64();
 
@@ -199,6 +207,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
 
     let mut report = ImportReport::new(&groom_name, format, &imported.summary, &outcomes);
     report.root_distance_to_head_m = crate::import::report::Spread::of(&root_distances);
+    report.warnings = imported.warnings.clone();
     let mut strands: Vec<_> = outcomes
         .into_iter()
         .filter_map(|o| match o {

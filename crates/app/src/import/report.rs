@@ -83,6 +83,9 @@ pub struct ImportReport {
     pub sag_free: Option<BTreeMap<String, usize>>,
     /// Distance from each root to the head's surface, metres (with `--head`).
     pub root_distance_to_head_m: Option<Spread>,
+    /// What the reader read approximately or not at all (units assumed,
+    /// curves read as polylines, …).
+    pub warnings: Vec<String>,
     /// Stage timings.
     pub timings: ImportTimings,
 }
@@ -158,6 +161,9 @@ impl ImportReport {
                 .collect::<Vec<_>>()
                 .join(", ")
         };
+        for warning in &self.warnings {
+            let _ = writeln!(s, "  warning: {warning}");
+        }
         if !self.skipped.is_empty() {
             let _ = writeln!(s, "  skipped: {}", list(&self.skipped));
         }

@@ -54,7 +54,17 @@ pub(crate) fn curves_from_layer(
             ));
         }
         Some((_, value)) => value,
-        None => USD_FALLBACK_METERS_PER_UNIT,
+        None => {
+            if options.metres_per_unit.is_none() {
+                warnings.push(|| {
+                    "the layer authors no metersPerUnit: read in centimetres, USD's fallback \
+                     (0.01 m per unit); a groom modelled in metres reads 100 times too small \
+                     (`helixhair import --metres-per-unit 1`)"
+                        .to_owned()
+                });
+            }
+            USD_FALLBACK_METERS_PER_UNIT
+        }
     };
     let up_axis = match metadata.up_axis {
         None => UpAxis::Y,

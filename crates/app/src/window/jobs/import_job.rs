@@ -63,6 +63,7 @@ pub fn start_import(groom: &Path) -> anyhow::Result<Job<JobDone>> {
         no_sag_free: false,
         no_stiffen: false,
         guides: None,
+        metres_per_unit: None,
         out: out.clone(),
         json: None,
     };
