@@ -249,3 +249,20 @@ fn a_head_without_a_scalp_group_draws_listed_roots_and_explains_scalp_placements
     assert!(text.contains("g scalp"), "{text}");
     assert!(text.contains("groups[0].scalp"), "{text}");
 }
+
+/// Issue #32, item 11: a picture of the natural shape (`--frames 0`) said
+/// "0 frames in -0.00 s" (an empty f64 sum is negative zero).
+#[test]
+fn a_picture_of_no_frames_says_zero_seconds() {
+    let dir = scratch_dir("render-no-frames");
+    let out = dir.join("natural.png");
+    let out = out.to_str().expect("UTF-8 path");
+    let output = run_helixhair(&small_render("assets/styles/straight.ron", "0", out));
+    if skipped_for_lack_of_a_gpu(&output, "render-no-frames") {
+        return;
+    }
+    let text = describe(&output);
+    assert!(output.status.success(), "{text}");
+    assert!(text.contains("0 frames in 0.00 s"), "{text}");
+    assert!(!text.contains("-0.00"), "{text}");
+}

@@ -152,7 +152,8 @@ fn nan_points_skip_their_strand_only_and_bad_metadata_is_refused() {
 fn warnings_and_quoted_names_are_bounded() {
     let long_name = "n".repeat(100_000);
     // The unit authored, so every warning is about the prims.
-    let mut text = format!("#usda 1.0\n(\n    metersPerUnit = 1\n)\ndef Xform \"{long_name}\" {{\n");
+    let mut text =
+        format!("#usda 1.0\n(\n    metersPerUnit = 1\n)\ndef Xform \"{long_name}\" {{\n");
     for index in 0..5_000 {
         text.push_str(&format!(
             "  def BasisCurves \"c{index}\" {{ int[] curveVertexCounts = [2]\n    point3f[] points = [(0,0,0), (0,1,0)] }}\n"

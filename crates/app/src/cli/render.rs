@@ -229,7 +229,8 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             .run(steps)
             .with_context(|| format!("simulating {style_path}"))?
             .iter()
-            .sum();
+            // Not `sum`: an empty f64 sum is -0.0, printed "-0.00 s".
+            .fold(0.0, |total, secs| total + secs);
         let (image, c, secs) = frame(&sim)?;
         write_picture(&args.out, &image)?;
         (counts, render_secs) = (c, vec![secs]);
