@@ -143,10 +143,8 @@ pub struct GroomSession {
     collider: Option<Arc<SignedDistanceField>>,
     /// The engine's strands: group and number of each.
     strands: Vec<StyleStrand>,
-    /// Guard interventions in the session, and those of them the current
-    /// simulation has reported (a rebuild starts a new one).
+    /// Guard interventions in the session.
     guard_total: usize,
-    guard_seen: usize,
     /// Wall time spent freezing in the session, seconds.
     freeze_secs: f64,
 }
@@ -164,7 +162,6 @@ impl GroomSession {
             sim,
             collider,
             guard_total: 0,
-            guard_seen: 0,
             freeze_secs: 0.0,
         };
         if session.sim.engine().kind() != EngineKind::Reference {
@@ -335,12 +332,16 @@ impl GroomSession {
         self.settle(self.frames_of(secs))
     }
 
-    /// Steps one frame, counting the guard's interventions in it.
+    /// Steps one frame, counting the guard's interventions in it (each
+    /// retry, reset or pin once; the engine's own list of the frame, not
+    /// the run's kept report, which is capped).
     fn step(&mut self) {
         self.sim.step();
-        let seen = self.sim.guard_events().len() + self.sim.strands_lost();
-        self.guard_total += seen - self.guard_seen;
-        self.guard_seen = seen;
+        let engine = self.sim.engine();
+        self.guard_total += engine
+            .reference()
+            .map_or(0, |r| r.last_guard_events().len())
+            + engine.batch().map_or(0, |b| b.last_guard_events().len());
     }
 
     /// The guard's interventions in the session so far (retries, resets
@@ -664,7 +665,6 @@ impl GroomSession {
         }
         self.strands = style_strands(&self.groom.grown, |_, g| g.params.clone());
         self.sim = sim;
-        self.guard_seen = 0;
         Ok(())
     }
 }
