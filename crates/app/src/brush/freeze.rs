@@ -53,14 +53,6 @@ impl RestCounts {
         self.held + self.stiffened + self.clamped + self.unstable
     }
 
-    /// Adds `other`'s counts.
-    pub fn add(&mut self, other: RestCounts) {
-        self.held += other.held;
-        self.stiffened += other.stiffened;
-        self.clamped += other.clamped;
-        self.unstable += other.unstable;
-    }
-
     /// The counts in words ("12 held exactly, 2 stiffened to hold, …").
     pub fn describe(&self) -> String {
         format!(

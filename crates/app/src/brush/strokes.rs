@@ -324,9 +324,6 @@ impl RonFile for StrokeFile {
     }
 }
 
-/// The header comment a saved stroke file starts with.
-pub const STROKES_HEADER: &str = "HelixHair strokes, format version 1: see docs/stroke-format.md.";
-
 #[cfg(test)]
 mod tests {
     use std::path::Path;
