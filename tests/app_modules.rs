@@ -17,7 +17,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use helixhair_e2e::{strongly_connected as cycles, workspace_root};
+use helixhair_e2e::{edges_within, strongly_connected as cycles, workspace_root};
 
 /// Top-level module → the top-level modules its files name.
 fn module_graph(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
@@ -125,18 +125,7 @@ fn the_app_modules_form_no_cycle() {
     let found = cycles(&graph);
     let explain: Vec<String> = found
         .iter()
-        .map(|group| {
-            let edges: Vec<String> = group
-                .iter()
-                .flat_map(|a| {
-                    graph[a]
-                        .iter()
-                        .filter(|b| group.contains(b))
-                        .map(move |b| format!("{a} → {b}"))
-                })
-                .collect();
-            format!("{{{}}}: {}", group.join(", "), edges.join(", "))
-        })
+        .map(|group| format!("{{{}}}: {}", group.join(", "), edges_within(&graph, group)))
         .collect();
     assert!(
         found.is_empty(),

@@ -23,7 +23,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use helixhair_e2e::{strongly_connected as circles, workspace_root};
+use helixhair_e2e::{edges_within, strongly_connected as circles, workspace_root};
 
 /// Circles allowed because their files are one module's parts, each as
 /// its files' paths under `crates/` (sorted), with why.
@@ -404,18 +404,7 @@ fn no_file_circles_but_one_module_in_several_files() {
         .map(|(files, _)| files.iter().map(|f| (*f).to_owned()).collect())
         .collect();
     let found = circles(&graph);
-    let explain = |group: &Vec<String>| {
-        let edges: Vec<String> = group
-            .iter()
-            .flat_map(|a| {
-                graph[a]
-                    .iter()
-                    .filter(|b| group.contains(b))
-                    .map(move |b| format!("{a} → {b}"))
-            })
-            .collect();
-        edges.join(", ")
-    };
+    let explain = |group: &Vec<String>| edges_within(&graph, group);
     let unexpected: Vec<String> = found
         .iter()
         .filter(|g| !allowed.contains(g))

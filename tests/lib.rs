@@ -161,3 +161,18 @@ pub fn strongly_connected(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec
     }
     walk.groups
 }
+
+/// The edges of `graph` inside `group` ("a → b, b → a"), to say what ties
+/// a cycle [`strongly_connected`] found.
+pub fn edges_within(graph: &BTreeMap<String, BTreeSet<String>>, group: &[String]) -> String {
+    let edges: Vec<String> = group
+        .iter()
+        .flat_map(|a| {
+            graph[a]
+                .iter()
+                .filter(|b| group.contains(b))
+                .map(move |b| format!("{a} → {b}"))
+        })
+        .collect();
+    edges.join(", ")
+}

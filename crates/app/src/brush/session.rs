@@ -358,8 +358,9 @@ impl GroomSession {
     /// with the largest weight of its points.
     fn weights(&self, stroke: &Stroke, reach: &Reach) -> Vec<(usize, f64)> {
         let engine = self.engine();
+        // Every strand's reconstruction: in parallel, as the drive's.
         self.strands
-            .iter()
+            .par_iter()
             .enumerate()
             .filter(|(_, s)| stroke.touches_group(&self.groom.grown.groups[s.group].name))
             .filter_map(|(i, _)| {

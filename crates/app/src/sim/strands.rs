@@ -71,12 +71,11 @@ pub fn group_strands(g: usize, group: &StrandGroup, params: &StrandParams) -> Ve
         .enumerate()
         .map(|(n, (base, root, fitted))| {
             let (params, pose_root, rest_strains, field) = match edit_of(&group.edits, n) {
-                Some(edit) => (
+                Some((k, edit)) => (
                     edit.params(&base),
                     edit.root(&root),
                     edit.rest_strains().map(<[DVec3]>::to_vec).or(fitted),
-                    at.field("edits")
-                        .index(group.edits.iter().position(|e| e.strand == n).unwrap_or(0)),
+                    at.field("edits").index(k),
                 ),
                 None => (base.clone(), root, fitted, at.field("params")),
             };

@@ -183,9 +183,11 @@ pub fn elements_for_length(group: &StrandParams, length_m: f64) -> usize {
     count.clamp(1, helixhair_physics::params::MAX_ELEMENTS)
 }
 
-/// The edit of strand `strand` in `edits`, if any.
-pub fn edit_of(edits: &[StrandEdit], strand: usize) -> Option<&StrandEdit> {
-    edits.iter().find(|e| e.strand == strand)
+/// The edit of strand `strand` in `edits` (sorted by strand, as a valid
+/// style's are) and its place in the list, if any.
+pub fn edit_of(edits: &[StrandEdit], strand: usize) -> Option<(usize, &StrandEdit)> {
+    let at = edits.binary_search_by_key(&strand, |e| e.strand).ok()?;
+    Some((at, &edits[at]))
 }
 
 /// The edit of strand `strand` in `edits`, made if missing (kept sorted by
