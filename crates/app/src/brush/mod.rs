@@ -12,6 +12,12 @@
 //! - [`strokes`]: the stroke file (tools, brush path, radius, strength,
 //!   falloff), read with errors naming file, line and field;
 //! - [`sphere`]: which points a brush reaches and with what weight;
+//! - [`host`]: what a brush acts on (the headless session, the window's
+//!   live run), and the brush's reach and forces on it;
+//! - [`stroke_run`]: one stroke as it happens, begun, dragged frame by
+//!   frame and finished, the same code live and replayed;
+//! - [`tools`]: what each tool leaves in the style (cut, grown, curled,
+//!   stiffened, smoothed, parted, frozen);
 //! - [`session`]: a style's hair on its head, stroke by stroke, every
 //!   change kept as a per-strand edit of the style
 //!   ([`crate::style::strand_edit`]);
@@ -20,6 +26,9 @@
 
 pub mod command;
 pub mod freeze;
+pub mod host;
 pub mod session;
 pub mod sphere;
+pub mod stroke_run;
 pub mod strokes;
+pub mod tools;

@@ -12,6 +12,7 @@
 //! the JSON file ([`tip_trajectories`] for the tips' paths).
 
 pub mod auto_choice;
+pub mod carry;
 pub mod error_model;
 pub mod frame_stepper;
 pub mod grown;

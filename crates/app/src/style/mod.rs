@@ -132,6 +132,11 @@ struct VersionProbe {
 }
 
 impl Style {
+    /// The groups' names, in order.
+    pub fn group_names(&self) -> Vec<String> {
+        self.groups.iter().map(|g| g.name.clone()).collect()
+    }
+
     /// Reads, parses and validates the style file at `path`.
     pub fn load(path: &Path) -> Result<Style, StyleError> {
         let src = std::fs::read_to_string(path).map_err(|error| StyleError::Read {

@@ -6,7 +6,7 @@
 //! when the strand is added. A live edit therefore rebuilds the engine from
 //! the edited style and carries every strand's state over: strains q and
 //! rates q̇ are copied when the element layout is unchanged, and resampled
-//! by arc length ([`super::resample`]) when the element count or layout
+//! by arc length ([`crate::sim::carry`]) when the element count or layout
 //! changed, so the hair keeps its shape and motion and then relaxes towards
 //! its new rest shape. The same carrying-over moves the hair from one
 //! engine to the other when the style's `engine` changes (the batch engine
@@ -35,8 +35,8 @@ use crate::style::Style;
 
 use super::collision::HeadCollider;
 use super::head_motion::FrameHead;
-use crate::sim::resample::resample_per_element;
-use crate::sim::strands::{add_strands, style_strands};
+use crate::sim::carry::{Carry, carry_state};
+use crate::sim::strands::{StyleStrand, add_strands, style_strands};
 
 /// A hair system kept in step with an edited style.
 #[derive(Clone, Debug)]
@@ -49,6 +49,8 @@ pub struct LiveSim {
     method_override: Option<Method>,
     clock_offset_secs: f64,
     collider: Option<HeadCollider>,
+    /// The engine's strands (group, number, base parameters of each).
+    strands: Vec<StyleStrand>,
 }
 
 /// A head trajectory read `offset_secs` later than asked.
@@ -75,9 +77,10 @@ impl LiveSim {
         method_override: Option<Method>,
     ) -> Result<Self, String> {
         let grown = grow(style, &head);
-        let engine = build(&grown, engine_override, method_override)?;
+        let (engine, strands) = build(&grown, engine_override, method_override)?;
         Ok(Self {
             engine,
+            strands,
             head,
             built: style.clone(),
             built_grown: grown,
@@ -168,44 +171,82 @@ impl LiveSim {
     }
 
     /// A new engine for `style`, every strand's state carried over from the
-    /// current one when the root counts match.
+    /// current one when the root counts match (an edit of values, not of
+    /// counts), stretched onto new elements where lengths changed.
     fn rebuild(&mut self, style: &Style) -> Result<(), String> {
         let grown = grow(style, &self.head);
-        let mut engine = build(&grown, self.engine_override, self.method_override)?;
-        let old = &self.engine;
+        let (engine, strands) = build(&grown, self.engine_override, self.method_override)?;
         let counts = |s: &Style| {
             s.groups
                 .iter()
                 .map(|g| g.simulated_count())
                 .collect::<Vec<_>>()
         };
-        // Same strands in every group (an edit of values, not of counts):
-        // every strand's state carried over, its strains stretched onto
-        // new elements where their lengths changed.
-        if counts(&grown) == counts(&self.built_grown) {
-            for index in 0..old.strand_count() {
-                let old_lengths = &old.strand_model(index).lengths_m;
-                let new_lengths = &engine.strand_model(index).lengths_m;
-                let (old_q, old_v) = (old.q(index), old.v(index));
-                let (q, v) = if old_lengths == new_lengths {
-                    (old_q, old_v)
-                } else {
-                    (
-                        resample_per_element(&old_q, old_lengths, new_lengths),
-                        resample_per_element(&old_v, old_lengths, new_lengths),
-                    )
-                };
-                engine.set_state(index, &q, &v);
-            }
-        }
-        self.clock_offset_secs += self.engine.time_secs();
-        self.engine = engine;
-        if let Some(c) = &self.collider {
-            c.attach(&mut self.engine);
-        }
+        let carry = (counts(&grown) == counts(&self.built_grown)).then_some(Carry::Stretch);
+        self.replace_engine(engine, strands, carry, &[]);
         self.built = style.clone();
         self.built_grown = grown;
         Ok(())
+    }
+
+    /// A new engine from the grown style as the brush edited it
+    /// ([`LiveSim::grown_style_mut`]), every strand's state carried by arc
+    /// length (a cut strand keeps the rest of its shape), the strands in
+    /// `at_rest` still; the style as written takes the same edits
+    /// ([`LiveSim::built_style`]).
+    pub fn rebuild_from_grown(&mut self, at_rest: &[usize]) -> Result<(), String> {
+        let (engine, strands) = build(
+            &self.built_grown,
+            self.engine_override,
+            self.method_override,
+        )?;
+        self.replace_engine(engine, strands, Some(Carry::ArcLength), at_rest);
+        for (written, grown) in self.built.groups.iter_mut().zip(&self.built_grown.groups) {
+            written.edits = grown.edits.clone();
+        }
+        Ok(())
+    }
+
+    /// Runs on `engine` from now on, the clock running on, the state
+    /// carried as `carry` says (`None`: strands start afresh).
+    fn replace_engine(
+        &mut self,
+        mut engine: Engine,
+        strands: Vec<StyleStrand>,
+        carry: Option<Carry>,
+        at_rest: &[usize],
+    ) {
+        if let Some(how) = carry {
+            carry_state(&self.engine, &mut engine, how, at_rest);
+        }
+        self.clock_offset_secs += self.engine.time_secs();
+        self.engine = engine;
+        self.strands = strands;
+        if let Some(c) = &self.collider {
+            c.attach(&mut self.engine);
+        }
+    }
+
+    /// The engine, to set forces and states (the brush).
+    pub fn engine_mut(&mut self) -> &mut Engine {
+        &mut self.engine
+    }
+
+    /// The grown style, for the brush's per-strand edits; apply them with
+    /// [`LiveSim::rebuild_from_grown`].
+    pub fn grown_style_mut(&mut self) -> &mut Style {
+        &mut self.built_grown
+    }
+
+    /// The style as written the engine was built from (with the brush's
+    /// edits once rebuilt).
+    pub fn built_style(&self) -> &Style {
+        &self.built
+    }
+
+    /// The engine's strands: group, number and base parameters of each.
+    pub fn strands(&self) -> &[StyleStrand] {
+        &self.strands
     }
 
     /// Steps one frame with the head moving as `head` says (read at the
@@ -312,7 +353,7 @@ fn build(
     style: &Style,
     engine_override: Option<EngineKind>,
     method_override: Option<Method>,
-) -> Result<Engine, String> {
+) -> Result<(Engine, Vec<StyleStrand>), String> {
     let mut settings = style.sim.clone();
     if let Some(method) = method_override {
         settings.method = method;
@@ -321,7 +362,7 @@ fn build(
     let mut system = Engine::new(kind, settings).map_err(|e| format!("sim: {e}"))?;
     let strands = style_strands(style, |_, group| group.params.clone());
     add_strands(&mut system, &strands).map_err(|(at, e)| format!("{at}: {e}"))?;
-    Ok(system)
+    Ok((system, strands))
 }
 
 #[cfg(test)]

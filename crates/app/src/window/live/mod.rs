@@ -3,14 +3,16 @@
 //!
 //! [`live_sim`] keeps an [`helixhair_physics::engine::Engine`] running
 //! while a style is edited, without a reset (shapes kept by
-//! [`crate::sim::resample`] when element counts change), against the head collider of
+//! [`crate::sim::carry`] when element counts change), against the head collider of
 //! [`collision`]; [`head_motion`] is the user's head pose and the built-in
 //! motions, with the velocities and accelerations the physics needs, and
 //! [`motion_recorder`] records a head drag as a motion file; [`drawn`]
-//! draws styles with `render` sections as `helixhair render` does.
+//! draws styles with `render` sections as `helixhair render` does;
+//! [`still_head`] is the run as a brush's host, the head held still.
 
 pub mod collision;
 pub mod drawn;
 pub mod head_motion;
 pub mod live_sim;
 pub mod motion_recorder;
+pub mod still_head;

@@ -7,6 +7,8 @@
 //! [`export_dialog`] are its dialogs, and [`value_slider`] the slider an
 //! artist can trust (showing a value never changes it).
 
+pub mod brush_input;
+pub mod brush_panel;
 pub mod density_view;
 pub mod export_dialog;
 pub mod file_menu;

@@ -1,9 +1,11 @@
 //! The tool bar: the File menu ([`super::file_menu`]), Save, history,
-//! pause and the compare view's solvers.
+//! pause and the compare view's solvers; below it the brush tools
+//! ([`super::brush_panel`]).
 
 use egui::Ui;
 use helixhair_physics::Method;
 
+use super::brush_panel::tool_row;
 use super::file_menu::{file_menu, open_picker, stop_recording};
 use super::file_picker::PickerMode;
 use super::view_state::ViewState;
@@ -56,6 +58,10 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         }
         ui.separator();
         ui.label(app.doc.title());
+    });
+    ui.horizontal(|ui| {
+        ui.label("tool:");
+        tool_row(ui, app);
     });
 }
 

@@ -5,10 +5,14 @@
 //! The 3D pictures are textures the renderer drew this frame; the view
 //! only shows them and turns pointer gestures into camera and head moves
 //! ([`crate::window::present::viewport`]). Keyboard shortcuts: Ctrl+Z undo, Ctrl+Shift+Z or
-//! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, F frame the head, Space pause.
+//! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, F frame the head, Space pause;
+//! the brush tools' keys ([`crate::window::state::brush_state::ToolKind::key`])
+//! pick them, and Esc cancels a stroke ([`super::brush_input`]).
 
 use egui::{Key, Modifiers, PointerButton, Sense, Ui};
 
+use super::brush_input::brush_input;
+use super::brush_panel::brush_controls;
 use super::file_menu::{dropped as dropped_file, file_windows, open_picker, picked};
 use super::file_picker::PickerMode;
 use super::imported_summary::group_shapes_strands;
@@ -19,6 +23,7 @@ use super::view_state::ViewState;
 use crate::window::live::head_motion::Clip;
 use crate::window::present::viewport::{framed_camera, move_head, orbit, pan, turn_head};
 use crate::window::state::app_state::AppState;
+use crate::window::state::brush_state::ToolKind;
 use crate::window::state::default_style::regrow_roots;
 use crate::window::state::unsaved::{AfterAnswer, confirm_dialog};
 
@@ -56,8 +61,16 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         .default_size(330.0)
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
+                if app.brush.settings.kind != ToolKind::Orbit {
+                    brush_controls(ui, app);
+                    ui.separator();
+                }
                 head_controls(ui, app);
                 ui.separator();
+                if app.brush.settings.kind == ToolKind::Orbit {
+                    brush_controls(ui, app);
+                    ui.separator();
+                }
                 readouts(ui, app);
             });
         });
@@ -109,6 +122,17 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
         }
         if !typing && i.consume_key(Modifiers::NONE, Key::Space) {
             app.paused = !app.paused;
+        }
+        if i.consume_key(Modifiers::NONE, Key::Escape) {
+            app.cancel_stroke();
+            view.brush_plane_m = None;
+        }
+        if !typing {
+            for kind in ToolKind::ALL {
+                if i.consume_key(Modifiers::NONE, kind.key()) {
+                    app.set_tool(kind);
+                }
+            }
         }
     });
 }
@@ -302,7 +326,16 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     let alt = ui.input(|i| i.modifiers.alt);
     let shift = ui.input(|i| i.modifiers.shift);
     let height = rect.height();
-    if response.dragged_by(PointerButton::Primary) {
+    let brushing = app.brush.settings.kind != ToolKind::Orbit;
+    if brushing && !alt {
+        let view_rect = egui::Rect::from_min_size(rect.min, egui::vec2(width_pt, rect.height()));
+        brush_input(ui, app, view, &response, view_rect);
+    } else {
+        view.brush_at_m = None;
+    }
+    if brushing && response.dragged_by(PointerButton::Secondary) && !alt && !shift {
+        orbit(&mut view.camera, delta.x, delta.y);
+    } else if (alt || !brushing) && response.dragged_by(PointerButton::Primary) {
         if alt {
             turn_head(&mut app.head.target, delta.x, delta.y);
         } else if shift {
@@ -311,7 +344,13 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             orbit(&mut view.camera, delta.x, delta.y);
         }
     }
-    if response.dragged_by(PointerButton::Secondary) || response.dragged_by(PointerButton::Middle) {
+    let pans = if brushing {
+        (response.dragged_by(PointerButton::Secondary) && shift)
+            || response.dragged_by(PointerButton::Middle)
+    } else {
+        response.dragged_by(PointerButton::Secondary) || response.dragged_by(PointerButton::Middle)
+    };
+    if pans {
         if alt {
             move_head(&mut app.head.target, &view.camera, delta.x, delta.y, height);
         } else {

@@ -32,6 +32,11 @@ pub struct ViewState {
     /// The head pivot the camera was last framed on: a style with another
     /// head reframes it.
     pub framed_on_m: DVec3,
+    /// A comb or grab stroke's depth: the point where it began, the brush
+    /// then moving in the plane through it facing the camera.
+    pub brush_plane_m: Option<DVec3>,
+    /// Where the brush would touch under the pointer (world), to draw it.
+    pub brush_at_m: Option<DVec3>,
 }
 
 impl ViewState {
@@ -47,6 +52,8 @@ impl ViewState {
             open_groups: None,
             files: FileWindows::default(),
             framed_on_m: DVec3::ZERO,
+            brush_plane_m: None,
+            brush_at_m: None,
         }
     }
 }

@@ -11,6 +11,7 @@
 pub mod egui_paint;
 pub mod frame_profile;
 pub mod panel_layer;
+pub mod pick;
 pub mod preview;
 pub mod screenshot;
 pub mod viewport;

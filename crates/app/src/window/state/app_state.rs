@@ -21,6 +21,7 @@ use helixhair_render::HeadMesh;
 
 use crate::style::Style;
 
+use super::brush_state::BrushState;
 use super::document::StyleDoc;
 use super::guard_status::GuardStatus;
 use super::head_of_style::{StyleHead, simulate_on, style_head};
@@ -91,6 +92,8 @@ pub struct AppState {
     pub quit: bool,
     /// What the stability guard did since the last edit, in words.
     pub guard: GuardStatus,
+    /// The brush: tool, settings, the stroke under way, the recording.
+    pub brush: BrushState,
     /// The message as last seen and the style it was posted on: once the
     /// style changes, the message is about a style that is gone.
     message_posted: (Option<String>, Option<Style>),
@@ -143,6 +146,7 @@ impl AppState {
             leaving: None,
             quit: false,
             guard: GuardStatus::default(),
+            brush: BrushState::default(),
             message_posted: (None, None),
         })
     }
@@ -199,6 +203,7 @@ impl AppState {
     /// Loads a style file; on error nothing changes and the message names
     /// file, line and field.
     pub fn load(&mut self, path: &Path) {
+        self.cancel_stroke();
         self.message = match self.doc.load(path) {
             Ok(()) => {
                 // Nothing of the last style's runs carries over: its
@@ -281,7 +286,11 @@ impl AppState {
         let frame = self.head.frame(self.sim.now_secs());
         self.head.record(&frame);
         let started = Instant::now();
-        self.sim.step(&frame);
+        if self.brush.active.is_some() {
+            self.drag_stroke();
+        } else {
+            self.sim.step(&frame);
+        }
         if let Some((right, _)) = &mut self.compare {
             right.step(&frame);
         }

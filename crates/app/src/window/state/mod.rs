@@ -6,10 +6,13 @@
 //! history), the head a style names ([`head_of_style`]), the guard's story
 //! told in words ([`guard_status`]), live numbers ([`readouts`]),
 //! [`presets`], the style the window opens with ([`default_style`]),
+//! the brush tools and their strokes ([`brush_state`], [`brushing`]),
 //! "set current shape as rest" ([`set_rest`]) and the unsaved-changes
 //! guard on closing or opening ([`unsaved`]).
 
 pub mod app_state;
+pub mod brush_state;
+pub mod brushing;
 pub mod default_style;
 pub mod document;
 pub mod guard_status;
