@@ -192,3 +192,72 @@ fn bad_paths_and_formats_fail_before_simulating_and_leave_nothing() {
     assert_eq!(names_in(&dir), ["a_file"]);
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
+
+/// Whether `p` lies inside the closed triangle mesh (`positions`,
+/// `indices`): a ray from it crosses the surface an odd number of times
+/// (Möller–Trumbore; the ray's direction avoids the mesh's axes).
+fn inside_mesh(p: glam::DVec3, positions: &[glam::Vec3], indices: &[u32]) -> bool {
+    let d = glam::DVec3::new(1.0, 0.2345, 0.1234).normalize();
+    let mut crossings = 0;
+    for t in indices.chunks_exact(3) {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
+        let (e1, e2) = (b - a, c - a);
+        let h = d.cross(e2);
+        let det = e1.dot(h);
+        if det.abs() < 1e-14 {
+            continue;
+        }
+        let s = p - a;
+        let u = s.dot(h) / det;
+        let q = s.cross(e1);
+        let v = d.dot(q) / det;
+        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && e2.dot(q) / det > 0.0 {
+            crossings += 1;
+        }
+    }
+    crossings % 2 == 1
+}
+
+#[test]
+fn groomed_examples_simulated_by_sim_stay_out_of_the_head_they_grow_on() {
+    // Issue 32, item 3: `sim` did not collide hair grown on the scalp with
+    // the head, and 27% of the exported points of `groomed/wavy.ron` lay
+    // inside the exported head after a shake. Checked after the shake (the
+    // head back at rest), on every point but the root (on the skin, where
+    // a parity test is a coin toss) and the tip (the reference engine's
+    // contact acts at quadrature samples, which the tip is not).
+    //
+    // Only the straight and wavy examples meet the issue's 1% so far: the
+    // curls dip between contact samples (measured after the same shake:
+    // curly 7.5%, coily about 9%, full_head about 8% of points inside,
+    // shallow, up to about 6 mm), and every groomed style starts inside
+    // (27% of wavy's points at frame 0). Issue 32 item 3 stays open for
+    // them; the contact law is issue 33's.
+    let head = helixhair_render::head_generate::default_head();
+    let dir = scratch("inside");
+    for name in ["straight", "wavy"] {
+        let out = dir.join(format!("{name}.usda"));
+        let style = format!("assets/styles/groomed/{name}.ron");
+        succeeds(
+            &format!("sim --style {style} --play shake --steps 120 --export-frames last --export"),
+            &[&out],
+        );
+        let curves = read_back(&out).curves.curves;
+        let points: Vec<glam::DVec3> = curves
+            .iter()
+            .flat_map(|c| c.points_m[1..c.points_m.len() - 1].iter())
+            .map(|p| p.as_dvec3())
+            .collect();
+        let inside = points
+            .iter()
+            .filter(|p| inside_mesh(**p, &head.mesh.positions, &head.mesh.indices))
+            .count();
+        let share = inside as f64 / points.len() as f64;
+        assert!(
+            share < 0.01,
+            "{name}: {inside} of {} points ({:.1}%) inside the head",
+            points.len(),
+            100.0 * share
+        );
+    }
+}

@@ -351,3 +351,43 @@ fn an_imported_head_far_from_the_origin_nods_about_itself() {
         "the tips travelled {travel_m} m during the nod"
     );
 }
+
+#[test]
+fn sim_export_of_an_imported_groom_carries_its_own_head_under_the_hair() {
+    // Issue 32, item 2: `sim --export` wrote the default head (at the
+    // origin) under hair imported 1.5 m up on its own head.
+    let dir = scratch("export-head");
+    let (head, groom) = lifted_head_and_groom(&dir);
+    let style = dir.join("lifted.ron").display().to_string();
+    let out = helixhair(&["import", &groom, "--head", &head, "--out", &style]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let usda = dir.join("out.usda").display().to_string();
+    let args = ["sim", "--style", &style, "--steps", "3", "--export", &usda];
+    let out = helixhair(&args);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let written = std::fs::read_to_string(dir.join("out.usda")).expect("the export");
+    let (low, high) = helixhair_app::export::usda_head_extent(&written).expect("a head");
+    let hair = helixhair_formats::read(
+        written.as_bytes(),
+        helixhair_formats::Format::Usda,
+        &helixhair_formats::ReadOptions::default(),
+    )
+    .expect("the hair reads back");
+    let points: Vec<glam::Vec3> = hair
+        .curves
+        .curves
+        .iter()
+        .flat_map(|c| c.points_m.iter().copied())
+        .collect();
+    let hair_low = points.iter().fold(f32::MAX, |a, p| a.min(p.y));
+    let hair_high = points.iter().fold(f32::MIN, |a, p| a.max(p.y));
+    // The head is under the hair: the strands, lying on its crown, start
+    // within a centimetre of its top (the default head at the origin would
+    // put its top 1.5 m below them).
+    assert!(
+        low.y < f64::from(hair_high) && f64::from(hair_low) < high.y + 0.01,
+        "head y {:.2}..{:.2}, hair y {hair_low:.2}..{hair_high:.2}",
+        low.y,
+        high.y
+    );
+}

@@ -16,6 +16,7 @@ use clap::{Args, Parser, Subcommand};
 use helixhair_physics::engine::EngineKind;
 use helixhair_physics::settings::MAX_ITERATIONS;
 use helixhair_physics::{Method, StepScheme};
+use helixhair_render::head_generate::default_head;
 use helixhair_render::obj::load_mesh_obj;
 
 #[cfg(feature = "bench")]
@@ -228,19 +229,44 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     };
     let mut sim = HeadlessSim::new(&style, overrides)
         .with_context(|| format!("cannot simulate {style_path}"))?;
-    if let Some(head) = style_head_path(&style, &args.style).filter(|_| !needs_head(&style)) {
-        // An imported groom rests on and turns with its own head.
-        let mesh = load_mesh_obj(&head)?;
-        let collider = head_collider(&mesh)
-            .with_context(|| format!("cannot build the collision field of {}", head.display()))?;
-        sim.engine_mut().set_collider(Some(Arc::new(collider)));
-        sim.set_head_pivot(head_pivot_m(&style));
-    }
+    // The head the hair is simulated against (and exported with): an
+    // imported groom's own, which it rests on and turns with; else the
+    // default head, on which `sim` grows scalp placements and which their
+    // hair collides with. A style of listed roots only (the plain
+    // examples, roots on a 10 cm sphere, not on this head's skin) runs
+    // with no head to collide with.
+    let own_head = style_head_path(&style, &args.style).filter(|_| !needs_head(&style));
+    let head_mesh = match &own_head {
+        Some(head) => {
+            let mesh = load_mesh_obj(head)?;
+            let collider = head_collider(&mesh).with_context(|| {
+                format!("cannot build the collision field of {}", head.display())
+            })?;
+            sim.engine_mut().set_collider(Some(Arc::new(collider)));
+            sim.set_head_pivot(head_pivot_m(&style));
+            mesh
+        }
+        None => {
+            let head = default_head();
+            if needs_head(&style) {
+                // Hair grown on the default head's scalp rests on it.
+                let collider = head_collider(&head)
+                    .context("cannot build the default head's collision field")?;
+                sim.engine_mut().set_collider(Some(Arc::new(collider)));
+            }
+            head
+        }
+    };
     if let Some(play) = &args.play {
         sim.play_motion(play.load()?);
     }
     let export = match &args.export.export {
-        Some(path) => Some(SimExport::prepare(path, &args.export.shape, &style)?),
+        Some(path) => Some(SimExport::prepare(
+            path,
+            &args.export.shape,
+            &style,
+            head_mesh,
+        )?),
         None => None,
     };
     let steps = usize::try_from(args.steps).context("--steps does not fit this machine")?;

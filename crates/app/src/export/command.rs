@@ -17,7 +17,7 @@ use std::time::Instant;
 use anyhow::Context as _;
 use clap::Args;
 use helixhair_formats::TriangleMesh;
-use helixhair_render::head_generate::default_head;
+use helixhair_render::HeadMesh;
 
 use crate::export::{
     DEFAULT_POINTS_PER_STRAND, ExportRecorder, ExportSpec, FrameChoice, StrandChoice,
@@ -217,8 +217,10 @@ pub fn terminal_progress(steps: usize) -> impl FnMut(usize) -> bool {
 
 /// `sim --export`, checked before the simulation runs: the spec (format,
 /// point count), the folder (created, and writable), and the groom that
-/// drawn strands and the head need (the style on the default head, where
-/// `sim` grows scalp placements).
+/// drawn strands and the head need: the style on the head it is simulated
+/// against (its own for an imported groom, the window's, or the default
+/// head where `sim` grows scalp placements), so every export writes the
+/// head the hair rests on.
 #[derive(Debug)]
 pub struct SimExport {
     spec: ExportSpec,
@@ -227,12 +229,18 @@ pub struct SimExport {
 }
 
 impl SimExport {
-    /// Checks `path` and `args` and prepares the export of `style`.
-    pub fn prepare(path: &Path, args: &ExportShapeArgs, style: &Style) -> anyhow::Result<Self> {
+    /// Checks `path` and `args` and prepares the export of `style`
+    /// simulated against `head`.
+    pub fn prepare(
+        path: &Path,
+        args: &ExportShapeArgs,
+        style: &Style,
+        head: HeadMesh,
+    ) -> anyhow::Result<Self> {
         let spec = args.spec(path, FrameChoice::All)?;
         check_writable(path)?;
         let needs_groom = spec.strands == StrandChoice::Drawn || spec.writes_head();
-        let groom = needs_groom.then(|| Groom::new(style.clone(), default_head()));
+        let groom = needs_groom.then(|| Groom::new(style.clone(), head));
         let head = groom.as_ref().map(|g| head_triangle_mesh(&g.head));
         Ok(SimExport { spec, groom, head })
     }

@@ -419,3 +419,23 @@ impl ExportRecorder {
         Ok(())
     }
 }
+
+/// The extent (lowest and highest corner, metres) a `.usda` this module
+/// wrote gives its head mesh (`def Mesh "head"`), at rest; `None` without
+/// a head. Tests use it to check which head an export carries.
+pub fn usda_head_extent(text: &str) -> Option<(glam::DVec3, glam::DVec3)> {
+    let head = &text[text.find("def Mesh \"head\"")?..];
+    let list = head[head.find("extent = [")? + "extent = [".len()..]
+        .split(']')
+        .next()?;
+    let numbers: Vec<f64> = list
+        .split(|c: char| "(), ".contains(c))
+        .filter(|s| !s.is_empty())
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .ok()?;
+    match numbers[..] {
+        [a, b, c, d, e, f] => Some((glam::DVec3::new(a, b, c), glam::DVec3::new(d, e, f))),
+        _ => None,
+    }
+}

@@ -85,10 +85,10 @@ pub struct WindowArgs {
     /// Quit after K frames and print frame and physics times.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub frames: Option<u32>,
-    /// Always draw the interactive preview (fewer strands, half
-    /// resolution, no MSAA, no shadows; panels repainted only where they
-    /// change), as on a software adapter while the user drags; for
-    /// measuring it with --frames.
+    /// Always draw the interactive preview (at most 300 drawn strands, one
+    /// sample per pixel, no shadows, at full resolution; panels repainted
+    /// only where they change), as on a software adapter while the user
+    /// drags; for measuring it with --frames.
     #[arg(long)]
     pub preview: bool,
     /// With --frames: time each stage of a frame (physics, strand

@@ -89,7 +89,9 @@ pub fn start_export(app: &AppState, request: &ExportRequest) -> anyhow::Result<J
         }),
         no_head: false,
     };
-    let export = SimExport::prepare(&request.path, &shape, app.doc.style())?;
+    // The head the window simulates against, as it shows it.
+    let head_mesh = (*app.head_mesh).clone();
+    let export = SimExport::prepare(&request.path, &shape, app.doc.style(), head_mesh)?;
     let mut head = app.head.clone();
     head.recorder = None;
     let mut run = WindowRun {

@@ -127,3 +127,33 @@ fn export_frame_writes_the_state_on_screen_and_bad_requests_fail_at_once() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_exported_frame_carries_the_head_the_window_simulates_against() {
+    // A head 1.5 m up (as a scanned bust stands in its file): the export
+    // must carry it, not the default head at the origin.
+    let dir = scratch("head");
+    let mut app = shaking_app();
+    let lift = glam::Vec3::new(0.0, 1.5, 0.0);
+    let mut head = (*app.head_mesh).clone();
+    head.mesh.positions.iter_mut().for_each(|p| *p += lift);
+    let want_low = head
+        .mesh
+        .positions
+        .iter()
+        .fold(f32::MAX, |low, p| low.min(p.y));
+    app.head_mesh = std::sync::Arc::new(head);
+    let path = dir.join("now.usda");
+    start_export(&app, &request(&path, 0))
+        .unwrap()
+        .wait()
+        .unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (low, _) = crate::export::usda_head_extent(&text).expect("a head in the file");
+    assert!(
+        (low.y - f64::from(want_low)).abs() < 1e-4,
+        "the exported head's lowest point is at y = {}, the window's at {want_low}",
+        low.y
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,5 +1,6 @@
-//! File → "Import groom…" and a groom dropped on the window: the same
-//! import as `helixhair import GROOM --out STYLE` ([`import_groom`]: read,
+//! File → "Import groom…" and a groom dropped on the window, once the
+//! import dialog has its head ([`crate::window::panels::import_dialog`]):
+//! the same import as `helixhair import GROOM --head MESH --out STYLE` ([`import_groom`]: read,
 //! fit Super-Helices, sag-free rest shape, every strand simulated), run on
 //! a worker thread with a progress bar over the strands fitted (Sintel's
 //! 11,400 strands take minutes on two cores). The style is written beside
@@ -50,14 +51,15 @@ pub fn style_path_for(groom: &Path) -> anyhow::Result<PathBuf> {
     free.ok_or_else(|| anyhow::anyhow!("no free style name for {stem} in {}", folder.display()))
 }
 
-/// Starts importing `groom` on a worker thread; the job's result is the
-/// style file written.
-pub fn start_import(groom: &Path) -> anyhow::Result<Job<JobDone>> {
+/// Starts importing `groom` on `head` (a mesh file; `None`: the default
+/// head) on a worker thread; the job's result is the style file written,
+/// which names the head, so it opens on it.
+pub fn start_import(groom: &Path, head: Option<PathBuf>) -> anyhow::Result<Job<JobDone>> {
     let out = style_path_for(groom)?;
     let defaults = FitOptions::default();
     let args = ImportArgs {
         groom: groom.to_owned(),
-        head: None,
+        head,
         fit_tolerance: defaults.tolerance_over_length,
         max_elements: defaults.max_elements,
         no_sag_free: false,
@@ -106,7 +108,7 @@ mod tests {
         std::fs::write(&groom, bytes).unwrap();
         std::fs::write(dir.join("two.ron"), "taken").unwrap();
         assert!(import_extension(&groom) && !import_extension(&dir.join("two.ron")));
-        let job = start_import(&groom).unwrap();
+        let job = start_import(&groom, None).unwrap();
         let JobDone::Imported(style) = job.wait().unwrap() else {
             panic!("an import")
         };
@@ -114,6 +116,71 @@ mod tests {
         let loaded = Style::load(&style).unwrap();
         let imported = loaded.groups[0].imported.as_ref().unwrap();
         assert_eq!(imported.strands.len(), 2);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_groom_imported_on_the_head_beside_it_opens_on_that_head() {
+        // Issue 32, item 1: imported in the window, the groom opened on the
+        // bald default head with its hair 1.5 m above it.
+        use crate::window::panels::import_dialog::ImportDialog;
+        use crate::window::state::app_state::AppState;
+        let dir =
+            std::env::temp_dir().join(format!("helixhair-import-head-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let lift = glam::Vec3::new(0.0, 1.5, 0.0);
+        let mut head = helixhair_render::head_generate::default_head();
+        head.mesh.positions.iter_mut().for_each(|p| *p += lift);
+        let head_obj = helixhair_render::obj::write_head_obj(&head, "bust");
+        std::fs::write(dir.join("bust.obj"), head_obj).unwrap();
+        let crown =
+            head.mesh
+                .positions
+                .iter()
+                .copied()
+                .fold(
+                    glam::Vec3::splat(f32::MIN),
+                    |a, b| if b.y > a.y { b } else { a },
+                );
+        let curves = CurveSet::new(
+            (0..3)
+                .map(|k| Curve {
+                    points_m: (0..6)
+                        .map(|i| crown + glam::Vec3::new(0.01 * k as f32, 0.001, 0.012 * i as f32))
+                        .collect(),
+                    width_m: None,
+                    colour: None,
+                })
+                .collect(),
+        );
+        let groom = dir.join("crown.obj");
+        let mut bytes = Vec::new();
+        helixhair_formats::write(&mut bytes, Format::Obj, &curves).unwrap();
+        std::fs::write(&groom, bytes).unwrap();
+        // The dialog offers the bust; the import uses it.
+        let dialog = ImportDialog::new(&groom);
+        assert_eq!(dialog.head_path(), Some(dir.join("bust.obj")));
+        let JobDone::Imported(style) = start_import(&groom, dialog.head_path())
+            .unwrap()
+            .wait()
+            .unwrap()
+        else {
+            panic!("an import")
+        };
+        let app = AppState::new(Style::load(&style).unwrap(), Some(&style)).unwrap();
+        assert_eq!(
+            app.head_path.as_deref(),
+            Some(dir.join("bust.obj").as_path())
+        );
+        // The head pivot (which the view frames) is on the lifted head, and
+        // every root sits on it, not a metre and a half above the default.
+        assert!(app.head.pivot_m.y > 1.2, "pivot {}", app.head.pivot_m);
+        let top = f64::from(crown.y);
+        for i in 0..app.sim.engine().strand_count() {
+            let root = app.sim.engine().boundary_points_world(i)[0];
+            assert!((root.y - top).abs() < 0.01, "root {root} vs crown y {top}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

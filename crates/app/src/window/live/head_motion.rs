@@ -112,6 +112,22 @@ impl HeadDriver {
             .is_some_and(|(p, start)| now_secs - start <= p.duration_secs())
     }
 
+    /// What plays at `now_secs`, in words ("shake, 1.2 of 3.0 s";
+    /// "a motion file, …"), while it plays.
+    pub fn playing(&self, now_secs: f64) -> Option<String> {
+        let (playback, start) = self.clip.as_ref()?;
+        let elapsed = now_secs - start;
+        let duration = playback.duration_secs();
+        if elapsed > duration {
+            return None;
+        }
+        let name = match playback.as_ref() {
+            HeadPlayback::Clip(clip) => clip.0.name(),
+            HeadPlayback::Motion(_) => "a motion file",
+        };
+        Some(format!("{name}, {elapsed:.1} of {duration:.1} s"))
+    }
+
     /// Keeps the pose at the start of `frame` while recording.
     pub fn record(&mut self, frame: &FrameHead) {
         if let Some(recorder) = &mut self.recorder {

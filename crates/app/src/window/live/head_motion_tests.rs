@@ -92,3 +92,16 @@ fn the_head_follows_the_user_smoothly_to_the_target() {
         "{peak_rate}"
     );
 }
+
+#[test]
+fn the_clip_playing_is_named_with_its_time_until_it_ends() {
+    let mut driver = HeadDriver::default();
+    assert_eq!(driver.playing(0.0), None);
+    driver.play(Clip::Shake, 1.0);
+    let duration = Clip::Shake.duration_secs();
+    assert_eq!(
+        driver.playing(1.5),
+        Some(format!("shake, 0.5 of {duration:.1} s"))
+    );
+    assert_eq!(driver.playing(1.0 + duration + 0.1), None);
+}

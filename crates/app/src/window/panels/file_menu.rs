@@ -19,6 +19,7 @@ use crate::motion::playback::Playback;
 
 use super::export_dialog::{DEFAULT_RECORD_FRAMES, DialogAnswer, ExportDialog, export_dialog};
 use super::file_picker::{FilePicker, PickerMode};
+use super::import_dialog::{ImportAnswer, ImportDialog, import_dialog};
 use crate::window::jobs::export_job::{ExportRequest, start_export};
 use crate::window::jobs::import_job::{import_extension, start_import};
 use crate::window::jobs::job::{Job, JobDone, progress_ui};
@@ -31,6 +32,8 @@ use crate::window::state::unsaved::Leave;
 pub struct FileWindows {
     /// The export dialog, while open.
     pub export: Option<ExportDialog>,
+    /// The import dialog (which head the groom goes on), while open.
+    pub import: Option<ImportDialog>,
     /// The file job running.
     pub job: Option<Job<JobDone>>,
     /// The last head motion recorded, until saved or replaced.
@@ -217,15 +220,14 @@ pub fn dropped(app: &mut AppState, files: &mut FileWindows, path: PathBuf) {
     }
 }
 
+/// Asks which head `groom` goes on ([`ImportDialog`]); the import starts
+/// when the user answers.
 fn start_import_job(app: &mut AppState, files: &mut FileWindows, groom: PathBuf) {
     if files.job.is_some() {
         app.message = Some("another file job is running; wait for it or cancel it".into());
         return;
     }
-    match start_import(&groom) {
-        Ok(job) => files.job = Some(job),
-        Err(e) => app.message = Some(format!("{e:#}")),
-    }
+    files.import = Some(ImportDialog::new(&groom));
 }
 
 /// The export dialog, the progress window, and a finished job's result.
@@ -248,6 +250,19 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
                     }
                     Err(e) => app.message = Some(format!("{e:#}")),
                 }
+            }
+        }
+    }
+    if let Some(dialog) = &mut files.import {
+        match import_dialog(ctx, dialog) {
+            ImportAnswer::Stay => {}
+            ImportAnswer::Cancel => files.import = None,
+            ImportAnswer::Go => {
+                match start_import(&dialog.groom, dialog.head_path()) {
+                    Ok(job) => files.job = Some(job),
+                    Err(e) => app.message = Some(format!("{e:#}")),
+                }
+                files.import = None;
             }
         }
     }

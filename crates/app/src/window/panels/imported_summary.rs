@@ -42,8 +42,13 @@ pub fn imported_summary(imported: &ImportedStrands) -> String {
         imported.source
     );
     if all > 0 {
+        let elements = if max_elements == 1 {
+            "element"
+        } else {
+            "elements"
+        };
         line += &format!(
-            ", {} elements, {} cm long",
+            ", {} {elements}, {} cm long",
             range(min_elements as f64, max_elements as f64, 0),
             range(min_cm, max_cm, 1)
         );

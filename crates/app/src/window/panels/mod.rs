@@ -13,6 +13,7 @@ pub mod density_view;
 pub mod export_dialog;
 pub mod file_menu;
 pub mod file_picker;
+pub mod import_dialog;
 pub mod imported_summary;
 pub mod interaction_panel;
 pub mod readout_panel;

@@ -24,7 +24,7 @@ use crate::window::live::head_motion::Clip;
 use crate::window::present::viewport::{framed_camera, move_head, orbit, pan, turn_head};
 use crate::window::state::app_state::AppState;
 use crate::window::state::brush_state::ToolKind;
-use crate::window::state::default_style::regrow_roots;
+use crate::window::state::default_style::{grown_count, regrow_roots};
 use crate::window::state::unsaved::{AfterAnswer, confirm_dialog};
 
 /// Draws the whole window for one frame.
@@ -142,6 +142,13 @@ fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     let mut notes = Vec::new();
     ui.heading("Simulation");
     sim_settings(ui, app.doc.style_mut(), &mut notes);
+    // The field follows the style's count when that changes (a load, an
+    // undo, a regrow), and keeps what the user typed otherwise.
+    let grown = grown_count(app.doc.style());
+    if grown != view.guides_seen {
+        view.guides_seen = grown;
+        view.guides = grown;
+    }
     ui.horizontal(|ui| {
         count_field(ui, "guide strands", &mut view.guides, MAX_GUIDES);
         if ui.button("regrow on scalp").clicked() {
@@ -267,6 +274,12 @@ fn head_controls(ui: &mut Ui, app: &mut AppState) {
             }
         }
     });
+    // The sliders are the user's own pose; a clip moves the head on top of
+    // it, so say which one plays.
+    match app.head.playing(app.now_secs()) {
+        Some(what) => ui.label(format!("playing: {what} (on top of the pose below)")),
+        None => ui.label("playing: nothing"),
+    };
     let pose = &mut app.head.target;
     ui.add(
         egui::Slider::new(&mut pose.turn_rad, -1.4..=1.4)

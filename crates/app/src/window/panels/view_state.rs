@@ -24,6 +24,8 @@ pub struct ViewState {
     pub preset_name: String,
     /// Guide strand count field.
     pub guides: usize,
+    /// The style's strand count when the field last followed it.
+    pub guides_seen: usize,
     /// Open (`Some(true)`) or close every group's section in the next
     /// frame ("expand all", "collapse all").
     pub open_groups: Option<bool>,
@@ -49,6 +51,7 @@ impl ViewState {
             picker: None,
             preset_name: "my style".into(),
             guides,
+            guides_seen: guides,
             open_groups: None,
             files: FileWindows::default(),
             framed_on_m: DVec3::ZERO,

@@ -1,0 +1,150 @@
+//! The import dialog of File → "Import groom…" (and a groom dropped on the
+//! window): which head the groom was made on. A groom's strands are placed
+//! on the head they were groomed on, often far from the origin (Sintel's
+//! hair stands 1.5 m up); imported on the bald default head, it would hang
+//! in the air. The dialog offers the meshes beside the groom (OBJ files
+//! with faces, a collider first, as its coarse closed mesh rests hair best),
+//! a mesh picked elsewhere by its path, or the default head.
+
+use std::path::{Path, PathBuf};
+
+/// The import dialog's fields.
+#[derive(Clone, Debug)]
+pub struct ImportDialog {
+    /// The groom to import.
+    pub groom: PathBuf,
+    /// The meshes found beside it.
+    pub beside: Vec<PathBuf>,
+    /// The head mesh, as typed or picked (empty: the default head).
+    pub head: String,
+}
+
+impl ImportDialog {
+    /// A dialog for `groom`, its head preselected from the meshes beside it.
+    pub fn new(groom: &Path) -> Self {
+        let beside = head_meshes_beside(groom);
+        let head = beside
+            .first()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default();
+        Self {
+            groom: groom.to_owned(),
+            beside,
+            head,
+        }
+    }
+
+    /// The head chosen: `None` for the default head.
+    pub fn head_path(&self) -> Option<PathBuf> {
+        let typed = self.head.trim();
+        (!typed.is_empty()).then(|| PathBuf::from(typed))
+    }
+}
+
+/// The OBJ meshes with faces in `groom`'s folder (not the groom itself),
+/// colliders first (a name with "collider"), then by name.
+pub fn head_meshes_beside(groom: &Path) -> Vec<PathBuf> {
+    let folder = groom
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let Ok(entries) = std::fs::read_dir(folder) else {
+        return Vec::new();
+    };
+    let mut meshes: Vec<PathBuf> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"))
+                && p.file_name() != groom.file_name()
+                && has_faces(p)
+        })
+        .collect();
+    let collider_last = |p: &PathBuf| {
+        let name = p.file_name().map(|n| n.to_string_lossy().to_lowercase());
+        !name.is_some_and(|n| n.contains("collider"))
+    };
+    meshes.sort_by_key(|p| (collider_last(p), p.clone()));
+    meshes
+}
+
+/// Whether the OBJ file at `path` has a face (`f` line): a mesh, not a
+/// curve groom.
+fn has_faces(path: &Path) -> bool {
+    std::fs::read_to_string(path)
+        .map(|text| text.lines().any(|l| l.trim_start().starts_with("f ")))
+        .unwrap_or(false)
+}
+
+/// What the user did in the dialog this frame.
+pub enum ImportAnswer {
+    /// Nothing yet.
+    Stay,
+    /// Closed it.
+    Cancel,
+    /// Asked to import.
+    Go,
+}
+
+/// Draws the dialog (modal: the rest of the window waits behind it).
+pub fn import_dialog(ctx: &egui::Context, dialog: &mut ImportDialog) -> ImportAnswer {
+    let mut answer = ImportAnswer::Stay;
+    let modal = egui::Modal::new(egui::Id::unique("import groom")).show(ctx, |ui| {
+        ui.heading("Import groom");
+        ui.label(format!("groom: {}", dialog.groom.display()));
+        ui.label("head it was groomed on (the hair is placed and simulated on it):");
+        for mesh in &dialog.beside {
+            let text = mesh.display().to_string();
+            let name = mesh
+                .file_name()
+                .map_or_else(|| text.clone(), |n| n.to_string_lossy().into_owned());
+            ui.radio_value(&mut dialog.head, text, name);
+        }
+        ui.radio_value(&mut dialog.head, String::new(), "the default head");
+        ui.horizontal(|ui| {
+            ui.label("or a mesh (OBJ)");
+            ui.add(egui::TextEdit::singleline(&mut dialog.head).desired_width(320.0));
+        });
+        ui.horizontal(|ui| {
+            let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if ui.button("Import").clicked() || enter {
+                answer = ImportAnswer::Go;
+            }
+            if ui.button("Cancel").clicked() {
+                answer = ImportAnswer::Cancel;
+            }
+        });
+    });
+    if modal.should_close() && matches!(answer, ImportAnswer::Stay) {
+        answer = ImportAnswer::Cancel;
+    }
+    answer
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_meshes_beside_a_groom_are_offered_collider_first() {
+        let dir =
+            std::env::temp_dir().join(format!("helixhair-import-dialog-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let face = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        std::fs::write(dir.join("bust.obj"), face).unwrap();
+        std::fs::write(dir.join("bust-collider.obj"), face).unwrap();
+        std::fs::write(dir.join("groom.obj"), "v 0 0 0\nv 0 1 0\nl 1 2\n").unwrap();
+        std::fs::write(dir.join("other_groom.obj"), "v 0 0 0\nv 0 1 0\nl 1 2\n").unwrap();
+        std::fs::write(dir.join("notes.txt"), face).unwrap();
+        let dialog = ImportDialog::new(&dir.join("groom.obj"));
+        assert_eq!(
+            dialog.beside,
+            vec![dir.join("bust-collider.obj"), dir.join("bust.obj")]
+        );
+        assert_eq!(dialog.head_path(), Some(dir.join("bust-collider.obj")));
+        let alone = ImportDialog::new(&dir.join("missing").join("g.tfx"));
+        assert!(alone.beside.is_empty() && alone.head_path().is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
