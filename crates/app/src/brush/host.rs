@@ -16,6 +16,7 @@ use helixhair_physics::engine::Engine;
 use rayon::prelude::*;
 
 use crate::brush::sphere::Reach;
+use crate::brush::strokes::Stroke;
 use crate::sim::strands::StyleStrand;
 use crate::style::Style;
 
@@ -42,20 +43,20 @@ pub trait BrushHost {
     fn rebuild(&mut self, at_rest: &[usize]) -> anyhow::Result<()>;
 }
 
-/// Strands of the groups `in_group` accepts reached by `reach`, each with
-/// the largest weight of its points (element ends and quadrature samples).
+/// Strands `allowed` accepts (by engine index) reached by `reach`, each
+/// with the largest weight of its points (element ends and quadrature
+/// samples).
 pub fn reached_strands(
     host: &impl BrushHost,
     reach: &Reach,
-    in_group: impl Fn(&str) -> bool + Sync,
+    allowed: impl Fn(usize) -> bool + Sync,
 ) -> Vec<(usize, f64)> {
     let engine = host.engine();
-    let groups = &host.grown().groups;
     // Every strand's reconstruction: independent, so in parallel.
     host.strands()
         .par_iter()
         .enumerate()
-        .filter(|(_, s)| in_group(&groups[s.group].name))
+        .filter(|(i, _)| allowed(*i))
         .filter_map(|(i, _)| {
             let (root, kin) = engine.kinematics(i);
             let weight = kin
@@ -78,25 +79,42 @@ pub fn hair_points_world(engine: &Engine) -> Vec<Vec<DVec3>> {
         .collect()
 }
 
+/// Which of the host's strands `stroke` may touch (its groups, less its
+/// masked strands), by engine index.
+pub fn strands_allowed(host: &impl BrushHost, stroke: &Stroke) -> Vec<bool> {
+    let masked: std::collections::HashSet<(&str, u32)> = stroke
+        .masked
+        .iter()
+        .map(|m| (m.group.as_str(), m.strand))
+        .collect();
+    let groups = &host.grown().groups;
+    host.strands()
+        .iter()
+        .map(|s| {
+            let name = groups[s.group].name.as_str();
+            stroke.touches_group(name) && !masked.contains(&(name, s.strand as u32))
+        })
+        .collect()
+}
+
 /// Steps one frame with an external force per unit mass on every
-/// quadrature sample of the strands of the groups `in_group` accepts:
+/// quadrature sample of the strands `allowed` accepts (by engine index):
 /// `accel(strand, sample, position, velocity)` (world, m/s²). Returns the
 /// strands that felt a force and the guard's interventions in the frame.
 pub fn step_with_forces(
     host: &mut impl BrushHost,
     accel: impl Fn(usize, usize, DVec3, DVec3) -> DVec3 + Sync,
-    in_group: impl Fn(&str) -> bool + Sync,
+    allowed: impl Fn(usize) -> bool + Sync,
 ) -> anyhow::Result<(Vec<usize>, usize)> {
     // Each strand's forces from its own reconstruction: independent, so
     // in parallel over strands (a whole groom reconstructs every frame).
     let engine = host.engine();
-    let groups = &host.grown().groups;
     let forces: Vec<Vec<DVec3>> = host
         .strands()
         .par_iter()
         .enumerate()
-        .map(|(i, strand)| {
-            if !in_group(&groups[strand.group].name) {
+        .map(|(i, _)| {
+            if !allowed(i) {
                 return Vec::new();
             }
             let (root, kin) = engine.kinematics(i);

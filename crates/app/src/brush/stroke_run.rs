@@ -26,7 +26,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::brush::freeze::RestCounts;
-use crate::brush::host::{BrushHost, reached_strands, step_with_forces};
+use crate::brush::host::{BrushHost, reached_strands, step_with_forces, strands_allowed};
 use crate::brush::sphere::Reach;
 use crate::brush::strokes::{Stroke, Tool};
 use crate::brush::tools::{self, indices};
@@ -106,6 +106,8 @@ pub struct StrokeRun {
     held: Vec<Vec<(f64, DVec3)>>,
     /// Strands the brush's forces reached.
     moved: Vec<bool>,
+    /// Strands the stroke may touch (its groups, less its masked strands).
+    allowed: Vec<bool>,
     /// Whether dragging adds to the path (a stroke made live), or the
     /// path was given whole (a stroke replayed from a file).
     recording: bool,
@@ -134,10 +136,11 @@ impl StrokeRun {
     fn new(host: &impl BrushHost, stroke: Stroke, recording: bool) -> Self {
         let at = stroke.path.first().copied().unwrap_or(DVec3::ZERO);
         let count = host.strands().len();
+        let allowed = strands_allowed(host, &stroke);
         let held = match stroke.tool {
             Tool::Grab => {
                 let reach = Reach::sphere(at, stroke.radius_m, stroke.falloff);
-                let eligible = reached_strands(host, &reach, |n| stroke.touches_group(n));
+                let eligible = reached_strands(host, &reach, |i| allowed[i]);
                 let mut held = vec![Vec::new(); count];
                 for (i, _) in eligible {
                     let (root, kin) = host.engine().kinematics(i);
@@ -162,6 +165,7 @@ impl StrokeRun {
             stroke,
             held,
             recording,
+            allowed,
             moved: vec![false; count],
             started: Instant::now(),
         }
@@ -199,6 +203,7 @@ impl StrokeRun {
         let strength = stroke.strength;
         let reach = Reach::sphere(centre, stroke.radius_m, stroke.falloff);
         let held = &self.held;
+        let allowed = &self.allowed;
         let (touched, events) = match stroke.tool {
             Tool::Comb | Tool::Grab => step_with_forces(
                 host,
@@ -214,7 +219,7 @@ impl StrokeRun {
                         _ => reach.weight(p) * strength * COMB_DRAG_PER_S * relative,
                     }
                 },
-                |name| stroke.touches_group(name),
+                |i| allowed.get(i).copied().unwrap_or(false),
             )?,
             _ => (Vec::new(), host.step_frame()),
         };

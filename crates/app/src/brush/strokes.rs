@@ -87,6 +87,22 @@ pub struct Stroke {
     /// The strand groups the stroke may touch, by name; empty: all.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub groups: Vec<String>,
+    /// Strands the stroke may not touch (the window's scalp mask); empty:
+    /// none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub masked: Vec<StrandRef>,
+}
+
+/// One strand of a style: its group's name and its number in the group
+/// (as a style's `edits` number them: listed roots, then grown or
+/// imported ones).
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrandRef {
+    /// The group's name.
+    pub group: String,
+    /// The strand's number in it.
+    pub strand: u32,
 }
 
 /// What a brush does to the strands under it.
@@ -244,6 +260,12 @@ impl Stroke {
         if let Some(i) = self.groups.iter().position(|g| g.trim().is_empty()) {
             return Err((at.field("groups").index(i), "must name a group".to_owned()));
         }
+        if let Some(i) = self.masked.iter().position(|m| m.group.trim().is_empty()) {
+            return Err((
+                at.field("masked").index(i).field("group"),
+                "must name a group".to_owned(),
+            ));
+        }
         Ok(())
     }
 
@@ -374,6 +396,7 @@ mod tests {
             falloff: 0.0,
             freeze: true,
             groups: Vec::new(),
+            masked: Vec::new(),
         };
         // 0.4 m in 2 s: a quarter of the way is 0.1 m along, the corner.
         assert!((stroke.centre_at(0.25) - DVec3::new(0.1, 0.0, 0.0)).length() < 1e-12);

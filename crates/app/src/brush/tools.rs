@@ -16,7 +16,7 @@ use helixhair_physics::natural_shape::helix_strains;
 use helixhair_physics::{NaturalShape, StrandParams};
 
 use crate::brush::freeze::{RestCounts, freeze_strands};
-use crate::brush::host::{BrushHost, step_with_forces};
+use crate::brush::host::{BrushHost, step_with_forces, strands_allowed};
 use crate::brush::sphere::{Reach, closest_on_segment};
 use crate::brush::strokes::{Stroke, Tool};
 use crate::sim::resample::{resample_by_arc_length, resample_per_element};
@@ -45,15 +45,16 @@ pub fn settle(host: &mut impl BrushHost, frames: usize) -> anyhow::Result<usize>
     Ok(events)
 }
 
-/// The strands the stroke's swept brush reaches now (in the stroke's
-/// groups), with weights.
+/// The strands the stroke's swept brush reaches now (of those it may
+/// touch: its groups, less its masked strands), with weights.
 pub fn reached(host: &impl BrushHost, stroke: &Stroke) -> Vec<(usize, f64)> {
     let reach = Reach {
         path: stroke.path.clone(),
         radius_m: stroke.radius_m,
         falloff: stroke.falloff,
     };
-    crate::brush::host::reached_strands(host, &reach, |name| stroke.touches_group(name))
+    let allowed = strands_allowed(host, stroke);
+    crate::brush::host::reached_strands(host, &reach, |i| allowed[i])
 }
 
 /// The indices of `(index, weight)` pairs.
@@ -217,11 +218,8 @@ pub fn part(
     angle_deg: f64,
 ) -> anyhow::Result<Vec<usize>> {
     let mut parted = Vec::new();
-    for i in 0..host.strands().len() {
-        let name = &host.grown().groups[host.strands()[i].group].name;
-        if !stroke.touches_group(name) {
-            continue;
-        }
+    let allowed = strands_allowed(host, stroke);
+    for (i, _) in allowed.iter().enumerate().filter(|(_, a)| **a) {
         let root = *host.engine().root(i);
         let origin = root.position_m;
         let Some((closest, tangent)) = nearest_on_path(&stroke.path, origin) else {

@@ -9,7 +9,8 @@
 //! then move the brush in the plane through that point facing the camera,
 //! as a hand moves a comb at the depth it entered the hair; the painting
 //! tools follow the surface under the pointer. Release ends the stroke
-//! ([`AppState::end_stroke`]).
+//! ([`AppState::end_stroke`]). The Mask tool paints instead: the strands
+//! rooted under the brush are masked from every tool (Shift unmasks).
 
 use egui::{PointerButton, Response, Ui};
 use glam::Vec2;
@@ -64,7 +65,14 @@ pub fn brush_input(
         _ => surface(),
     };
     view.brush_at_m = at;
-    if response.drag_started_by(PointerButton::Primary)
+    if app.brush.settings.kind == ToolKind::Mask {
+        let painting = response.dragged_by(PointerButton::Primary)
+            || response.clicked_by(PointerButton::Primary);
+        if painting && let Some(p) = at {
+            let unmask = ui.input(|i| i.modifiers.shift);
+            app.paint_mask(p, unmask);
+        }
+    } else if response.drag_started_by(PointerButton::Primary)
         && let Some(start) = at
         && app.begin_stroke(start)
     {

@@ -126,6 +126,15 @@ pub fn brush_controls(ui: &mut Ui, app: &mut AppState) {
         );
     }
     mask(ui, app);
+    ui.horizontal(|ui| {
+        ui.label(format!(
+            "{} strands masked on the scalp",
+            app.brush.masked.len()
+        ));
+        if !app.brush.masked.is_empty() && ui.button("clear mask").clicked() {
+            app.brush.masked.clear();
+        }
+    });
     recording(ui, app);
     if let Some(last) = &app.brush.last {
         ui.small(format!("last stroke: {}", last.describe()));

@@ -2,12 +2,13 @@
 //! the stroke under way, and the strokes recorded to a file. What a stroke
 //! does to the app is [`super::brushing`].
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
 use crate::brush::stroke_run::{StrokeOutcome, StrokeRun};
-use crate::brush::strokes::{STROKES_VERSION, Stroke, StrokeFile, Tool};
+use crate::brush::strokes::{STROKES_VERSION, StrandRef, Stroke, StrokeFile, Tool};
 use crate::window::live::live_sim::LiveSim;
 
 /// Simulated time the hair settles, in the stroke, after a Part, Smooth or
@@ -40,11 +41,14 @@ pub enum ToolKind {
     Part,
     /// Make the current shape of the strands under the brush their rest.
     Freeze,
+    /// Paint the selection mask on the scalp: strands rooted under the
+    /// brush are kept from every tool (Shift: unmask).
+    Mask,
 }
 
 impl ToolKind {
     /// Every tool, in the tool bar's order.
-    pub const ALL: [ToolKind; 10] = [
+    pub const ALL: [ToolKind; 11] = [
         ToolKind::Orbit,
         ToolKind::Comb,
         ToolKind::Grab,
@@ -55,6 +59,7 @@ impl ToolKind {
         ToolKind::Smooth,
         ToolKind::Part,
         ToolKind::Freeze,
+        ToolKind::Mask,
     ];
 
     /// The tool's name on its button.
@@ -70,6 +75,7 @@ impl ToolKind {
             ToolKind::Smooth => "Smooth",
             ToolKind::Part => "Part",
             ToolKind::Freeze => "Freeze",
+            ToolKind::Mask => "Mask",
         }
     }
 
@@ -87,6 +93,7 @@ impl ToolKind {
             ToolKind::Smooth => Key::M,
             ToolKind::Part => Key::P,
             ToolKind::Freeze => Key::R,
+            ToolKind::Mask => Key::A,
         }
     }
 
@@ -105,6 +112,9 @@ impl ToolKind {
             ToolKind::Smooth => "relax the strands the brush passes over toward their mean shape",
             ToolKind::Part => "draw a parting on the scalp: roots turn away from the line",
             ToolKind::Freeze => "make the current shape of the strands under the brush their rest",
+            ToolKind::Mask => {
+                "paint the scalp: strands rooted under the brush are kept from every tool (Shift: unmask)"
+            }
         }
     }
 }
@@ -160,10 +170,11 @@ impl Default for BrushSettings {
 
 impl BrushSettings {
     /// The stroke these settings make (its path empty), for the groups
-    /// of `all_groups` not masked; `None` for Orbit.
-    pub fn stroke(&self, all_groups: &[String]) -> Option<Stroke> {
+    /// of `all_groups` not masked, less the `masked` strands; `None` for
+    /// Orbit and Mask, which make no stroke.
+    pub fn stroke(&self, all_groups: &[String], masked: &BTreeSet<StrandRef>) -> Option<Stroke> {
         let tool = match self.kind {
-            ToolKind::Orbit => return None,
+            ToolKind::Orbit | ToolKind::Mask => return None,
             ToolKind::Comb => Tool::Comb,
             ToolKind::Grab => Tool::Grab,
             ToolKind::Cut => Tool::Cut {
@@ -203,6 +214,7 @@ impl BrushSettings {
             falloff: self.falloff,
             freeze: self.freeze,
             groups,
+            masked: masked.iter().cloned().collect(),
         })
     }
 }
@@ -247,6 +259,8 @@ pub struct BrushState {
     pub recording: Option<StrokeRecording>,
     /// What the last stroke did.
     pub last: Option<StrokeOutcome>,
+    /// Strands no tool may touch (painted with Mask on the scalp).
+    pub masked: BTreeSet<StrandRef>,
 }
 
 impl BrushState {

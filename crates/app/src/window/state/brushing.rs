@@ -21,7 +21,7 @@ use glam::DVec3;
 use helixhair_physics::engine::EngineKind;
 
 use crate::brush::stroke_run::StrokeRun;
-use crate::brush::strokes::MAX_STROKE_SECS;
+use crate::brush::strokes::{MAX_STROKE_SECS, StrandRef};
 use crate::style::ron_file::RonFile;
 use crate::window::live::still_head::StillHead;
 
@@ -66,7 +66,7 @@ impl AppState {
             return false;
         }
         let names = self.doc.style().group_names();
-        let Some(settings) = self.brush.settings.stroke(&names) else {
+        let Some(settings) = self.brush.settings.stroke(&names, &self.brush.masked) else {
             return false;
         };
         self.head.hold();
@@ -83,6 +83,34 @@ impl AppState {
             last_centre_m: at_m,
         });
         true
+    }
+
+    /// Masks (or, with `unmask`, unmasks) every strand whose root lies
+    /// within the brush's radius of `at_m` (world); returns how many
+    /// changed.
+    pub fn paint_mask(&mut self, at_m: DVec3, unmask: bool) -> usize {
+        let radius_m = self.brush.settings.radius_m;
+        let engine = self.sim.engine();
+        let groups = &self.sim.grown_style().groups;
+        let mut changed = 0;
+        for (i, strand) in self.sim.strands().iter().enumerate() {
+            let Some(root) = engine.boundary_points_world(i).first().copied() else {
+                continue;
+            };
+            if root.distance(at_m) > radius_m {
+                continue;
+            }
+            let which = StrandRef {
+                group: groups[strand.group].name.clone(),
+                strand: strand.strand as u32,
+            };
+            changed += usize::from(if unmask {
+                self.brush.masked.remove(&which)
+            } else {
+                self.brush.masked.insert(which)
+            });
+        }
+        changed
     }
 
     /// Moves the brush of the stroke under way to `at_m` (world); the next

@@ -136,3 +136,48 @@ fn orbit_puts_the_run_back_on_the_styles_engine() {
     app.set_tool(ToolKind::Orbit);
     assert_eq!(app.sim.kind(), EngineKind::Batch);
 }
+
+#[test]
+fn a_strand_masked_on_the_scalp_is_kept_from_the_comb_and_the_mask_is_recorded() {
+    let (mut app, side, hung) = combing_app();
+    let dir = std::env::temp_dir().join(format!("helixhair-brush-mask-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("strokes.ron");
+    app.brush.record_to(&path);
+    // Mask the side strand at its root (a brush on the scalp).
+    let root = app.sim.engine().boundary_points_world(side)[0];
+    app.brush.settings.radius_m = 0.01;
+    assert!(app.paint_mask(root, false) >= 1);
+    // Then comb through its tip: it stays where it hung.
+    app.brush.settings.radius_m = 0.03;
+    let before = app.doc.style().clone();
+    drag(&mut app, hung[side], DVec3::Z * COMB_FORWARD_M);
+    app.end_stroke();
+    let tip = app.sim.tips_m()[side];
+    assert!(
+        tip.distance(hung[side]) < 1e-3,
+        "the masked tip moved to {tip}"
+    );
+    let edited: Vec<_> = app.doc.style().groups[0]
+        .edits
+        .iter()
+        .map(|e| e.strand)
+        .collect();
+    let number = app.sim.strands()[side].strand;
+    assert!(!edited.contains(&number), "{edited:?}");
+    // It was the only strand the comb reached (as unmasked, in the first
+    // test): the style is as it was.
+    assert_eq!(app.doc.style(), &before);
+    let file = StrokeFile::load(&path).unwrap();
+    assert!(
+        file.strokes[0]
+            .masked
+            .iter()
+            .any(|m| m.strand as usize == number)
+    );
+    // Unmasking takes it back out of the mask.
+    app.brush.settings.radius_m = 0.01;
+    assert!(app.paint_mask(root, true) >= 1);
+    assert!(app.brush.masked.is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
