@@ -2,21 +2,13 @@
 //! "Measured on Sintel"). Reads `../shared/data/sintel` (or
 //! `HELIXHAIR_SINTEL`); skips, saying so, where it is absent.
 
-use std::path::PathBuf;
+mod support {
+    pub mod sintel;
+}
+
 use std::process::Command;
 
-fn sintel() -> Option<PathBuf> {
-    let dir = std::env::var_os("HELIXHAIR_SINTEL").map_or_else(
-        || {
-            PathBuf::from(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/../../../shared/data/sintel"
-            ))
-        },
-        PathBuf::from,
-    );
-    dir.join("sintel_hair.16points.tfx").exists().then_some(dir)
-}
+use support::sintel::sintel;
 
 #[test]
 fn the_whole_sintel_groom_imports_within_tolerance() {

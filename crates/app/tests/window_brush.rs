@@ -11,43 +11,21 @@
 
 mod support {
     pub mod display;
+    pub mod xdo;
 }
 
 use std::path::Path;
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
 use helixhair_app::Style;
 use support::display::display;
+use support::xdo::{Window, find_window, xdotool};
 
 /// The workspace's GPU test policy (`helixhair_gpu::require`).
 fn skip_or_fail(why: &str) {
     helixhair_gpu::skip_or_fail("window_brush", why);
-}
-
-/// Kills the window when dropped (the test ends it; it has no `--frames`
-/// end in sight).
-struct Window(Child);
-
-impl Drop for Window {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-/// Runs xdotool on `display` with `args`; its standard output.
-fn xdotool(display: &str, args: &[&str]) -> Option<String> {
-    let out = Command::new("xdotool")
-        .args(args)
-        .env("DISPLAY", display)
-        .stderr(Stdio::null())
-        .output()
-        .ok()?;
-    out.status
-        .success()
-        .then(|| String::from_utf8_lossy(&out.stdout).trim().to_owned())
 }
 
 /// Seconds to wait for the window to appear and for the save to land (a
@@ -91,31 +69,17 @@ fn comb_in_the_window_then_save_keeps_the_stroke_and_reloads_unchanged() {
             std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
         )
         .stdout(Stdio::null())
-        .stderr(Stdio::piped())
+        .stderr(std::fs::File::create(dir.join("stderr.txt")).unwrap())
         .spawn()
         .expect("helixhair starts");
     let mut window = Window(child);
-    // The window, by its title.
-    let started = Instant::now();
-    let id = loop {
-        if let Some(id) = xdotool(&display, &["search", "--name", "brushed.ron"])
-            .and_then(|ids| ids.lines().next().map(str::to_owned))
-        {
-            break id;
+    let id = match find_window(&display, "brushed.ron", &mut window, PATIENCE) {
+        Ok(id) => id,
+        Err(why) => {
+            let stderr = std::fs::read_to_string(dir.join("stderr.txt")).unwrap_or_default();
+            skip_or_fail(&format!("{why}: {stderr}"));
+            return;
         }
-        if let Ok(Some(_)) = window.0.try_wait() {
-            let mut stderr = String::new();
-            if let Some(mut e) = window.0.stderr.take() {
-                let _ = std::io::Read::read_to_string(&mut e, &mut stderr);
-            }
-            if stderr.contains("cannot open") {
-                skip_or_fail(&format!("the window did not open: {stderr}"));
-                return;
-            }
-            panic!("helixhair exited: {stderr}");
-        }
-        assert!(started.elapsed() < PATIENCE, "no window in {PATIENCE:?}");
-        sleep(Duration::from_millis(250));
     };
     // Let the hair hang, then pick the Comb and drag it through the hair.
     sleep(Duration::from_secs(3));
@@ -137,6 +101,7 @@ fn comb_in_the_window_then_save_keeps_the_stroke_and_reloads_unchanged() {
     run(&["mouseup", "1"]);
     sleep(Duration::from_secs(1));
     run(&["key", "ctrl+s"]);
+    let started = Instant::now();
     let saved = loop {
         let now = std::fs::read_to_string(&style_path).unwrap_or_default();
         if now != original && !now.is_empty() {

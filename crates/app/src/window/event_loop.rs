@@ -31,6 +31,7 @@ use crate::style::Style;
 
 use super::{HEADLESS_HINT, WindowArgs};
 use crate::window::live::drawn::DrawnCache;
+use crate::window::panels::import_dialog::ImportDialog;
 use crate::window::panels::ui::draw;
 use crate::window::panels::view_state::ViewState;
 use crate::window::present::frame_profile::FrameProfile;
@@ -71,6 +72,9 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         interacting: false,
         profile: FrameProfile::default(),
     };
+    if let Some(groom) = &args.import {
+        handler.view.files.import = Some(ImportDialog::new(groom));
+    }
     event_loop
         .run_app(&mut handler)
         .context("the window's event loop failed")?;

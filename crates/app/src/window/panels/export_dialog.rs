@@ -73,7 +73,8 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
             }
             ui.horizontal(|ui| {
                 let verb = if dialog.animation { "Record" } else { "Export" };
-                if ui.button(verb).clicked() {
+                let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
+                if ui.button(verb).clicked() || enter {
                     answer = DialogAnswer::Go;
                 }
                 if ui.button("Cancel").clicked() {

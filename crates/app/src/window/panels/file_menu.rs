@@ -38,23 +38,38 @@ pub struct FileWindows {
     pub job: Option<Job<JobDone>>,
     /// The last head motion recorded, until saved or replaced.
     pub recorded: Option<Motion>,
+    /// The folder of the last file chosen in a picker: the next starts
+    /// there.
+    pub last_folder: Option<PathBuf>,
 }
 
-/// A picker for `mode`, in the style file's folder with its name.
-pub fn open_picker(app: &AppState, mode: PickerMode) -> FilePicker {
-    let (folder, name) = match app.doc.path() {
-        Some(p) => (
-            p.parent().map(|d| d.to_owned()).unwrap_or_default(),
-            p.file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-        ),
-        None => (
-            std::env::current_dir().unwrap_or_default(),
-            format!("{}.ron", app.doc.style().name),
-        ),
+/// A picker for `mode` with the style's file name, in the folder last
+/// chosen in a picker this session (`last_folder`), else the style file's
+/// folder, else the home folder (not the working folder, which is the
+/// source checkout under `cargo run`).
+pub fn open_picker(app: &AppState, last_folder: Option<&Path>, mode: PickerMode) -> FilePicker {
+    let name = match app.doc.path() {
+        Some(p) => p
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        None => format!("{}.ron", app.doc.style().name),
     };
+    let folder = start_folder(last_folder, app.doc.path());
     FilePicker::new(mode, folder, name)
+}
+
+/// Where a picker starts: `last_folder`, else `style`'s folder, else the
+/// home folder, else the working folder.
+pub fn start_folder(last_folder: Option<&Path>, style: Option<&Path>) -> PathBuf {
+    let style_folder = style
+        .and_then(Path::parent)
+        .filter(|d| !d.as_os_str().is_empty());
+    last_folder
+        .or(style_folder)
+        .map(Path::to_owned)
+        .or_else(|| std::env::var_os("HOME").map(PathBuf::from))
+        .unwrap_or_else(|| std::env::current_dir().unwrap_or_default())
 }
 
 /// A file next to the style's (or in the working folder) named after the
@@ -74,8 +89,8 @@ fn beside_style(app: &AppState, extension: &str) -> PathBuf {
     folder.join(format!("{stem}.{extension}"))
 }
 
-fn picker(app: &AppState, mode: PickerMode, name: String) -> FilePicker {
-    let mut p = open_picker(app, mode);
+fn picker(app: &AppState, files: &FileWindows, mode: PickerMode, name: String) -> FilePicker {
+    let mut p = open_picker(app, files.last_folder.as_deref(), mode);
     p.set_name(name);
     p
 }
@@ -89,17 +104,29 @@ pub fn file_menu(
 ) {
     ui.menu_button("File", |ui| {
         if ui.button("Open…").clicked() {
-            *picker_slot = Some(open_picker(app, PickerMode::Open));
+            *picker_slot = Some(open_picker(
+                app,
+                files.last_folder.as_deref(),
+                PickerMode::Open,
+            ));
         }
         if ui.button("Save").clicked() {
             if app.doc.path().is_some() {
                 app.save(None);
             } else {
-                *picker_slot = Some(open_picker(app, PickerMode::SaveAs));
+                *picker_slot = Some(open_picker(
+                    app,
+                    files.last_folder.as_deref(),
+                    PickerMode::SaveAs,
+                ));
             }
         }
         if ui.button("Save as…").clicked() {
-            *picker_slot = Some(open_picker(app, PickerMode::SaveAs));
+            *picker_slot = Some(open_picker(
+                app,
+                files.last_folder.as_deref(),
+                PickerMode::SaveAs,
+            ));
         }
         ui.separator();
         let idle = files.job.is_none();
@@ -107,22 +134,28 @@ pub fn file_menu(
             .add_enabled(idle, egui::Button::new("Import groom…"))
             .clicked()
         {
-            *picker_slot = Some(picker(app, PickerMode::ImportGroom, String::new()));
+            *picker_slot = Some(picker(app, files, PickerMode::ImportGroom, String::new()));
         }
         for (animation, label) in [(false, "Export frame…"), (true, "Record animation…")] {
             if ui.add_enabled(idle, egui::Button::new(label)).clicked() {
-                files.export = Some(ExportDialog {
-                    animation,
-                    path: beside_style(app, "usda").display().to_string(),
-                    strands: StrandChoice::Simulated,
-                    points_per_strand: DEFAULT_POINTS_PER_STRAND,
-                    frames: DEFAULT_RECORD_FRAMES,
-                });
+                files.export = Some(export_dialog_for(app, animation));
             }
         }
         ui.separator();
         motion_items(ui, app, picker_slot, files);
     });
+}
+
+/// The export dialog as File → "Export frame…" (or, with `animation`,
+/// "Record animation…") opens it: a `.usda` beside the style.
+pub fn export_dialog_for(app: &AppState, animation: bool) -> ExportDialog {
+    ExportDialog {
+        animation,
+        path: beside_style(app, "usda").display().to_string(),
+        strands: StrandChoice::Simulated,
+        points_per_strand: DEFAULT_POINTS_PER_STRAND,
+        frames: DEFAULT_RECORD_FRAMES,
+    }
 }
 
 fn motion_items(
@@ -156,10 +189,10 @@ fn motion_items(
         let name = name
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-        *picker_slot = Some(picker(app, PickerMode::SaveMotion, name));
+        *picker_slot = Some(picker(app, files, PickerMode::SaveMotion, name));
     }
     if ui.button("Play motion file…").clicked() {
-        *picker_slot = Some(picker(app, PickerMode::PlayMotion, String::new()));
+        *picker_slot = Some(picker(app, files, PickerMode::PlayMotion, String::new()));
     }
 }
 
@@ -181,6 +214,7 @@ pub fn stop_recording(app: &mut AppState, files: &mut FileWindows) {
 
 /// Acts on a path chosen in the picker.
 pub fn picked(app: &mut AppState, files: &mut FileWindows, mode: PickerMode, path: PathBuf) {
+    files.last_folder = path.parent().map(Path::to_owned);
     match mode {
         PickerMode::Open => app.request_leave(Leave::Open(path)),
         PickerMode::SaveAs => app.saved_as(&path),
@@ -281,5 +315,27 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
         Ok(JobDone::Exported(outcome)) => app.message = Some(outcome.summary()),
         Ok(JobDone::Imported(style)) => app.request_leave(Leave::Open(style)),
         Err(e) => app.message = Some(format!("{e:#}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_picker_starts_in_the_last_folder_then_the_styles_then_home() {
+        // Issue 32, item 9: every dialog started in the working folder (the
+        // source checkout) and forgot the last folder.
+        let last = Path::new("/data/grooms");
+        let style = Path::new("/work/styles/bob.ron");
+        assert_eq!(start_folder(Some(last), Some(style)), last);
+        assert_eq!(start_folder(None, Some(style)), Path::new("/work/styles"));
+        if let Some(home) = std::env::var_os("HOME") {
+            assert_eq!(start_folder(None, None), PathBuf::from(home));
+            assert_eq!(
+                start_folder(None, Some(Path::new("bob.ron"))),
+                PathBuf::from(std::env::var_os("HOME").unwrap())
+            );
+        }
     }
 }

@@ -18,7 +18,11 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             if app.doc.path().is_some() {
                 app.save(None);
             } else {
-                view.picker = Some(open_picker(app, PickerMode::SaveAs));
+                view.picker = Some(open_picker(
+                    app,
+                    view.files.last_folder.as_deref(),
+                    PickerMode::SaveAs,
+                ));
             }
         }
         if app.head.recorder.is_some() && ui.button("Stop recording").clicked() {

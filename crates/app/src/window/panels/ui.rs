@@ -5,7 +5,8 @@
 //! The 3D pictures are textures the renderer drew this frame; the view
 //! only shows them and turns pointer gestures into camera and head moves
 //! ([`crate::window::present::viewport`]). Keyboard shortcuts: Ctrl+Z undo, Ctrl+Shift+Z or
-//! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, F frame the head, Space pause;
+//! Ctrl+Y redo, Ctrl+S save, Ctrl+O open, Ctrl+E export the frame, F frame
+//! the head, Space pause, 1 to 4 play nod, shake, turn, jerk;
 //! the brush tools' keys ([`crate::window::state::brush_state::ToolKind::key`])
 //! pick them, and Esc cancels a stroke ([`super::brush_input`]).
 
@@ -13,7 +14,9 @@ use egui::{Key, Modifiers, PointerButton, Sense, Ui};
 
 use super::brush_input::brush_input;
 use super::brush_panel::brush_controls;
-use super::file_menu::{dropped as dropped_file, file_windows, open_picker, picked};
+use super::file_menu::{
+    dropped as dropped_file, export_dialog_for, file_windows, open_picker, picked,
+};
 use super::file_picker::PickerMode;
 use super::imported_summary::group_shapes_strands;
 use super::readout_panel::readouts;
@@ -96,7 +99,11 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     if let Some(answer) = confirm_dialog(ui.ctx(), app)
         && app.answer_leave(answer) == AfterAnswer::PickSaveAs
     {
-        view.picker = Some(open_picker(app, PickerMode::SaveAs));
+        view.picker = Some(open_picker(
+            app,
+            view.files.last_folder.as_deref(),
+            PickerMode::SaveAs,
+        ));
     }
 }
 
@@ -115,7 +122,22 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
             app.save(None);
         }
         if i.consume_key(Modifiers::COMMAND, Key::O) {
-            view.picker = Some(open_picker(app, PickerMode::Open));
+            view.picker = Some(open_picker(
+                app,
+                view.files.last_folder.as_deref(),
+                PickerMode::Open,
+            ));
+        }
+        if i.consume_key(Modifiers::COMMAND, Key::E) && view.files.job.is_none() {
+            view.files.export = Some(export_dialog_for(app, false));
+        }
+        if !typing {
+            let clips = [Key::Num1, Key::Num2, Key::Num3, Key::Num4];
+            for (clip, key) in Clip::ALL.into_iter().zip(clips) {
+                if i.consume_key(Modifiers::NONE, key) {
+                    app.play(clip);
+                }
+            }
         }
         if !typing && i.consume_key(Modifiers::NONE, Key::F) {
             view.camera = framed_camera(app.head.pivot_m);
@@ -145,10 +167,10 @@ fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     // The field follows the style's count when that changes (a load, an
     // undo, a regrow), and keeps what the user typed otherwise.
     let grown = grown_count(app.doc.style());
-    if grown != view.guides_seen {
-        view.guides_seen = grown;
+    if view.guides_seen.is_some_and(|seen| seen != grown) {
         view.guides = grown;
     }
+    view.guides_seen = Some(grown);
     ui.horizontal(|ui| {
         count_field(ui, "guide strands", &mut view.guides, MAX_GUIDES);
         if ui.button("regrow on scalp").clicked() {

@@ -253,3 +253,20 @@ fn an_imported_group_says_what_its_strands_take_from_the_groom() {
         "{line}"
     );
 }
+
+#[test]
+fn the_guide_field_follows_the_styles_count_when_it_changes() {
+    // Issue 32, item 5: after opening another style the field still held
+    // the last style's count.
+    let mut app = AppState::new(default_style(12), None).unwrap();
+    app.paused = true;
+    let mut view = ViewState::new(12);
+    let ctx = egui::Context::default();
+    let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
+    view.guides = 40;
+    let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
+    assert_eq!(view.guides, 40, "what the user typed stays");
+    app.doc.edit(|s| *s = default_style(7));
+    let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
+    assert_eq!(view.guides, 7, "a new style's count replaces it");
+}

@@ -24,8 +24,9 @@ pub struct ViewState {
     pub preset_name: String,
     /// Guide strand count field.
     pub guides: usize,
-    /// The style's strand count when the field last followed it.
-    pub guides_seen: usize,
+    /// The style's strand count when the field last looked (`None`
+    /// before the first frame).
+    pub guides_seen: Option<usize>,
     /// Open (`Some(true)`) or close every group's section in the next
     /// frame ("expand all", "collapse all").
     pub open_groups: Option<bool>,
@@ -51,7 +52,7 @@ impl ViewState {
             picker: None,
             preset_name: "my style".into(),
             guides,
-            guides_seen: guides,
+            guides_seen: None,
             open_groups: None,
             files: FileWindows::default(),
             framed_on_m: DVec3::ZERO,

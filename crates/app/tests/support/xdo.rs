@@ -1,0 +1,57 @@
+//! Driving the window as a user does (`window_brush.rs`,
+//! `window_sintel.rs`): the window process, xdotool, and finding the
+//! window by its title.
+
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Kills the window when dropped (the tests end it; it has no `--frames`
+/// end in sight).
+pub struct Window(pub Child);
+
+impl Drop for Window {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Runs xdotool on `display` with `args`; its standard output.
+pub fn xdotool(display: &str, args: &[&str]) -> Option<String> {
+    let out = Command::new("xdotool")
+        .args(args)
+        .env("DISPLAY", display)
+        .stderr(Stdio::null())
+        .output()
+        .ok()?;
+    out.status
+        .success()
+        .then(|| String::from_utf8_lossy(&out.stdout).trim().to_owned())
+}
+
+/// The id of `window`'s X window, found by a part of its title within
+/// `patience`; `Err` with why (to skip on) when the window could not open.
+/// Panics if it exits otherwise or never shows.
+pub fn find_window(
+    display: &str,
+    title: &str,
+    window: &mut Window,
+    patience: Duration,
+) -> Result<String, String> {
+    let started = Instant::now();
+    loop {
+        if let Some(id) = xdotool(display, &["search", "--name", title])
+            .and_then(|ids| ids.lines().next().map(str::to_owned))
+        {
+            return Ok(id);
+        }
+        if let Ok(Some(status)) = window.0.try_wait() {
+            return Err(format!("the window exited ({status}) before it showed"));
+        }
+        assert!(
+            started.elapsed() < patience,
+            "no window titled {title} in {patience:?}"
+        );
+        std::thread::sleep(Duration::from_millis(250));
+    }
+}
