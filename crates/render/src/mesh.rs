@@ -84,8 +84,15 @@ impl HeadMesh {
     /// are scalp (1 inside the scalp, 0 away from it, in between along its
     /// edge). The head shader tints the scalp with it so thin hair reads
     /// fuller, and the fractions soften the edge of the tint.
+    ///
+    /// A head that is scalp all over is a mesh loaded without a `scalp`
+    /// group (an imported groom's bust, [`crate::obj::load_mesh_obj`]): it
+    /// has no scalp to show, and is drawn in skin, not brown.
     pub fn scalp_vertex_weights(&self) -> Vec<f32> {
         let n = self.mesh.positions.len();
+        if self.scalp_triangles.len() >= self.mesh.triangle_count() {
+            return vec![0.0; n];
+        }
         let (mut scalp, mut all) = (vec![0.0f32; n], vec![0.0f32; n]);
         for &i in &self.mesh.indices {
             all[i as usize] += 1.0;
@@ -142,5 +149,16 @@ mod tests {
         };
         assert_eq!(head.scalp_vertex_weights(), [0.5, 0.0, 0.5, 1.0]);
         assert!((head.scalp_area_m2() - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_head_that_is_scalp_all_over_is_drawn_in_skin() {
+        // Issue 32, item 6: an imported bust (no scalp group, so every face
+        // counts as scalp for collision) was drawn in the scalp's brown.
+        let head = HeadMesh {
+            mesh: quad(),
+            scalp_triangles: vec![0, 1],
+        };
+        assert_eq!(head.scalp_vertex_weights(), [0.0; 4]);
     }
 }
