@@ -266,3 +266,42 @@ fn a_picture_of_no_frames_says_zero_seconds() {
     assert!(text.contains("0 frames in 0.00 s"), "{text}");
     assert!(!text.contains("-0.00"), "{text}");
 }
+
+/// Issue 32, item 11: `render` had no `--play`. Mid-turn (1 s into the
+/// 2.4 s turn, the head about 0.6 rad round) the picture must differ from
+/// the still head's over the head itself, not only the hair's sway: the
+/// head is drawn where the motion has put it.
+#[test]
+fn render_plays_a_clip_and_draws_the_head_where_it_is() {
+    let dir = scratch_dir("render-play");
+    let (still, turned) = (dir.join("still.png"), dir.join("turned.png"));
+    let mut paths = Vec::new();
+    for (out, play) in [(&still, None), (&turned, Some("turn"))] {
+        let out = out.to_str().expect("UTF-8 path");
+        let mut args = vec![
+            "render", "--style", STYLE, "--frames", "60", "--width", "96", "--height", "64",
+            "--camera", "front", "--out", out,
+        ];
+        if let Some(clip) = play {
+            args.extend(["--play", clip]);
+        }
+        let output = run_helixhair(&args);
+        if skipped_for_lack_of_a_gpu(&output, "render-play") {
+            return;
+        }
+        assert!(output.status.success(), "{}", describe(&output));
+        paths.push(out.to_owned());
+    }
+    let (a, b) = (rgba(&still), rgba(&turned));
+    // Skin-coloured pixels (light, warm) in the lower middle: the face and
+    // the neck, which hair hardly covers; the turn moves their outline.
+    let skin = |p: &image::Rgba<u8>| p[0] > 150 && p[0] > p[2] + 10;
+    let differing = (32..64)
+        .flat_map(|y| (24..72).map(move |x| (x, y)))
+        .filter(|&(x, y)| skin(a.get_pixel(x, y)) != skin(b.get_pixel(x, y)))
+        .count();
+    assert!(
+        differing > 20,
+        "only {differing} face pixels changed between {paths:?}"
+    );
+}

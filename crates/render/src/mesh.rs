@@ -109,6 +109,19 @@ impl HeadMesh {
             .collect()
     }
 
+    /// The head moved rigidly: turned by `rotation`, then moved to
+    /// `position_m` (world from head coordinates), normals turned with it.
+    pub fn posed(&self, rotation: glam::Mat3, position_m: Vec3) -> HeadMesh {
+        let mut out = self.clone();
+        for p in &mut out.mesh.positions {
+            *p = rotation * *p + position_m;
+        }
+        for n in &mut out.mesh.normals {
+            *n = rotation * *n;
+        }
+        out
+    }
+
     /// Total scalp area, square metres.
     pub fn scalp_area_m2(&self) -> f32 {
         self.scalp_triangles

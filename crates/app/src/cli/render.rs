@@ -72,6 +72,11 @@ pub struct RenderArgs {
     /// exits 1: the picture is not the simulation that was asked for).
     #[arg(long)]
     pub accept_resets: bool,
+    /// Move the head: a clip (nod, shake, turn, jerk) or a motion file
+    /// (docs/motion-format.md), from the first frame; the head is drawn
+    /// where it is.
+    #[arg(long, value_name = "CLIP|FILE", value_parser = crate::motion::playback::parse_play)]
+    pub play: Option<crate::motion::playback::Playback>,
     /// Physics engine, instead of the style's `engine`: reference or batch.
     #[arg(long, value_name = "ENGINE", value_parser = crate::cli::engine_arg::parse_engine)]
     pub engine: Option<helixhair_physics::engine::EngineKind>,
@@ -171,6 +176,9 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             ..SimOverrides::default()
         },
     )?;
+    if let Some(play) = &args.play {
+        sim.play_motion(play.load()?);
+    }
     let gpu = GpuContext::new_headless()?;
     let settings = RenderSettings::new(args.width, args.height);
     let mut renderer = OffscreenRenderer::new(gpu, settings)?;
@@ -190,9 +198,13 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     let layout = DrawnLayout::new(&groom, sim.engine(), usize::MAX);
     let mut frame = |sim: &HeadlessSim| -> anyhow::Result<(RgbaImage, FrameCounts, f64)> {
         let hair = drawn_hair(&groom, &layout, sim.engine());
+        let pose = sim.engine().head();
+        let head = groom
+            .head
+            .posed(pose.world_from_body.as_mat3(), pose.position_m.as_vec3());
         let scene = Scene {
             hair: &hair,
-            head: &groom.head,
+            head: &head,
             camera,
             light: Light::default(),
         };

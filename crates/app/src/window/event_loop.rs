@@ -37,7 +37,6 @@ use crate::window::panels::view_state::ViewState;
 use crate::window::present::frame_profile::FrameProfile;
 use crate::window::present::preview::{quality, wants_preview};
 use crate::window::present::screenshot::save_png;
-use crate::window::present::viewport::posed_head;
 use crate::window::present::window_gpu::WindowGpu;
 use crate::window::state::app_state::{AppState, CompareMethods};
 use crate::window::state::default_style::default_style;
@@ -168,8 +167,10 @@ impl Handler {
         self.app.step_frame();
         self.profile.lap(1);
         let head = self.app.sim.engine().head();
-        let pose = (head.world_from_body, head.position_m);
-        let head_mesh = posed_head(&self.app.head_mesh, pose);
+        let head_mesh = self
+            .app
+            .head_mesh
+            .posed(head.world_from_body.as_mat3(), head.position_m.as_vec3());
         let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
         let preview = wants_preview(self.args.preview, open.gpu.is_software(), self.interacting);
         let quality = quality(self.args.render_strands, self.view.view_px, preview);
@@ -241,7 +242,7 @@ impl Handler {
         let r = &self.app.readouts;
         let ms = |s: Option<f64>| s.map_or(f64::NAN, |s| 1e3 * s);
         println!(
-            "helixhair window: {} frames on {adapter}; {} engine, {} guide strands, {} render strands, {} elements",
+            "helixhair window: {} frames on {adapter}; {} engine, {} guide strands, at most {} drawn strands (--render-strands), {} elements",
             self.frames,
             self.app.sim.kind().label(),
             self.app.sim.engine().strand_count(),

@@ -17,7 +17,6 @@ use glam::Vec2;
 
 use crate::brush::host::hair_points_world;
 use crate::window::present::pick::{pointer_ray, radius_pt, ray_hair, ray_mesh, ray_plane};
-use crate::window::present::viewport::posed_head;
 use crate::window::state::app_state::AppState;
 use crate::window::state::brush_state::ToolKind;
 
@@ -46,7 +45,9 @@ pub fn brush_input(
     let radius_m = app.brush.settings.radius_m;
     let surface = || {
         let head = app.sim.engine().head();
-        let posed = posed_head(&app.head_mesh, (head.world_from_body, head.position_m));
+        let posed = app
+            .head_mesh
+            .posed(head.world_from_body.as_mat3(), head.position_m.as_vec3());
         let hair = hair_points_world(app.sim.engine());
         let t_head = ray_mesh(&ray, &posed.mesh);
         let t_hair = ray_hair(&ray, &hair, 0.5 * radius_m);

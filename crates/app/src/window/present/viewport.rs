@@ -17,8 +17,8 @@
 //! `helixhair render` draws), carried with the head, so a few dozen
 //! simulated guides read as a full head of hair.
 
-use glam::{DMat3, DVec3, Vec3};
-use helixhair_render::{HeadMesh, OrbitCamera};
+use glam::{DVec3, Vec3};
+use helixhair_render::OrbitCamera;
 
 use crate::window::live::head_motion::ManualPose;
 
@@ -68,20 +68,6 @@ pub fn move_head(pose: &mut ManualPose, camera: &OrbitCamera, dx: f32, dy: f32, 
     pan(&mut probe, -dx, -dy, height_pt);
     let delta = (probe.target_m - camera.target_m).as_dvec3();
     pose.offset_m = (pose.offset_m + delta).clamp(DVec3::splat(-0.3), DVec3::splat(0.3));
-}
-
-/// `head` moved rigidly to `pose` (rotation, position).
-pub fn posed_head(head: &HeadMesh, pose: (DMat3, DVec3)) -> HeadMesh {
-    let rotation = pose.0.as_mat3();
-    let position = pose.1.as_vec3();
-    let mut out = head.clone();
-    for p in &mut out.mesh.positions {
-        *p = rotation * *p + position;
-    }
-    for n in &mut out.mesh.normals {
-        *n = rotation * *n;
-    }
-    out
 }
 
 #[cfg(test)]
