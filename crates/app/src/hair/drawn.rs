@@ -17,6 +17,7 @@ use helixhair_render::head_shell::HeadShell;
 use helixhair_render::interpolate::resampled_shape;
 use helixhair_render::{HairStrands, StrandBuffers};
 
+use crate::hair::curl_variation::{clump_curl_onto, curl_period_m, curl_variation};
 use crate::hair::layout::DrawnLayout;
 use crate::hair::strain_blend::{strand_curve, to_f32};
 use crate::head::groom::Groom;
@@ -161,15 +162,32 @@ pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairS
     let mut guides = GuideCurves::new(engine, &q);
     let mut strands = StrandBuffers::default();
     let mut curve: Vec<Vec3> = Vec::new();
-    for strand in &layout.strands {
+    for (index, strand) in layout.strands.iter().enumerate() {
         curve.clear();
+        let strains = strand.strains(&q);
+        // A clumped curl gets its own phase and radius around its clump's
+        // axis (see `curl_variation`).
+        let curl = strand
+            .clump
+            .and_then(|(g, amount)| Some((g, amount, curl_period_m(&q[g])?)));
         curve.extend(to_f32(&strand_curve(
             &strand.root,
             &strand.lengths_m,
-            &strand.strains(&q),
+            &strains,
         )));
-        if let Some((g, amount)) = strand.clump {
-            clump_onto(&mut curve, guides.curve(g), amount as f32);
+        match (strand.clump, curl) {
+            (_, Some((g, amount, period_m))) => {
+                let variation = curl_variation(index);
+                clump_curl_onto(
+                    &mut curve,
+                    guides.curve(g),
+                    amount as f32,
+                    period_m,
+                    variation,
+                );
+            }
+            (Some((g, amount)), None) => clump_onto(&mut curve, guides.curve(g), amount as f32),
+            (None, None) => {}
         }
         if !strand.follow.is_empty() {
             let blended = blended_shape(&strand.follow, curve[0], &mut guides);
