@@ -4,7 +4,7 @@
 //!
 //! A clump's drawn strands grow from nearby roots whose frames barely
 //! differ, so rebuilt from the same guides' strains they curl in phase; and
-//! gathering their points onto the guide's own curve ([`super::drawn::clump_onto`])
+//! gathering their points onto the guide's own curve ([`clump_onto`])
 //! pulls them into that one helix. Seen together they read as a regular
 //! net (issue 32, item 10). XGen and Yeti clump first and curl after; the
 //! same here ([`clump_curl_onto`]): a strand is split into its centreline
@@ -21,8 +21,6 @@ use std::f64::consts::TAU;
 
 use glam::{DVec3, Quat, Vec3};
 use helixhair_render::rng::SplitMix64;
-
-use super::drawn::clump_onto;
 
 /// How much a drawn strand's curl radius may differ from its guide's, as a
 /// fraction: ±20%, as Yeti's default curl radius noise.
@@ -46,6 +44,37 @@ pub fn curl_variation(index: usize) -> (f32, f32) {
     let phase = CURL_PHASE_VARIATION_RAD * (2.0 * rng.next_f32() - 1.0);
     let scale = 1.0 + CURL_RADIUS_VARIATION * (2.0 * rng.next_f32() - 1.0);
     (phase, scale)
+}
+
+/// Gathers `strand` (root first) onto `guide` (root first, same
+/// coordinates) towards its tip: the point at arc length s moves the
+/// fraction `amount` · s/L of the way to the guide's point at the same arc
+/// length, so strands leave the scalp where they grow and meet their
+/// guide's curl near the tip, in phase.
+pub fn clump_onto(strand: &mut [Vec3], guide: &[Vec3], amount: f32) {
+    let total_m: f32 = strand.windows(2).map(|w| w[0].distance(w[1])).sum();
+    if total_m <= 0.0 || guide.len() < 2 {
+        return;
+    }
+    let (mut s_m, mut before) = (0.0f32, strand[0]);
+    let (mut segment, mut segment_start_m) = (0usize, 0.0f32);
+    for p in strand.iter_mut() {
+        s_m += p.distance(before);
+        before = *p;
+        // The guide's point at arc length s (its tip beyond its length).
+        while segment + 2 < guide.len()
+            && segment_start_m + guide[segment].distance(guide[segment + 1]) < s_m
+        {
+            segment_start_m += guide[segment].distance(guide[segment + 1]);
+            segment += 1;
+        }
+        let span_m = guide[segment]
+            .distance(guide[segment + 1])
+            .max(f32::MIN_POSITIVE);
+        let t = ((s_m - segment_start_m) / span_m).clamp(0.0, 1.0);
+        let target = guide[segment].lerp(guide[segment + 1], t);
+        *p = p.lerp(target, amount * s_m / total_m);
+    }
 }
 
 /// The arc length of one turn of a curl with strains `q` (per element,

@@ -17,41 +17,10 @@ use helixhair_render::head_shell::HeadShell;
 use helixhair_render::interpolate::resampled_shape;
 use helixhair_render::{HairStrands, StrandBuffers};
 
-use crate::hair::curl_variation::{clump_curl_onto, curl_period_m, curl_variation};
+use crate::hair::curl_variation::{clump_curl_onto, clump_onto, curl_period_m, curl_variation};
 use crate::hair::layout::DrawnLayout;
 use crate::hair::strain_blend::{strand_curve, to_f32};
 use crate::head::groom::Groom;
-/// Gathers `strand` (root first) onto `guide` (root first, same
-/// coordinates) towards its tip: the point at arc length s moves the
-/// fraction `amount` · s/L of the way to the guide's point at the same arc
-/// length, so strands leave the scalp where they grow and meet their
-/// guide's curl near the tip, in phase.
-pub fn clump_onto(strand: &mut [Vec3], guide: &[Vec3], amount: f32) {
-    let total_m: f32 = strand.windows(2).map(|w| w[0].distance(w[1])).sum();
-    if total_m <= 0.0 || guide.len() < 2 {
-        return;
-    }
-    let (mut s_m, mut before) = (0.0f32, strand[0]);
-    let (mut segment, mut segment_start_m) = (0usize, 0.0f32);
-    for p in strand.iter_mut() {
-        s_m += p.distance(before);
-        before = *p;
-        // The guide's point at arc length s (its tip beyond its length).
-        while segment + 2 < guide.len()
-            && segment_start_m + guide[segment].distance(guide[segment + 1]) < s_m
-        {
-            segment_start_m += guide[segment].distance(guide[segment + 1]);
-            segment += 1;
-        }
-        let span_m = guide[segment]
-            .distance(guide[segment + 1])
-            .max(f32::MIN_POSITIVE);
-        let t = ((s_m - segment_start_m) / span_m).clamp(0.0, 1.0);
-        let target = guide[segment].lerp(guide[segment + 1], t);
-        *p = p.lerp(target, amount * s_m / total_m);
-    }
-}
-
 /// Points of the blended guide shape [`follow_guides`] pulls towards.
 const FOLLOW_POINTS: usize = 32;
 

@@ -6,7 +6,8 @@ use glam::{DVec3, Vec3};
 use helixhair_render::head_generate::default_head;
 use helixhair_render::head_shell::HeadShell;
 
-use crate::hair::drawn::{clump_onto, drape_over, drawn_hair_full, root_width_m};
+use crate::hair::curl_variation::clump_onto;
+use crate::hair::drawn::{drape_over, drawn_hair_full, root_width_m};
 use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
 use crate::head::groom::{Groom, combed_direction, grow_scalp_roots, scalp_roots};
 use crate::sim::headless::{HeadlessSim, SimOverrides};
