@@ -3,10 +3,15 @@
 //! sequences, motion files, and clear errors (exit status 1, nothing left
 //! under the asked name) for bad paths, formats and motion files.
 
+mod support {
+    pub mod inside;
+}
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use helixhair_formats::{Format, ReadOptions, read};
+use support::inside::inside_mesh;
 
 fn helixhair(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_helixhair"))
@@ -191,31 +196,6 @@ fn bad_paths_and_formats_fail_before_simulating_and_leave_nothing() {
     }
     assert_eq!(names_in(&dir), ["a_file"]);
     std::fs::remove_dir_all(&dir).expect("clean up");
-}
-
-/// Whether `p` lies inside the closed triangle mesh (`positions`,
-/// `indices`): a ray from it crosses the surface an odd number of times
-/// (Möller–Trumbore; the ray's direction avoids the mesh's axes).
-fn inside_mesh(p: glam::DVec3, positions: &[glam::Vec3], indices: &[u32]) -> bool {
-    let d = glam::DVec3::new(1.0, 0.2345, 0.1234).normalize();
-    let mut crossings = 0;
-    for t in indices.chunks_exact(3) {
-        let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
-        let (e1, e2) = (b - a, c - a);
-        let h = d.cross(e2);
-        let det = e1.dot(h);
-        if det.abs() < 1e-14 {
-            continue;
-        }
-        let s = p - a;
-        let u = s.dot(h) / det;
-        let q = s.cross(e1);
-        let v = d.dot(q) / det;
-        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && e2.dot(q) / det > 0.0 {
-            crossings += 1;
-        }
-    }
-    crossings % 2 == 1
 }
 
 #[test]

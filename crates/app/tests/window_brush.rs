@@ -15,13 +15,13 @@ mod support {
 }
 
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
 use helixhair_app::Style;
 use support::display::display;
-use support::xdo::{Window, find_window, xdotool};
+use support::xdo::{find_window, open_window, xdotool};
 
 /// The workspace's GPU test policy (`helixhair_gpu::require`).
 fn skip_or_fail(why: &str) {
@@ -52,27 +52,16 @@ fn comb_in_the_window_then_save_keeps_the_stroke_and_reloads_unchanged() {
     let dir = std::env::temp_dir().join(format!("helixhair-window-brush-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let runtime = dir.join("xdg");
-    std::fs::create_dir_all(&runtime).unwrap();
     let style_path = dir.join("brushed.ron");
     let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/straight.ron");
     std::fs::copy(&assets, &style_path).unwrap();
     let original = std::fs::read_to_string(&style_path).unwrap();
-    let child = Command::new(env!("CARGO_BIN_EXE_helixhair"))
-        .args(["--preview", "--frames", "1000000", "--style"])
-        .arg(&style_path)
-        .env("DISPLAY", &display)
-        .env_remove("WAYLAND_DISPLAY")
-        .env("XDG_RUNTIME_DIR", &runtime)
-        .env(
-            "WGPU_BACKEND",
-            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
-        )
-        .stdout(Stdio::null())
-        .stderr(std::fs::File::create(dir.join("stderr.txt")).unwrap())
-        .spawn()
-        .expect("helixhair starts");
-    let mut window = Window(child);
+    let mut window = open_window(
+        &["--preview", "--frames", "1000000", "--style"],
+        &style_path,
+        &display,
+        &dir,
+    );
     let id = match find_window(&display, "brushed.ron", &mut window, PATIENCE) {
         Ok(id) => id,
         Err(why) => {

@@ -13,19 +13,20 @@
 
 mod support {
     pub mod display;
+    pub mod inside;
     pub mod sintel;
     pub mod xdo;
 }
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use support::display::display;
+use support::inside::inside_mesh;
 use support::sintel::sintel;
-use support::xdo::{Window, find_window, xdotool};
+use support::xdo::{find_window, open_window, xdotool};
 
 fn skip_or_fail(why: &str) {
     helixhair_gpu::skip_or_fail("window_sintel", why);
@@ -34,29 +35,6 @@ fn skip_or_fail(why: &str) {
 /// How long the window may take to open, and then the import to finish
 /// (two cores, a release build: about 100 s).
 const PATIENCE: Duration = Duration::from_secs(600);
-
-/// Whether `p` is inside the closed mesh (ray parity, Möller–Trumbore).
-fn inside(p: DVec3, positions: &[Vec3], indices: &[u32]) -> bool {
-    let d = DVec3::new(1.0, 0.2345, 0.1234).normalize();
-    let mut crossings = 0;
-    for t in indices.chunks_exact(3) {
-        let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
-        let (e1, e2) = (b - a, c - a);
-        let h = d.cross(e2);
-        let det = e1.dot(h);
-        if det.abs() < 1e-14 {
-            continue;
-        }
-        let s = p - a;
-        let u = s.dot(h) / det;
-        let q = s.cross(e1);
-        let v = d.dot(q) / det;
-        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && e2.dot(q) / det > 0.0 {
-            crossings += 1;
-        }
-    }
-    crossings % 2 == 1
-}
 
 #[test]
 fn sintel_imported_in_the_window_on_its_bust_exports_with_its_head() {
@@ -82,21 +60,12 @@ fn sintel_imported_in_the_window_on_its_bust_exports_with_its_head() {
     ] {
         std::fs::copy(data.join(name), dir.join(name)).unwrap();
     }
-    let child = Command::new(env!("CARGO_BIN_EXE_helixhair"))
-        .args(["--preview", "--frames", "1000000", "--import"])
-        .arg(dir.join("sintel_hair.16points.tfx"))
-        .env("DISPLAY", &display)
-        .env_remove("WAYLAND_DISPLAY")
-        .env("XDG_RUNTIME_DIR", dir.join("xdg"))
-        .env(
-            "WGPU_BACKEND",
-            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
-        )
-        .stdout(Stdio::null())
-        .stderr(std::fs::File::create(dir.join("stderr.txt")).unwrap())
-        .spawn()
-        .expect("helixhair starts");
-    let mut window = Window(child);
+    let mut window = open_window(
+        &["--preview", "--frames", "1000000", "--import"],
+        &dir.join("sintel_hair.16points.tfx"),
+        &display,
+        &dir,
+    );
     let id = match find_window(&display, "HelixHair", &mut window, PATIENCE) {
         Ok(id) => id,
         Err(why) => {
@@ -170,7 +139,7 @@ fn sintel_imported_in_the_window_on_its_bust_exports_with_its_head() {
     let (positions, indices) = (&collider.mesh.positions, &collider.mesh.indices);
     let within = points
         .iter()
-        .filter(|p| inside(**p, positions, indices))
+        .filter(|p| inside_mesh(**p, positions, indices))
         .count();
     let share = within as f64 / points.len() as f64;
     assert!(

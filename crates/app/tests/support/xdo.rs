@@ -55,3 +55,30 @@ pub fn find_window(
         std::thread::sleep(Duration::from_millis(250));
     }
 }
+
+/// The window (`helixhair` with `args` then `last`) on `display`, its
+/// runtime folder `dir/xdg` (made) and its stderr in `dir/stderr.txt`.
+pub fn open_window(
+    args: &[&str],
+    last: &std::path::Path,
+    display: &str,
+    dir: &std::path::Path,
+) -> Window {
+    let runtime = dir.join("xdg");
+    std::fs::create_dir_all(&runtime).expect("a runtime folder");
+    let child = Command::new(env!("CARGO_BIN_EXE_helixhair"))
+        .args(args)
+        .arg(last)
+        .env("DISPLAY", display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+        )
+        .stdout(Stdio::null())
+        .stderr(std::fs::File::create(dir.join("stderr.txt")).expect("a stderr file"))
+        .spawn()
+        .expect("helixhair starts");
+    Window(child)
+}
