@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use helixhair_formats::{Format, ReadOptions, read};
-use support::inside::inside_mesh;
+use support::inside::{inside_mesh, usda_last_head_pose};
 
 fn helixhair(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_helixhair"))
@@ -223,10 +223,13 @@ fn groomed_examples_simulated_by_sim_stay_out_of_the_head_they_grow_on() {
             &[&out],
         );
         let curves = read_back(&out).curves.curves;
+        let text = std::fs::read_to_string(&out).expect("the export reads");
+        let (rotation, offset) =
+            usda_last_head_pose(&text).unwrap_or((glam::DMat3::IDENTITY, glam::DVec3::ZERO));
         let points: Vec<glam::DVec3> = curves
             .iter()
             .flat_map(|c| c.points_m[1..c.points_m.len() - 1].iter())
-            .map(|p| p.as_dvec3())
+            .map(|p| rotation.transpose() * (p.as_dvec3() - offset))
             .collect();
         let inside = points
             .iter()

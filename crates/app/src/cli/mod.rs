@@ -17,14 +17,13 @@ use helixhair_physics::engine::EngineKind;
 use helixhair_physics::settings::MAX_ITERATIONS;
 use helixhair_physics::{Method, StepScheme};
 use helixhair_render::head_generate::default_head;
-use helixhair_render::obj::load_mesh_obj;
 
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
 use crate::cli::engine_arg::{parse_engine, parse_interaction};
 use crate::export::command::{SimExport, SimExportArgs, run_export, terminal_progress};
 use crate::head::groom::{head_collider, needs_head};
-use crate::head::of_style::{head_pivot_m, style_head_path};
+use crate::head::of_style::OwnHead;
 use crate::json_report::{summary_stream, write_json_report};
 use crate::motion::clip::Clip;
 use crate::motion::playback::{Playback, parse_play};
@@ -235,16 +234,12 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
     // hair collides with. A style of listed roots only (the plain
     // examples, roots on a 10 cm sphere, not on this head's skin) runs
     // with no head to collide with.
-    let own_head = style_head_path(&style, &args.style).filter(|_| !needs_head(&style));
-    let head_mesh = match &own_head {
-        Some(head) => {
-            let mesh = load_mesh_obj(head)?;
-            let collider = head_collider(&mesh).with_context(|| {
-                format!("cannot build the collision field of {}", head.display())
-            })?;
+    let head_mesh = match OwnHead::of_style(&style, &args.style)? {
+        Some(own) => {
+            let collider = own.collision_field()?;
             sim.engine_mut().set_collider(Some(Arc::new(collider)));
-            sim.set_head_pivot(head_pivot_m(&style));
-            mesh
+            sim.set_head_pivot(own.pivot_m);
+            own.drawn
         }
         None => {
             let head = default_head();

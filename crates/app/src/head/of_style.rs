@@ -12,6 +12,10 @@
 //! there (Sintel's bust stands 1.5 m up: a shake about the origin would
 //! swing it through 1.5 m).
 //!
+//! A detailed bust makes a poor collider (hair slips into its eye holes
+//! and lips); a style may name a coarse closed `collider` beside the
+//! `head` it draws ([`OwnHead`] reads both).
+//!
 //! The pivot is the middle of the box around the hair's roots: the
 //! scalp's centre, near the skull's, which is where the default head's
 //! origin lies. The default head keeps the origin, so every built-in
@@ -20,20 +24,92 @@
 
 use std::path::{Path, PathBuf};
 
+use anyhow::Context as _;
 use glam::DVec3;
+use helixhair_physics::collision::SignedDistanceField;
+use helixhair_render::HeadMesh;
+use helixhair_render::obj::{ObjError, load_mesh_obj};
 
+use crate::head::groom::{head_collider, needs_head};
 use crate::style::Style;
 
-/// The head mesh `style` (read from `style_path`) names, as a path: the
-/// first imported group's `head`, relative to the style's folder.
-pub fn style_head_path(style: &Style, style_path: &Path) -> Option<PathBuf> {
-    let head = style
+/// The meshes a style names for its head: the one drawn and exported, and
+/// the one its hair collides with and rests on (the same file unless the
+/// style names a `collider`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HeadFiles {
+    /// The mesh drawn, picked by the brush and written with exports.
+    pub drawn: PathBuf,
+    /// The mesh the collision field is built from.
+    pub collider: PathBuf,
+}
+
+/// The head meshes `style` (read from `style_path`) names, as paths: the
+/// first imported group's `head` and `collider`, relative to the style's
+/// folder. `None` when it names no head.
+pub fn style_head_files(style: &Style, style_path: &Path) -> Option<HeadFiles> {
+    let imported = style
         .groups
         .iter()
         .filter_map(|g| g.imported.as_ref())
-        .find_map(|i| i.head.as_deref())?;
+        .find(|i| i.head.is_some())?;
     let folder = style_path.parent().unwrap_or(Path::new(""));
-    Some(folder.join(head))
+    let drawn = folder.join(imported.head.as_deref()?);
+    let collider = imported
+        .collider
+        .as_deref()
+        .map_or_else(|| drawn.clone(), |c| folder.join(c));
+    Some(HeadFiles { drawn, collider })
+}
+
+/// The head a style brings with it (an imported groom's own), read.
+pub struct OwnHead {
+    /// Its files.
+    pub files: HeadFiles,
+    /// The mesh drawn and exported.
+    pub drawn: HeadMesh,
+    /// The mesh collided with, when it is another file than `drawn`'s.
+    pub collider: Option<HeadMesh>,
+    /// The point the head turns about, world, metres ([`head_pivot_m`]).
+    pub pivot_m: DVec3,
+}
+
+impl OwnHead {
+    /// Reads the head `style` (at `style_path`) brings: `None` for a style
+    /// that names none or grows hair on the scalp (it takes the head it is
+    /// grown on). An unreadable mesh is an error naming its file and line.
+    pub fn of_style(style: &Style, style_path: &Path) -> Result<Option<Self>, ObjError> {
+        let Some(files) = style_head_files(style, style_path).filter(|_| !needs_head(style)) else {
+            return Ok(None);
+        };
+        let drawn = load_mesh_obj(&files.drawn)?;
+        let collider = match files.collider != files.drawn {
+            true => Some(load_mesh_obj(&files.collider)?),
+            false => None,
+        };
+        Ok(Some(Self {
+            files,
+            drawn,
+            collider,
+            pivot_m: head_pivot_m(style),
+        }))
+    }
+
+    /// The mesh the hair collides with.
+    pub fn collider_mesh(&self) -> &HeadMesh {
+        self.collider.as_ref().unwrap_or(&self.drawn)
+    }
+
+    /// The collision field of [`Self::collider_mesh`] ([`head_collider`]);
+    /// the error names the mesh's file.
+    pub fn collision_field(&self) -> anyhow::Result<SignedDistanceField> {
+        head_collider(self.collider_mesh()).with_context(|| {
+            format!(
+                "cannot build the collision field of {}",
+                self.files.collider.display()
+            )
+        })
+    }
 }
 
 /// The pivot of a head carrying the roots of `grown` (the style with its

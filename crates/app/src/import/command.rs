@@ -52,10 +52,16 @@ pub struct ImportArgs {
     /// BasisCurves) or .obj (polylines).
     #[arg(value_name = "GROOM")]
     pub groom: PathBuf,
-    /// The head mesh (OBJ) the roots are attached to and the hair rests
-    /// on; without it the roots are fixed in space, frames referenced to +z.
+    /// The head mesh (OBJ) the roots are attached to, drawn and exported
+    /// with the hair, and (without `--collider`) the one the hair rests on;
+    /// without it the roots are fixed in space, frames referenced to +z.
     #[arg(long, value_name = "MESH")]
     pub head: Option<PathBuf>,
+    /// The mesh (OBJ) the hair collides with and rests on, when it is not
+    /// `--head`: a coarse closed stand-in for a detailed bust, whose eye
+    /// holes and ears would catch the hair. Needs `--head`.
+    #[arg(long, value_name = "MESH", requires = "head")]
+    pub collider: Option<PathBuf>,
     /// Largest distance of a groom point from its fitted strand, as a
     /// fraction of the strand's length.
     #[arg(long, value_name = "F", default_value_t = FitOptions::default().tolerance_over_length)]
@@ -147,14 +153,17 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         Some(path) => Some(helixhair_render::obj::load_mesh_obj(path)?),
         None => None,
     };
-    let collider = match &head {
-        Some(head) => Some(head_collider(head).with_context(|| {
-            format!(
-                "{}: cannot build the head's collision field",
-                display(args.head.as_deref())
-            )
-        })?),
+    let collider_mesh = match &args.collider {
+        Some(path) => Some(helixhair_render::obj::load_mesh_obj(path)?),
         None => None,
+    };
+    let collider_file = args.collider.as_ref().or(args.head.as_ref());
+    let collider = match (collider_mesh.as_ref().or(head.as_ref()), collider_file) {
+        (Some(mesh), Some(path)) => Some(
+            head_collider(mesh)
+                .with_context(|| format!("{}: cannot build the collision field", path.display()))?,
+        ),
+        _ => None,
     };
     let attach_start = Instant::now();
     let mut jobs = Vec::with_capacity(imported.curves.curves.len());
@@ -254,6 +263,10 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
                     .head
                     .as_deref()
                     .map(|h| relative_to_style(h, &args.out)),
+                collider: args
+                    .collider
+                    .as_deref()
+                    .map(|c| relative_to_style(c, &args.out)),
                 strands,
             }),
             edits: Vec::new(),
@@ -271,10 +284,6 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     report.timings.total_secs = started.elapsed().as_secs_f64();
     report.style = args.out.display().to_string();
     Ok(report)
-}
-
-fn display(path: Option<&Path>) -> String {
-    path.map_or_else(String::new, |p| p.display().to_string())
 }
 
 /// `target` as a path relative to `style`'s folder (absolute when the two

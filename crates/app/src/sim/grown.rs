@@ -15,12 +15,13 @@ use helixhair_render::obj::NO_SCALP_HINT;
 
 use crate::head::groom::Groom;
 use crate::head::load_head;
-use crate::head::of_style::{head_pivot_m, style_head_path};
+use crate::head::of_style::{OwnHead, head_pivot_m};
 use crate::sim::headless::{HeadlessSim, SimOverrides};
 use crate::style::Style;
 use crate::style::error::{StyleError, StyleErrorKind};
 use crate::style::field_path::FieldPath;
 use crate::style::source_map::SourceMap;
+use helixhair_render::obj::load_mesh_obj;
 
 /// Refuses a scalp placement that found no scalp to grow on (a `region`
 /// that misses the head's scalp), naming the style's file, line and field
@@ -70,29 +71,40 @@ pub fn grown_sim(
     overrides: SimOverrides,
 ) -> anyhow::Result<(Groom, HeadlessSim)> {
     let style = Style::load(style_path)?;
-    // Without `--head`, an imported groom's own head (`imported.head`).
-    let head = head
-        .map(Path::to_path_buf)
-        .or_else(|| style_head_path(&style, style_path));
-    let head = head.as_deref();
-    // A style that grows no hair on the scalp (an imported groom brings its
-    // own roots) takes any mesh as its head, every face scalp when it has
-    // no `scalp` group.
-    let own_head = head.is_some() && !crate::head::groom::needs_head(&style);
-    let head_mesh = match head {
-        Some(path) if own_head => helixhair_render::obj::load_mesh_obj(path)?,
-        path => load_head(path)?,
+    // Without `--head`, an imported groom's own head (`imported.head`),
+    // drawn, and its `collider` collided with.
+    let own = match head {
+        Some(_) => None,
+        None => OwnHead::of_style(&style, style_path)?,
+    };
+    let (head_mesh, pivot_m, own_collider) = match own {
+        Some(own) => {
+            let collider = own.collision_field()?;
+            (own.drawn, Some(own.pivot_m), Some(collider))
+        }
+        // A style that grows no hair on the scalp takes any mesh given as
+        // its head, every face scalp when it has no `scalp` group.
+        None => match head {
+            Some(path) if !crate::head::groom::needs_head(&style) => {
+                let pivot_m = head_pivot_m(&style);
+                (load_mesh_obj(path)?, Some(pivot_m), None)
+            }
+            path => (load_head(path)?, None, None),
+        },
     };
     let groom = Groom::new(style, head_mesh);
     check_placements(&groom, style_path, head)?;
     let mut sim = HeadlessSim::new(&groom.grown, overrides)
         .with_context(|| format!("cannot simulate {}", style_path.display()))?;
-    if own_head {
-        sim.set_head_pivot(head_pivot_m(&groom.grown));
+    if let Some(pivot_m) = pivot_m {
+        sim.set_head_pivot(pivot_m);
     }
-    let collider = groom
-        .collider()
-        .context("cannot build the head's collision field")?;
+    let collider = match own_collider {
+        Some(collider) => collider,
+        None => groom
+            .collider()
+            .context("cannot build the head's collision field")?,
+    };
     sim.engine_mut().set_collider(Some(Arc::new(collider)));
     Ok((groom, sim))
 }

@@ -26,3 +26,22 @@ pub fn inside_mesh(p: glam::DVec3, positions: &[glam::Vec3], indices: &[u32]) ->
     }
     crossings % 2 == 1
 }
+
+/// The head's pose at the last time sample of a `.usda` HelixHair wrote
+/// (its `xformOp:transform`, columns of a row-vector matrix): the rotation
+/// and translation taking head coordinates to the world's. `None` when the
+/// head has no transform (it stood still at rest).
+pub fn usda_last_head_pose(text: &str) -> Option<(glam::DMat3, glam::DVec3)> {
+    let samples = &text[text.find("xformOp:transform.timeSamples = {")?..];
+    let samples = &samples[..samples.find("\n        }")?];
+    let last = samples.lines().rev().find(|l| l.contains(": ("))?;
+    let numbers: Vec<f64> = last[last.find(": (")? + 2..]
+        .split(|c: char| "(), ".contains(c))
+        .filter(|s| !s.is_empty())
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .ok()?;
+    let [x, y, z, t] =
+        [0, 4, 8, 12].map(|k| glam::DVec3::new(numbers[k], numbers[k + 1], numbers[k + 2]));
+    (numbers.len() == 16).then(|| (glam::DMat3::from_cols(x, y, z), t))
+}

@@ -52,13 +52,19 @@ pub fn style_path_for(groom: &Path) -> anyhow::Result<PathBuf> {
 }
 
 /// Starts importing `groom` on `head` (a mesh file; `None`: the default
-/// head) on a worker thread; the job's result is the style file written,
-/// which names the head, so it opens on it.
-pub fn start_import(groom: &Path, head: Option<PathBuf>) -> anyhow::Result<Job<JobDone>> {
+/// head), its hair colliding with `collider` (`None`: the head itself), on
+/// a worker thread; the job's result is the style file written, which
+/// names both meshes, so it opens on them.
+pub fn start_import(
+    groom: &Path,
+    head: Option<PathBuf>,
+    collider: Option<PathBuf>,
+) -> anyhow::Result<Job<JobDone>> {
     let out = style_path_for(groom)?;
     let defaults = FitOptions::default();
     let args = ImportArgs {
         groom: groom.to_owned(),
+        collider: collider.filter(|_| head.is_some()),
         head,
         fit_tolerance: defaults.tolerance_over_length,
         max_elements: defaults.max_elements,
@@ -108,7 +114,7 @@ mod tests {
         std::fs::write(&groom, bytes).unwrap();
         std::fs::write(dir.join("two.ron"), "taken").unwrap();
         assert!(import_extension(&groom) && !import_extension(&dir.join("two.ron")));
-        let job = start_import(&groom, None).unwrap();
+        let job = start_import(&groom, None, None).unwrap();
         let JobDone::Imported(style) = job.wait().unwrap() else {
             panic!("an import")
         };
@@ -161,16 +167,17 @@ mod tests {
         // The dialog offers the bust; the import uses it.
         let dialog = ImportDialog::new(&groom);
         assert_eq!(dialog.head_path(), Some(dir.join("bust.obj")));
-        let JobDone::Imported(style) = start_import(&groom, dialog.head_path())
-            .unwrap()
-            .wait()
-            .unwrap()
+        let JobDone::Imported(style) =
+            start_import(&groom, dialog.head_path(), dialog.collider_path())
+                .unwrap()
+                .wait()
+                .unwrap()
         else {
             panic!("an import")
         };
         let app = AppState::new(Style::load(&style).unwrap(), Some(&style)).unwrap();
         assert_eq!(
-            app.head_path.as_deref(),
+            app.head_files.as_ref().map(|f| f.drawn.as_path()),
             Some(dir.join("bust.obj").as_path())
         );
         // The head pivot (which the view frames) is on the lifted head, and

@@ -292,7 +292,7 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
             ImportAnswer::Stay => {}
             ImportAnswer::Cancel => files.import = None,
             ImportAnswer::Go => {
-                match start_import(&dialog.groom, dialog.head_path()) {
+                match start_import(&dialog.groom, dialog.head_path(), dialog.collider_path()) {
                     Ok(job) => files.job = Some(job),
                     Err(e) => app.message = Some(format!("{e:#}")),
                 }

@@ -2,9 +2,14 @@
 //! window): which head the groom was made on. A groom's strands are placed
 //! on the head they were groomed on, often far from the origin (Sintel's
 //! hair stands 1.5 m up); imported on the bald default head, it would hang
-//! in the air. The dialog offers the meshes beside the groom (OBJ files
-//! with faces, a collider first, as its coarse closed mesh rests hair best),
-//! a mesh picked elsewhere by its path, or the default head.
+//! in the air. The dialog asks for two meshes, each among those beside
+//! the groom (OBJ files with faces), a typed path, or none:
+//!
+//! - the head drawn, on which the roots are placed and which exports carry
+//!   (preselected: the first mesh whose name does not say "collider");
+//! - the mesh the hair collides with and rests on (preselected: the first
+//!   "collider"; none: the drawn head). A detailed bust has eye holes,
+//!   lips and ears that catch hair; a coarse closed collider rests it.
 
 use std::path::{Path, PathBuf};
 
@@ -15,22 +20,27 @@ pub struct ImportDialog {
     pub groom: PathBuf,
     /// The meshes found beside it.
     pub beside: Vec<PathBuf>,
-    /// The head mesh, as typed or picked (empty: the default head).
+    /// The head mesh drawn, as typed or picked (empty: the default head).
     pub head: String,
+    /// The mesh the hair collides with, as typed or picked (empty: the
+    /// drawn head).
+    pub collider: String,
 }
 
 impl ImportDialog {
-    /// A dialog for `groom`, its head preselected from the meshes beside it.
+    /// A dialog for `groom`, its meshes preselected from those beside it:
+    /// the first that is not a collider drawn, the first collider (a name
+    /// with "collider") collided with.
     pub fn new(groom: &Path) -> Self {
         let beside = head_meshes_beside(groom);
-        let head = beside
-            .first()
-            .map(|p| p.display().to_string())
-            .unwrap_or_default();
+        let text = |p: Option<&PathBuf>| p.map(|p| p.display().to_string()).unwrap_or_default();
+        let collider = beside.iter().find(|p| is_collider(p));
+        let drawn = beside.iter().find(|p| !is_collider(p)).or(collider);
         Self {
             groom: groom.to_owned(),
+            head: text(drawn),
+            collider: text(collider.filter(|&c| Some(c) != drawn)),
             beside,
-            head,
         }
     }
 
@@ -39,6 +49,20 @@ impl ImportDialog {
         let typed = self.head.trim();
         (!typed.is_empty()).then(|| PathBuf::from(typed))
     }
+
+    /// The collider chosen: `None` for the drawn head (and always with the
+    /// default head, which is its own collider).
+    pub fn collider_path(&self) -> Option<PathBuf> {
+        let typed = self.collider.trim();
+        let head = self.head_path()?;
+        (!typed.is_empty() && Path::new(typed) != head).then(|| PathBuf::from(typed))
+    }
+}
+
+/// Whether `mesh`'s file name says it is a collider.
+fn is_collider(mesh: &Path) -> bool {
+    mesh.file_name()
+        .is_some_and(|n| n.to_string_lossy().to_lowercase().contains("collider"))
 }
 
 /// The OBJ meshes with faces in `groom`'s folder (not the groom itself),
@@ -60,11 +84,7 @@ pub fn head_meshes_beside(groom: &Path) -> Vec<PathBuf> {
                 && has_faces(p)
         })
         .collect();
-    let collider_last = |p: &PathBuf| {
-        let name = p.file_name().map(|n| n.to_string_lossy().to_lowercase());
-        !name.is_some_and(|n| n.contains("collider"))
-    };
-    meshes.sort_by_key(|p| (collider_last(p), p.clone()));
+    meshes.sort_by_key(|p| (!is_collider(p), p.clone()));
     meshes
 }
 
@@ -92,18 +112,25 @@ pub fn import_dialog(ctx: &egui::Context, dialog: &mut ImportDialog) -> ImportAn
     let modal = egui::Modal::new(egui::Id::unique("import groom")).show(ctx, |ui| {
         ui.heading("Import groom");
         ui.label(format!("groom: {}", dialog.groom.display()));
-        ui.label("head it was groomed on (the hair is placed and simulated on it):");
-        for mesh in &dialog.beside {
-            let text = mesh.display().to_string();
-            let name = mesh
-                .file_name()
-                .map_or_else(|| text.clone(), |n| n.to_string_lossy().into_owned());
-            ui.radio_value(&mut dialog.head, text, name);
-        }
-        ui.radio_value(&mut dialog.head, String::new(), "the default head");
-        ui.horizontal(|ui| {
-            ui.label("or a mesh (OBJ)");
-            ui.add(egui::TextEdit::singleline(&mut dialog.head).desired_width(320.0));
+        ui.label("head it was groomed on (the roots are placed on it; it is drawn and exported):");
+        mesh_choice(
+            ui,
+            "head",
+            &dialog.beside,
+            &mut dialog.head,
+            "the default head",
+        );
+        ui.separator();
+        ui.label("mesh the hair collides with and rests on (a coarse closed one rests it best):");
+        ui.add_enabled_ui(dialog.head_path().is_some(), |ui| {
+            let beside = &dialog.beside;
+            mesh_choice(
+                ui,
+                "collider",
+                beside,
+                &mut dialog.collider,
+                "the head above",
+            );
         });
         ui.horizontal(|ui| {
             let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -121,12 +148,31 @@ pub fn import_dialog(ctx: &egui::Context, dialog: &mut ImportDialog) -> ImportAn
     answer
 }
 
+/// Radio buttons choosing `choice` among `meshes`, `none` (the empty
+/// choice), or a typed path.
+fn mesh_choice(ui: &mut egui::Ui, id: &str, meshes: &[PathBuf], choice: &mut String, none: &str) {
+    ui.push_id(id, |ui| {
+        for mesh in meshes {
+            let text = mesh.display().to_string();
+            let name = mesh
+                .file_name()
+                .map_or_else(|| text.clone(), |n| n.to_string_lossy().into_owned());
+            ui.radio_value(choice, text, name);
+        }
+        ui.radio_value(choice, String::new(), none);
+        ui.horizontal(|ui| {
+            ui.label("or a mesh (OBJ)");
+            ui.add(egui::TextEdit::singleline(choice).desired_width(320.0));
+        });
+    });
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn the_meshes_beside_a_groom_are_offered_collider_first() {
+    fn the_meshes_beside_a_groom_are_offered_the_bust_drawn_and_the_collider_collided() {
         let dir =
             std::env::temp_dir().join(format!("helixhair-import-dialog-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
@@ -142,9 +188,11 @@ mod tests {
             dialog.beside,
             vec![dir.join("bust-collider.obj"), dir.join("bust.obj")]
         );
-        assert_eq!(dialog.head_path(), Some(dir.join("bust-collider.obj")));
+        assert_eq!(dialog.head_path(), Some(dir.join("bust.obj")));
+        assert_eq!(dialog.collider_path(), Some(dir.join("bust-collider.obj")));
         let alone = ImportDialog::new(&dir.join("missing").join("g.tfx"));
         assert!(alone.beside.is_empty() && alone.head_path().is_none());
+        assert!(alone.collider_path().is_none());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

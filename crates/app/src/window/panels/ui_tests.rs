@@ -212,6 +212,7 @@ fn group_titles_count_imported_strands() {
     group.imported = Some(crate::style::imported::ImportedStrands {
         source: "g.obj".into(),
         head: None,
+        collider: None,
         strands,
     });
     assert_eq!(
@@ -239,6 +240,7 @@ fn an_imported_group_says_what_its_strands_take_from_the_groom() {
     let imported = crate::style::imported::ImportedStrands {
         source: "sintel.tfx".into(),
         head: None,
+        collider: None,
         strands,
     };
     let line = super::super::imported_summary::imported_summary(&imported);

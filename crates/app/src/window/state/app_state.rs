@@ -19,6 +19,7 @@ use helixhair_physics::Method;
 use helixhair_physics::engine::EngineKind;
 use helixhair_render::HeadMesh;
 
+use crate::head::of_style::HeadFiles;
 use crate::style::Style;
 
 use super::brush_state::BrushState;
@@ -70,8 +71,9 @@ pub struct AppState {
     pub head: HeadDriver,
     /// The head mesh, head coordinates.
     pub head_mesh: Arc<HeadMesh>,
-    /// The file `head_mesh` came from (`None`: the default head).
-    pub head_path: Option<PathBuf>,
+    /// The files of `head_mesh` and of the mesh collided with (`None`: the
+    /// default head).
+    pub head_files: Option<HeadFiles>,
     /// Live numbers.
     pub readouts: Readouts,
     /// Physics paused.
@@ -135,7 +137,7 @@ impl AppState {
             compare: None,
             head: driver,
             head_mesh: head.mesh,
-            head_path: head.path,
+            head_files: head.files,
             readouts: Readouts::default(),
             paused: false,
             invalid: None,

@@ -1,32 +1,32 @@
 //! The window takes the head a style names: an imported groom opened
 //! (at start, File → Open, an import, a drop) brings its own head mesh,
-//! which becomes the collider, the head drawn, and the pivot the head
-//! turns about ([`crate::head::of_style`]); any other style gets the default
+//! drawn and collided with (or its `collider` mesh, collided with), and
+//! the pivot the head turns about ([`crate::head::of_style`]); any other style gets the default
 //! head back.
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::DVec3;
 use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
-use helixhair_render::obj::load_mesh_obj;
 
 use crate::head::groom::needs_head;
-use crate::head::of_style::{head_pivot_m, style_head_path};
+use crate::head::of_style::{HeadFiles, OwnHead, style_head_files};
 
 use super::app_state::AppState;
 use super::document::StyleDoc;
 use crate::window::live::collision::HeadCollider;
 use crate::window::live::live_sim::LiveSim;
 
-/// A head for the window: its mesh, the file it came from (`None`: the
-/// default head) and the point it turns about.
+/// A head for the window: its meshes, the files they came from (`None`:
+/// the default head) and the point it turns about.
 pub struct StyleHead {
-    /// The mesh, drawn and collided with.
+    /// The mesh drawn, picked by the brush and exported.
     pub mesh: Arc<HeadMesh>,
-    /// Its file.
-    pub path: Option<PathBuf>,
+    /// The mesh collided with, when the style names one apart from `mesh`.
+    pub collider: Option<HeadMesh>,
+    /// Their files.
+    pub files: Option<HeadFiles>,
     /// Its pivot, world, metres.
     pub pivot_m: DVec3,
 }
@@ -36,36 +36,40 @@ impl StyleHead {
     pub fn default_head() -> Self {
         Self {
             mesh: Arc::new(default_head()),
-            path: None,
+            collider: None,
+            files: None,
             pivot_m: DVec3::ZERO,
         }
     }
 }
 
-/// The head mesh `doc`'s style names, if it names one it can use.
-fn wanted_head(doc: &StyleDoc) -> Option<PathBuf> {
+/// The head meshes `doc`'s style names, if it names any it can use.
+fn wanted_head(doc: &StyleDoc) -> Option<HeadFiles> {
     let style = doc.style();
     let path = doc.path()?;
-    style_head_path(style, path).filter(|_| !needs_head(style))
+    style_head_files(style, path).filter(|_| !needs_head(style))
 }
 
 /// The head `doc`'s style names, read, or the default head; an error
-/// (naming file and line) when the named mesh cannot be read.
+/// (naming file and line) when a named mesh cannot be read.
 pub fn style_head(doc: &StyleDoc) -> Result<StyleHead, String> {
-    let Some(path) = wanted_head(doc) else {
+    let Some(path) = doc.path() else {
         return Ok(StyleHead::default_head());
     };
-    let mesh = load_mesh_obj(&path).map_err(|e| e.to_string())?;
-    Ok(StyleHead {
-        mesh: Arc::new(mesh),
-        path: Some(path),
-        pivot_m: head_pivot_m(doc.style()),
-    })
+    match OwnHead::of_style(doc.style(), path).map_err(|e| e.to_string())? {
+        Some(own) => Ok(StyleHead {
+            mesh: Arc::new(own.drawn),
+            collider: own.collider,
+            files: Some(own.files),
+            pivot_m: own.pivot_m,
+        }),
+        None => Ok(StyleHead::default_head()),
+    }
 }
 
 /// A simulation of `doc`'s style colliding with `head`.
 pub fn simulate_on(doc: &StyleDoc, head: &StyleHead) -> Result<LiveSim, String> {
-    let collider = HeadCollider::from_head(&head.mesh)?;
+    let collider = HeadCollider::from_head(head.collider.as_ref().unwrap_or(&head.mesh))?;
     let mut sim = LiveSim::new(doc.style(), head.mesh.clone(), None, None)?;
     sim.set_collider(Some(collider));
     Ok(sim)
@@ -77,7 +81,7 @@ impl AppState {
     /// it, the head turning about its pivot. On error (an unreadable mesh)
     /// the head in use stays and the message says why.
     pub fn adopt_head(&mut self) {
-        if wanted_head(&self.doc) == self.head_path {
+        if wanted_head(&self.doc) == self.head_files {
             return;
         }
         let built =
@@ -88,7 +92,7 @@ impl AppState {
                 self.compare = None;
                 self.head_mesh = head.mesh;
                 self.head.pivot_m = head.pivot_m;
-                self.head_path = head.path;
+                self.head_files = head.files;
             }
             Err(e) => self.message = Some(format!("the style's head is not used: {e}")),
         }

@@ -65,6 +65,7 @@ fn lifted_groom(dir: &Path) -> PathBuf {
             imported: Some(ImportedStrands {
                 source: "groom.obj".into(),
                 head: Some("head.obj".into()),
+                collider: None,
                 strands,
             }),
             edits: Vec::new(),
@@ -91,7 +92,7 @@ fn an_imported_groom_brings_its_head_draws_and_turns_about_it() {
     let style = Style::load(&path).expect("loads");
     let mut app = AppState::new(style.clone(), Some(&path)).expect("opens");
     assert_eq!(
-        app.head_path.as_deref(),
+        app.head_files.as_ref().map(|f| f.drawn.as_path()),
         Some(dir.join("head.obj").as_path())
     );
     assert!(app.sim.engine().collider().is_some());
@@ -119,13 +120,48 @@ fn an_imported_groom_brings_its_head_draws_and_turns_about_it() {
         "the hair went {farthest} m from the pivot, {start} m at rest"
     );
 
+    // Issue 32, item 6: a style naming a collider apart from its head
+    // draws the head and collides with the collider (here the head grown
+    // by a third about its middle, so the drawn crown lies inside it).
+    let mut grown = default_head();
+    for p in &mut grown.mesh.positions {
+        *p = *p * 1.3 + HEAD_AT_M.as_vec3();
+    }
+    std::fs::write(dir.join("collider.obj"), write_head_obj(&grown, "big")).expect("collider");
+    let mut with_collider = style.clone();
+    let imported = with_collider.groups[0].imported.as_mut().expect("imported");
+    imported.collider = Some("collider.obj".into());
+    let collided = dir.join("collided.ron");
+    with_collider.save(&collided).expect("saves");
+    app.load(&collided);
+    let files = app.head_files.clone().expect("its own head");
+    assert_eq!(files.drawn, dir.join("head.obj"));
+    assert_eq!(files.collider, dir.join("collider.obj"));
+    let crown = app
+        .head_mesh
+        .mesh
+        .positions
+        .iter()
+        .fold(f32::MIN, |top, p| top.max(p.y));
+    assert!(
+        (f64::from(crown) - HEAD_AT_M.y - 0.1).abs() < 0.05,
+        "the drawn head is the head, not the grown collider (crown {crown})"
+    );
+    let field = app.sim.engine().collider().expect("collides");
+    let crown_point = DVec3::new(HEAD_AT_M.x, f64::from(crown), HEAD_AT_M.z);
+    let (distance_m, _) = field.sample(crown_point).expect("inside the field's box");
+    assert!(
+        distance_m < -0.01,
+        "the drawn crown is {distance_m} m from the collider: not the grown mesh"
+    );
+
     // A style without a head of its own brings the default head back.
     let plain = dir.join("plain.ron");
     super::super::default_style::default_style(4)
         .save(&plain)
         .expect("saves");
     app.load(&plain);
-    assert_eq!(app.head_path, None);
+    assert_eq!(app.head_files, None);
     assert_eq!(app.head.pivot_m, DVec3::ZERO);
     let _ = std::fs::remove_dir_all(dir);
 }
