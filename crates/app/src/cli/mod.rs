@@ -30,6 +30,7 @@ use crate::motion::playback::{Playback, parse_play};
 use crate::sim::frame_stepper::FrameStepper;
 use crate::sim::headless::{HeadlessSim, SimOverrides};
 use crate::sim::report::{SimReport, refuse_lost_strands};
+use crate::sim::settle::settle_on_head;
 use crate::sim::tip_trajectories::Tracked;
 use crate::style::Style;
 #[cfg(feature = "window")]
@@ -248,6 +249,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
                 let collider = head_collider(&head)
                     .context("cannot build the default head's collision field")?;
                 sim.engine_mut().set_collider(Some(Arc::new(collider)));
+                settle_on_head(sim.engine_mut());
             }
             head
         }

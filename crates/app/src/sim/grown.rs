@@ -17,6 +17,7 @@ use crate::head::groom::Groom;
 use crate::head::load_head;
 use crate::head::of_style::{OwnHead, head_pivot_m};
 use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::settle::settle_on_head;
 use crate::style::Style;
 use crate::style::error::{StyleError, StyleErrorKind};
 use crate::style::field_path::FieldPath;
@@ -106,5 +107,8 @@ pub fn grown_sim(
             .context("cannot build the head's collision field")?,
     };
     sim.engine_mut().set_collider(Some(Arc::new(collider)));
+    if crate::head::groom::needs_head(&groom.style) {
+        settle_on_head(sim.engine_mut());
+    }
     Ok((groom, sim))
 }

@@ -19,5 +19,6 @@ pub mod grown;
 pub mod headless;
 pub mod report;
 pub mod resample;
+pub mod settle;
 pub mod strands;
 pub mod tip_trajectories;

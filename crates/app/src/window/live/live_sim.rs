@@ -36,6 +36,7 @@ use crate::style::Style;
 use super::collision::HeadCollider;
 use super::head_motion::FrameHead;
 use crate::sim::carry::{Carry, carry_state};
+use crate::sim::settle::settle_on_head;
 use crate::sim::strands::{StyleStrand, add_strands, style_strands};
 
 /// A hair system kept in step with an edited style.
@@ -111,12 +112,23 @@ impl LiveSim {
         self.engine.settings().method
     }
 
-    /// Sets the head collider (also kept across rebuilds).
+    /// Sets the head collider (also kept across rebuilds); hair grown on
+    /// the scalp then settles on it ([`LiveSim::settle_grown_hair`]).
     pub fn set_collider(&mut self, collider: Option<HeadCollider>) {
         if let Some(c) = &collider {
             c.attach(&mut self.engine);
         }
         self.collider = collider;
+        self.settle_grown_hair();
+    }
+
+    /// Starts hair grown on the scalp settled on the head, not in its
+    /// natural shape through it ([`settle_on_head`]); nothing for other
+    /// styles or without a collider.
+    fn settle_grown_hair(&mut self) {
+        if self.collider.is_some() && needs_head(&self.built) {
+            settle_on_head(&mut self.engine);
+        }
     }
 
     /// Runs on `engine` with `method` from now on instead of the style's
@@ -186,6 +198,10 @@ impl LiveSim {
         self.replace_engine(engine, strands, carry, &[]);
         self.built = style.clone();
         self.built_grown = grown;
+        if carry.is_none() {
+            // New strands (a new count): they start afresh, settled.
+            self.settle_grown_hair();
+        }
         Ok(())
     }
 
