@@ -70,6 +70,32 @@ print("head", len(head.GetPointsAttr().Get()), len(head.GetFaceVertexCountsAttr(
 "#;
 
 #[test]
+fn a_still_frame_carries_the_simulation_rate_to_pixar_usd() {
+    // Issue 32, item 11: a one-frame `.usda` said USD's fallback of 24 time
+    // codes per second while the animations said 60.
+    if !pxr_available() {
+        return;
+    }
+    let curves = common::groom(3, 5, 6, false, false);
+    let still = Animation {
+        time_codes_per_second: 60.0,
+        frames: Vec::new(),
+    };
+    let path = temp_path("still.usda");
+    let mut bytes = Vec::new();
+    write_usda(&mut bytes, &curves, Some(&still), None).expect("writes");
+    std::fs::write(&path, &bytes).expect("temp file");
+    let script = "import sys\nfrom pxr import Usd\nstage = Usd.Stage.Open(sys.argv[1])\nprint('tcps', stage.GetTimeCodesPerSecond())\n";
+    let lines = run_python(script, &path);
+    let _ = std::fs::remove_file(&path);
+    assert_eq!(lines, ["tcps 60.0"]);
+    // And our own reader reads the still frame as a still groom.
+    let back = read(&bytes, Format::Usda, &ReadOptions::default()).expect("reads back");
+    assert_eq!(back.curves.curves.len(), curves.curves.len());
+    assert!(back.animation.is_none());
+}
+
+#[test]
 fn pixar_usd_reads_what_we_write() {
     if !pxr_available() {
         return;

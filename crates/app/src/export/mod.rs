@@ -338,7 +338,14 @@ impl ExportRecorder {
         } else {
             Vec::new()
         };
-        self.write_usda(&path, &curves, None, head, &poses)
+        // No frames, but the rate: readers then agree with the animations
+        // this program writes (60 time codes per second at 60 Hz), not
+        // USD's fallback of 24.
+        let rate = Animation {
+            time_codes_per_second: 1.0 / self.dt_secs,
+            frames: Vec::new(),
+        };
+        self.write_usda(&path, &curves, Some(&rate), head, &poses)
     }
 
     /// Writes the collected `.usda` animation (nothing to do for a

@@ -15,7 +15,8 @@ use crate::write::checks::{all_or_none, finite_points};
 /// Writes one layer:
 ///
 /// - layer metadata `metersPerUnit = 1`, `upAxis = "Y"`, and for an
-///   animation `timeCodesPerSecond`, `startTimeCode`, `endTimeCode`;
+///   animation `startTimeCode`, `endTimeCode`, and `timeCodesPerSecond`
+///   (also for an animation of no frames: a still frame at that rate);
 /// - `def Xform "HelixHair"` (the default prim) holding
 ///   `def BasisCurves "hair"`: `type = "linear"`, `wrap = "nonperiodic"`,
 ///   `curveVertexCounts`, `points` (or `points.timeSamples` for an
@@ -112,6 +113,11 @@ pub fn write_usda_with_head_poses(
             text,
             "    startTimeCode = {first}\n    endTimeCode = {last}"
         );
+    }
+    // The rate even for a still frame (an animation of no frames): a reader
+    // then places its head pose and its frame at the simulation's rate, not
+    // USD's fallback of 24.
+    if let Some(animation) = animation {
         let _ = writeln!(
             text,
             "    timeCodesPerSecond = {}",
