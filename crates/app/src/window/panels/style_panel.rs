@@ -43,11 +43,16 @@ pub const TRACKS: [Track; 18] = [
     ("shear modulus", 1e5, 1e12),
     ("internal friction", 0.0, 1e-6),
     ("air drag", 0.0, 1e-2),
-    ("curl radius", 1e-3, 1.0),
+    // Narrower than the format (1 mm to 1 m): real curls lie within it,
+    // and on the full three decades a 30 px drag went from 12 to 120 mm.
+    ("curl radius", 2e-3, 0.2),
     ("helix step (twist)", -1.0, 1.0),
     ("twist τ", -1000.0, 1000.0),
     ("κ₁ and κ₂", -1000.0, 1000.0),
 ];
+
+/// How to set a curl finely, shown under the curl sliders.
+pub const FINE_CONTROL: &str = "fine: drag the number, with Shift for finer";
 
 /// The track of the slider labelled `label` (the first when `label` is
 /// not in [`TRACKS`], which a test rules out).
@@ -269,6 +274,10 @@ fn curl(ui: &mut Ui, shape: &mut NaturalShape, elements: usize, notes: &mut Vec<
                 ..Look::unit(" mm")
             };
             scaled(ui, notes, "curl radius", radius_m, 1e3, look);
+            ui.small(FINE_CONTROL).on_hover_text(
+                "Dragging the number moves by finer steps than the track, \
+                 and ten times finer again with Shift held; typing sets it exactly.",
+            );
             let look = Look {
                 smallest_positive: 1e-4,
                 ..look
@@ -368,9 +377,29 @@ mod tests {
     }
 
     #[test]
+    fn a_short_drag_on_the_curl_radius_track_stays_within_a_factor_of_four() {
+        // Issue 32, item 11: on egui's default 100 px slider, a 30 px drag
+        // moved the curl radius from 12 to 120 mm (the track spanned three
+        // decades, logarithmic).
+        let (_, start, end): Track = TRACKS
+            .iter()
+            .copied()
+            .find(|t| t.0 == "curl radius")
+            .expect("a curl radius track");
+        let slider_px = egui::style::Spacing::default().slider_width as f64;
+        let factor_per_30_px = (end / start).powf(30.0 / slider_px);
+        assert!(
+            factor_per_30_px < 4.0,
+            "30 px moves the curl radius by a factor of {factor_per_30_px:.1}"
+        );
+        // And 12 mm, the curly example's, is on the track.
+        assert!((start..=end).contains(&0.012));
+    }
+
+    #[test]
     fn every_track_lies_in_the_format_and_reaches_its_limits() {
         // Narrower than the format on purpose: a useful drag range.
-        let narrower = ["gravity (y)", "wind (x)"];
+        let narrower = ["gravity (y)", "wind (x)", "curl radius"];
         for (label, start, end) in TRACKS {
             assert!(accepted(label, start), "{label}: start {start} refused");
             assert!(accepted(label, end), "{label}: end {end} refused");
