@@ -26,6 +26,7 @@ use crate::export::{FrameChoice, StrandChoice};
 use crate::sim::frame_stepper::FrameStepper;
 
 use super::job::{Job, JobDone};
+use crate::motion::clip::Clip;
 use crate::window::live::head_motion::HeadDriver;
 use crate::window::live::live_sim::LiveSim;
 use crate::window::state::app_state::AppState;
@@ -42,6 +43,9 @@ pub struct ExportRequest {
     /// Frames to record after the current one; 0 exports the frame on
     /// screen alone ("Export frame…").
     pub frames: usize,
+    /// A clip the recording plays from its first frame (`None`: the head
+    /// moves on as it moves now).
+    pub clip: Option<Clip>,
 }
 
 /// The window's run stepped off the window, as the window steps it.
@@ -94,6 +98,9 @@ pub fn start_export(app: &AppState, request: &ExportRequest) -> anyhow::Result<J
     let export = SimExport::prepare(&request.path, &shape, app.doc.style(), head_mesh)?;
     let mut head = app.head.clone();
     head.recorder = None;
+    if let Some(clip) = request.clip {
+        head.play(clip, app.now_secs());
+    }
     let mut run = WindowRun {
         sim: app.sim.clone(),
         head,

@@ -33,6 +33,7 @@ fn request(path: &Path, frames: usize) -> ExportRequest {
         strands: StrandChoice::Simulated,
         points_per_strand: POINTS,
         frames,
+        clip: None,
     }
 }
 
@@ -155,5 +156,46 @@ fn an_exported_frame_carries_the_head_the_window_simulates_against() {
         "the exported head's lowest point is at y = {}, the window's at {want_low}",
         low.y
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_recording_plays_the_clip_picked_in_its_dialog() {
+    // Issue 32, item 11: Record animation had no clip picker; it recorded
+    // whatever the head was doing (nothing, on a still head).
+    let dir = scratch("clip");
+    let mut app = AppState::new(default_style(4), None).unwrap();
+    app.step_frame();
+    let still = dir.join("still.usda");
+    let turned = dir.join("turned.usda");
+    start_export(&app, &request(&still, 40))
+        .unwrap()
+        .wait()
+        .unwrap();
+    let turn = ExportRequest {
+        clip: Some(Clip::Turn),
+        ..request(&turned, 40)
+    };
+    start_export(&app, &turn).unwrap().wait().unwrap();
+    let still_text = std::fs::read_to_string(&still).unwrap();
+    let turned_text = std::fs::read_to_string(&turned).unwrap();
+    assert!(!still_text.contains("xformOp:transform.timeSamples"));
+    assert!(turned_text.contains("xformOp:transform.timeSamples"));
+    // The last frames: the turned head carried the roots away.
+    let last = |text: &str| {
+        let stage = helixhair_formats::read(text.as_bytes(), Format::Usda, &ReadOptions::default())
+            .unwrap();
+        let frames = stage.animation.expect("an animation").frames;
+        frames.last().expect("frames").points_m.clone()
+    };
+    let (a, b) = (last(&still_text), last(&turned_text));
+    let moved = a
+        .iter()
+        .zip(&b)
+        .map(|(p, q)| (*p - *q).length())
+        .fold(0.0f32, f32::max);
+    assert!(moved > 0.02, "the turn moved the hair only {moved} m");
+    // The window's own head is untouched: nothing plays there.
+    assert!(app.head.playing(app.now_secs()).is_none());
     std::fs::remove_dir_all(&dir).unwrap();
 }

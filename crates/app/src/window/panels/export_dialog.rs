@@ -1,9 +1,11 @@
 //! The export dialog of File → "Export frame…" and "Record animation…":
 //! the file (its extension picks the format), simulated or drawn strands,
-//! points per strand and, for a recording, the frame count.
+//! points per strand and, for a recording, the frame count and the head
+//! clip it plays (or the head's motion as it is).
 
 use crate::export::{MAX_POINTS_PER_STRAND, StrandChoice};
 use crate::hair::sampling::MIN_POINTS_PER_STRAND;
+use crate::motion::clip::Clip;
 
 /// Frames "Record animation…" offers first: two seconds at 60 Hz.
 pub const DEFAULT_RECORD_FRAMES: usize = 120;
@@ -24,6 +26,9 @@ pub struct ExportDialog {
     pub points_per_strand: usize,
     /// Frames to record.
     pub frames: usize,
+    /// The clip a recording plays from its first frame (`None`: the head
+    /// moves on as it moves now).
+    pub clip: Option<Clip>,
 }
 
 /// What the user did in the dialog this frame.
@@ -34,6 +39,12 @@ pub enum DialogAnswer {
     Cancel,
     /// Asked to export.
     Go,
+}
+
+/// Frames a recording of `clip` takes by default: the clip and one second
+/// after it for the hair to settle, at 60 Hz.
+pub fn frames_for(clip: Clip) -> usize {
+    ((clip.duration_secs() + 1.0) * 60.0).ceil() as usize
 }
 
 /// Draws the dialog.
@@ -68,7 +79,18 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
                 ui.horizontal(|ui| {
                     ui.label("frames");
                     ui.add(egui::DragValue::new(&mut dialog.frames).range(1..=MAX_RECORD_FRAMES));
-                    ui.small("under the head's current motion, hands off");
+                    ui.small("hands off");
+                });
+                ui.horizontal(|ui| {
+                    ui.label("head");
+                    ui.radio_value(&mut dialog.clip, None, "as it moves now");
+                    for clip in Clip::ALL {
+                        let picked = ui.radio_value(&mut dialog.clip, Some(clip), clip.name());
+                        if picked.clicked() {
+                            // The whole clip and a second to settle.
+                            dialog.frames = frames_for(clip);
+                        }
+                    }
                 });
             }
             ui.horizontal(|ui| {

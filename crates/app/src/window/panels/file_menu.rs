@@ -155,6 +155,7 @@ pub fn export_dialog_for(app: &AppState, animation: bool) -> ExportDialog {
         strands: StrandChoice::Simulated,
         points_per_strand: DEFAULT_POINTS_PER_STRAND,
         frames: DEFAULT_RECORD_FRAMES,
+        clip: None,
     }
 }
 
@@ -276,6 +277,7 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
                     strands: dialog.strands,
                     points_per_strand: dialog.points_per_strand,
                     frames: if dialog.animation { dialog.frames } else { 0 },
+                    clip: dialog.clip.filter(|_| dialog.animation),
                 };
                 match start_export(app, &request) {
                     Ok(job) => {
