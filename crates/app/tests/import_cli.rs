@@ -162,6 +162,18 @@ fn malformed_grooms_are_clear_errors_with_exit_code_1() {
         ("nan.tfx", nan, "no strand could be imported"),
         ("groom.xyz", good.clone(), "unknown groom format"),
         ("bad.hair", b"HAIRxx".to_vec(), "not a valid groom"),
+        // Issue 32, item 11: a layer without metersPerUnit is read in
+        // centimetres, USD's fallback; when that leaves nothing to import,
+        // the error says so (it gave only the skipped counts).
+        (
+            "no_unit.usda",
+            b"#usda 1.0\n(\n    upAxis = \"Y\"\n)\n\ndef BasisCurves \"hair\"\n{\n    \
+              uniform token type = \"linear\"\n    int[] curveVertexCounts = [6]\n    \
+              point3f[] points = [(0, 0, 0), (0.1, 0, 0), (0.1, 0.1, 0), (0.2, 0.1, 0), \
+              (0.2, 0.2, 0), (0.3, 0.2, 0)]\n}\n"
+                .to_vec(),
+            "metersPerUnit",
+        ),
     ];
     for (name, bytes, expect) in cases {
         let groom = write(&dir, name, &bytes);

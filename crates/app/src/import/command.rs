@@ -225,8 +225,15 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         })
         .collect();
     if strands.is_empty() {
+        // The reader's warnings often say why (a unit read as centimetres
+        // makes every strand a kink too tight to fit).
+        let warnings: String = report
+            .warnings
+            .iter()
+            .map(|w| format!("\n  warning: {w}"))
+            .collect();
         bail!(
-            "{groom_name}: no strand could be imported (see the skipped counts: {:?})",
+            "{groom_name}: no strand could be imported (see the skipped counts: {:?}){warnings}",
             report.skipped
         );
     }

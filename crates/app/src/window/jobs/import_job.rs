@@ -81,8 +81,8 @@ pub fn start_import(
         out.display()
     );
     Job::spawn(label, move |progress| {
-        import_groom(&args, progress)?;
-        Ok(JobDone::Imported(out))
+        let report = import_groom(&args, progress)?;
+        Ok(JobDone::Imported(out, report.warnings))
     })
 }
 
@@ -115,13 +115,38 @@ mod tests {
         std::fs::write(dir.join("two.ron"), "taken").unwrap();
         assert!(import_extension(&groom) && !import_extension(&dir.join("two.ron")));
         let job = start_import(&groom, None, None).unwrap();
-        let JobDone::Imported(style) = job.wait().unwrap() else {
+        let JobDone::Imported(style, _) = job.wait().unwrap() else {
             panic!("an import")
         };
         assert_eq!(style, dir.join("two-2.ron"), "the taken name is left alone");
         let loaded = Style::load(&style).unwrap();
         let imported = loaded.groups[0].imported.as_ref().unwrap();
         assert_eq!(imported.strands.len(), 2);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_readers_warnings_reach_the_window() {
+        // Issue 32, item 11: a `.usda` without `metersPerUnit` was read in
+        // centimetres and, imported in the window, nothing said so.
+        let dir =
+            std::env::temp_dir().join(format!("helixhair-import-warn-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let groom = dir.join("no_unit.usda");
+        let layer = "#usda 1.0\n(\n    upAxis = \"Y\"\n)\n\ndef BasisCurves \"hair\"\n{\n    \
+                     uniform token type = \"linear\"\n    int[] curveVertexCounts = [3]\n    \
+                     point3f[] points = [(0, 0, 0), (0, -7, 0), (0, -14, 0.1)]\n}\n";
+        std::fs::write(&groom, layer).unwrap();
+        let JobDone::Imported(_, warnings) =
+            start_import(&groom, None, None).unwrap().wait().unwrap()
+        else {
+            panic!("an import")
+        };
+        assert!(
+            warnings.iter().any(|w| w.contains("metersPerUnit")),
+            "{warnings:?}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
@@ -167,7 +192,7 @@ mod tests {
         // The dialog offers the bust; the import uses it.
         let dialog = ImportDialog::new(&groom);
         assert_eq!(dialog.head_path(), Some(dir.join("bust.obj")));
-        let JobDone::Imported(style) =
+        let JobDone::Imported(style, _) =
             start_import(&groom, dialog.head_path(), dialog.collider_path())
                 .unwrap()
                 .wait()

@@ -25,8 +25,9 @@ use crate::work_progress::WorkProgress;
 pub enum JobDone {
     /// Curve files written.
     Exported(ExportOutcome),
-    /// A groom imported into this style file, to be opened.
-    Imported(PathBuf),
+    /// A groom imported into this style file, to be opened, and the
+    /// reader's warnings (a unit assumed, curves skipped) to show.
+    Imported(PathBuf, Vec<String>),
 }
 
 /// What a worker reports to and reads from the window.

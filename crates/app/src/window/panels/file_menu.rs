@@ -315,7 +315,13 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
     files.job = None;
     match result {
         Ok(JobDone::Exported(outcome)) => app.message = Some(outcome.summary()),
-        Ok(JobDone::Imported(style)) => app.request_leave(Leave::Open(style)),
+        Ok(JobDone::Imported(style, warnings)) => {
+            app.request_leave(Leave::Open(style));
+            if !warnings.is_empty() {
+                // After the open, which starts the status line afresh.
+                app.message = Some(format!("imported with warnings: {}", warnings.join("; ")));
+            }
+        }
         Err(e) => app.message = Some(format!("{e:#}")),
     }
 }
