@@ -251,7 +251,8 @@ fn a_head_without_a_scalp_group_draws_listed_roots_and_explains_scalp_placements
 }
 
 /// Issue #32, item 11: a picture of the natural shape (`--frames 0`) said
-/// "0 frames in -0.00 s" (an empty f64 sum is negative zero).
+/// "0 frames in -0.00 s" (an empty f64 sum is negative zero); it now says
+/// it is the start.
 #[test]
 fn a_picture_of_no_frames_says_zero_seconds() {
     let dir = scratch_dir("render-no-frames");
@@ -263,7 +264,7 @@ fn a_picture_of_no_frames_says_zero_seconds() {
     }
     let text = describe(&output);
     assert!(output.status.success(), "{text}");
-    assert!(text.contains("0 frames in 0.00 s"), "{text}");
+    assert!(text.contains("at rest, no frame simulated"), "{text}");
     assert!(!text.contains("-0.00"), "{text}");
 }
 

@@ -259,11 +259,11 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     };
     writeln!(
         stdout,
-        "style `{}` ({style_path}): {} simulated strands, {} frames in {sim_secs:.2} s\n  \
+        "style `{}` ({style_path}): {} simulated strands, {}\n  \
          drew {} strands, {} points at {}x{} on {}: {timing}\n  wrote {}",
         groom.style.name,
         sim.engine().strand_count(),
-        args.frames,
+        crate::sim::report::frames_simulated(args.frames as usize, sim_secs),
         counts.strands,
         counts.points,
         args.width,

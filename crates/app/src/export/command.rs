@@ -291,10 +291,10 @@ pub fn run_export(args: &ExportArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     .with_context(|| format!("exporting {style_path}"))?;
     writeln!(
         stdout,
-        "style `{}` ({style_path}): {} simulated strands, {steps} frames in {:.2} s\n  {}",
+        "style `{}` ({style_path}): {} simulated strands, {}\n  {}",
         groom.style.name,
         sim.engine().strand_count(),
-        wall_secs.iter().fold(0.0, |a, b| a + b),
+        crate::sim::report::frames_simulated(steps, wall_secs.iter().sum()),
         outcome.summary()
     )?;
     Ok(())

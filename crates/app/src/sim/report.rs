@@ -332,6 +332,16 @@ pub fn refuse_lost_strands(lost: usize, accept: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// "N frames in S s" for a summary line; "at rest, no frame simulated"
+/// for none (it read "0 frames in -0.00 s").
+pub fn frames_simulated(frames: usize, wall_secs: f64) -> String {
+    match frames {
+        0 => "at rest, no frame simulated".to_owned(),
+        1 => format!("1 frame in {:.2} s", wall_secs.max(0.0)),
+        n => format!("{n} frames in {:.2} s", wall_secs.max(0.0)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
