@@ -44,10 +44,14 @@ pub struct HeadFiles {
     pub collider: PathBuf,
 }
 
-/// The head meshes `style` (read from `style_path`) names, as paths: the
+/// The head meshes `style` (read from `style_path`) brings, as paths: the
 /// first imported group's `head` and `collider`, relative to the style's
-/// folder. `None` when it names no head.
+/// folder. `None` when it names no head, or grows hair on the scalp (it
+/// takes the head it is grown on).
 pub fn style_head_files(style: &Style, style_path: &Path) -> Option<HeadFiles> {
+    if needs_head(style) {
+        return None;
+    }
     let imported = style
         .groups
         .iter()
@@ -79,7 +83,7 @@ impl OwnHead {
     /// that names none or grows hair on the scalp (it takes the head it is
     /// grown on). An unreadable mesh is an error naming its file and line.
     pub fn of_style(style: &Style, style_path: &Path) -> Result<Option<Self>, ObjError> {
-        let Some(files) = style_head_files(style, style_path).filter(|_| !needs_head(style)) else {
+        let Some(files) = style_head_files(style, style_path) else {
             return Ok(None);
         };
         let drawn = load_mesh_obj(&files.drawn)?;

@@ -10,7 +10,6 @@ use glam::DVec3;
 use helixhair_render::HeadMesh;
 use helixhair_render::head_generate::default_head;
 
-use crate::head::groom::needs_head;
 use crate::head::of_style::{HeadFiles, OwnHead, style_head_files};
 
 use super::app_state::AppState;
@@ -45,9 +44,7 @@ impl StyleHead {
 
 /// The head meshes `doc`'s style names, if it names any it can use.
 fn wanted_head(doc: &StyleDoc) -> Option<HeadFiles> {
-    let style = doc.style();
-    let path = doc.path()?;
-    style_head_files(style, path).filter(|_| !needs_head(style))
+    style_head_files(doc.style(), doc.path()?)
 }
 
 /// The head `doc`'s style names, read, or the default head; an error
