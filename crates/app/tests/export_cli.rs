@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use helixhair_formats::{Format, ReadOptions, read};
-use support::inside::{inside_mesh, usda_last_head_pose};
+use support::inside::{inside_share, usda_last_head_pose};
 
 fn helixhair(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_helixhair"))
@@ -241,11 +241,7 @@ fn groomed_examples_simulated_by_sim_start_and_stay_out_of_the_head_they_grow_on
                 .flat_map(|c| c.points_m[1..c.points_m.len() - 1].iter())
                 .map(|p| rotation.transpose() * (p.as_dvec3() - offset))
                 .collect();
-            let inside = points
-                .iter()
-                .filter(|p| inside_mesh(**p, &head.mesh.positions, &head.mesh.indices))
-                .count();
-            let share = inside as f64 / points.len() as f64;
+            let (inside, share) = inside_share(&points, &head);
             assert!(
                 share < 0.01,
                 "{name} {when}: {inside} of {} points ({:.2}%) inside the head",

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use support::display::display;
-use support::inside::{inside_mesh, usda_last_head_pose};
+use support::inside::{inside_share, usda_last_head_pose};
 use support::sintel::sintel;
 use support::xdo::{find_window, open_window, xdotool};
 
@@ -157,12 +157,7 @@ fn sintel_imported_in_the_window_on_its_bust_exports_with_its_head() {
         // when it exports (lavapipe runs slower than real time).
         .map(|p| head_from_world.0 * (p - head_from_world.1))
         .collect();
-    let (positions, indices) = (&collider.mesh.positions, &collider.mesh.indices);
-    let within = points
-        .iter()
-        .filter(|p| inside_mesh(**p, positions, indices))
-        .count();
-    let share = within as f64 / points.len() as f64;
+    let (within, share) = inside_share(&points, &collider);
     assert!(
         share < 0.01,
         "{within} of {} hair points ({:.2}%) inside the collider",

@@ -2,10 +2,21 @@
 //! independent check of "hair inside the head" in `export_cli.rs` and
 //! `window_sintel.rs` (not the physics' own distance field).
 
+/// How many of `points` lie inside `head`'s mesh ([`inside_mesh`]), and
+/// their share of all of them.
+pub fn inside_share(points: &[glam::DVec3], head: &helixhair_render::HeadMesh) -> (usize, f64) {
+    let (positions, indices) = (&head.mesh.positions, &head.mesh.indices);
+    let inside = points
+        .iter()
+        .filter(|p| inside_mesh(**p, positions, indices))
+        .count();
+    (inside, inside as f64 / points.len().max(1) as f64)
+}
+
 /// Whether `p` lies inside the closed triangle mesh (`positions`,
 /// `indices`): a ray from it crosses the surface an odd number of times
 /// (Möller–Trumbore; the ray's direction avoids the mesh's axes).
-pub fn inside_mesh(p: glam::DVec3, positions: &[glam::Vec3], indices: &[u32]) -> bool {
+fn inside_mesh(p: glam::DVec3, positions: &[glam::Vec3], indices: &[u32]) -> bool {
     let d = glam::DVec3::new(1.0, 0.2345, 0.1234).normalize();
     let mut crossings = 0;
     for t in indices.chunks_exact(3) {
