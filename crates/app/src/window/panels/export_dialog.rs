@@ -29,6 +29,8 @@ pub struct ExportDialog {
     /// The clip a recording plays from its first frame (`None`: the head
     /// moves on as it moves now).
     pub clip: Option<Clip>,
+    /// Simulated seconds per recorded frame (the style's time step).
+    pub frame_secs: f64,
 }
 
 /// What the user did in the dialog this frame.
@@ -41,10 +43,10 @@ pub enum DialogAnswer {
     Go,
 }
 
-/// Frames a recording of `clip` takes by default: the clip and one second
-/// after it for the hair to settle, at 60 Hz.
-pub fn frames_for(clip: Clip) -> usize {
-    ((clip.duration_secs() + 1.0) * 60.0).ceil() as usize
+/// Frames of `frame_secs` a recording of `clip` takes by default: the
+/// clip and one second after it for the hair to settle.
+pub fn frames_for(clip: Clip, frame_secs: f64) -> usize {
+    ((clip.duration_secs() + 1.0) / frame_secs).ceil() as usize
 }
 
 /// Draws the dialog.
@@ -88,7 +90,7 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
                         let picked = ui.radio_value(&mut dialog.clip, Some(clip), clip.name());
                         if picked.clicked() {
                             // The whole clip and a second to settle.
-                            dialog.frames = frames_for(clip);
+                            dialog.frames = frames_for(clip, dialog.frame_secs);
                         }
                     }
                 });
@@ -105,4 +107,16 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
             });
         });
     answer
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_picked_clip_records_the_clip_and_a_second_at_the_styles_rate() {
+        // A shake lasts 4/3 s: with a second after it, 7/3 s of frames.
+        assert_eq!(frames_for(Clip::Shake, 1.0 / 60.0), 140);
+        assert_eq!(frames_for(Clip::Shake, 1.0 / 120.0), 280);
+    }
 }

@@ -156,6 +156,7 @@ pub fn export_dialog_for(app: &AppState, animation: bool) -> ExportDialog {
         points_per_strand: DEFAULT_POINTS_PER_STRAND,
         frames: DEFAULT_RECORD_FRAMES,
         clip: None,
+        frame_secs: app.sim.engine().settings().dt_secs,
     }
 }
 
