@@ -194,7 +194,7 @@ fn small_render<'a>(style: &'a str, frames: &'a str, out: &'a str) -> Vec<&'a st
 /// is written, but the summary warns and the run exits 1, unless
 /// `--accept-resets` accepts the result (as `helixhair sim` does).
 #[test]
-fn a_render_whose_strands_the_guard_reset_warns_and_fails_unless_accepted() {
+fn a_render_whose_block_diagonal_the_guard_hands_to_exact_says_so() {
     let dir = scratch_dir("render-resets");
     let out = dir.join("resets.png");
     let out = out.to_str().expect("UTF-8 path");
@@ -204,22 +204,19 @@ fn a_render_whose_strands_the_guard_reset_warns_and_fails_unless_accepted() {
     if skipped_for_lack_of_a_gpu(&output, "render-resets") {
         return;
     }
-    let text = describe(&output);
-    assert_eq!(output.status.code(), Some(1), "{text}");
-    assert!(
-        text.contains("warning: the stability guard reset"),
-        "{text}"
-    );
-    assert!(text.contains("--accept-resets"), "{text}");
-    assert!(Path::new(out).exists(), "the picture is still written");
-    args.push("--accept-resets");
-    let output = run_helixhair(&args);
+    // Block-diagonal cannot hold these 25 cm curls at 60 Hz: the batch
+    // guard re-steps their failing frames with Exact (issue 33), which is
+    // still a simulation of the style, so the render succeeds, and says in
+    // words what the user sees.
     let text = describe(&output);
     assert!(output.status.success(), "{text}");
     assert!(
-        text.contains("warning: the stability guard reset"),
+        text.contains("Block-diagonal could not hold this style"),
         "{text}"
     );
+    assert!(Path::new(out).exists(), "the picture is written");
+    args.push("--accept-resets");
+    assert!(run_helixhair(&args).status.success());
 }
 
 /// A head without a `scalp` group (issue 14, item 10) draws a style that

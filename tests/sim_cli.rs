@@ -756,11 +756,16 @@ fn bench_quick_writes_every_study_as_csv_and_svg() {
 /// the simulation asked for) unless `--accept-resets` accepts it.
 #[test]
 fn the_batch_engine_guard_resets_a_blow_up_and_reports_it() {
+    // Block-diagonal on the 30 cm straight example under a shake: the
+    // guard hands most failing frames to Exact, and a few that no retry
+    // up to 32 substeps holds are reset (issue 33's measure: 4 of 167).
     let args = [
         "--style",
-        "assets/styles/curly.ron",
+        "assets/styles/straight.ron",
         "--steps",
-        "120",
+        "300",
+        "--play",
+        "shake",
         "--engine",
         "batch",
         "--method",
@@ -778,11 +783,24 @@ fn the_batch_engine_guard_resets_a_blow_up_and_reports_it() {
     let count = report["guard"]["event_count"]
         .as_u64()
         .expect("an event count");
-    assert!(count > 0, "the guard should have reset strands");
-    let first = report["guard"]["events"][0]
-        .as_str()
-        .expect("an event sentence");
-    assert!(first.contains("reset to its rest shape"), "{first}");
+    assert!(count > 0, "the guard should have stepped in");
+    let events = report["guard"]["events"]
+        .as_array()
+        .expect("event sentences");
+    let said = |what: &str| {
+        events
+            .iter()
+            .any(|e| e.as_str().is_some_and(|e| e.contains(what)))
+    };
+    assert!(said("re-stepped the frame with exact"), "{events:?}");
+    assert!(said("reset"), "{events:?}");
+    assert!(
+        report["guard"]["block_handed_to_exact"]
+            .as_u64()
+            .is_some_and(|n| n > 0),
+        "{}",
+        report["guard"]
+    );
 }
 
 #[test]

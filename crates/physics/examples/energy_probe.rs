@@ -78,6 +78,7 @@ fn main() {
     let mut last = measure(
         &model,
         strand.q(),
+        strand.v(),
         &strand.kinematics(&motion),
         &motion,
         &inputs,
@@ -94,6 +95,7 @@ fn main() {
         let now = measure(
             &model,
             strand.q(),
+            strand.v(),
             &strand.kinematics(&motion),
             &motion,
             &inputs,

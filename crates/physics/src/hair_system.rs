@@ -15,8 +15,8 @@ use rayon::prelude::*;
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::energy::Energies;
 use crate::error::ParamError;
-use crate::frame_balance::{MeasureInputs, SteppedFrame, StrandMeasure};
-use crate::guard::{Guard, GuardAction, GuardEvent, GuardState};
+use crate::frame_balance::{KineticEnergy, MeasureInputs, SteppedFrame, StrandMeasure};
+use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -354,6 +354,26 @@ fn measure_at(s: &mut Strand, frame: &FrameInputs<'_>, t_secs: f64, h_secs: f64)
     )
 }
 
+/// [`Guard::check`] of a frame of `s` from `start` to `end`, by the
+/// energy the strand's current step conserves
+/// ([`crate::frame_balance::KineticEnergy`]).
+fn judge(
+    guard: &Guard,
+    s: &Strand,
+    start: &StrandMeasure,
+    end: &StrandMeasure,
+    frame: SteppedFrame,
+) -> Option<GuardCause> {
+    let kinetic = KineticEnergy::of(s.method(), s.scheme());
+    guard.check(
+        s.q(),
+        s.v(),
+        &start.judged_by(kinetic),
+        &end.judged_by(kinetic),
+        frame,
+    )
+}
+
 /// Steps strand `s` (index `index`) through one frame; with a guard, checks
 /// the result and recovers as [`crate::guard`] describes.
 fn guarded_frame(
@@ -394,7 +414,7 @@ fn guarded_frame(
         dt_secs: frame.dt_secs,
         substeps,
     };
-    let Some(cause) = guard.check(s.q(), s.v(), &start, &end, stepped(own)) else {
+    let Some(cause) = judge(&guard, s, &start, &end, stepped(own)) else {
         s.set_cached_measure(Some(end));
         s.set_guard_state(state);
         return FrameOutcome {
@@ -425,10 +445,7 @@ fn guarded_frame(
         s.restore_checkpoint(false);
         times.accumulate(&plain_frame(s, frame, substeps));
         let end = end_measure(s, frame);
-        if guard
-            .check(s.q(), s.v(), &start, &end, stepped(substeps))
-            .is_none()
-        {
+        if judge(&guard, s, &start, &end, stepped(substeps)).is_none() {
             s.set_cached_measure(Some(end));
             state.substeps = substeps;
             state.hold_frames = guard.hold_frames;

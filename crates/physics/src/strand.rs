@@ -110,7 +110,14 @@ impl Strand {
             root,
             &mut self.measure_kinematics,
         );
-        let mut out = measure(&self.model, &self.q, &self.measure_kinematics, root, inputs);
+        let mut out = measure(
+            &self.model,
+            &self.q,
+            &self.v,
+            &self.measure_kinematics,
+            root,
+            inputs,
+        );
         add_external(&mut out, &self.measure_kinematics, &self.external_n_per_m);
         if let Some(pull) = self.volume.pull(&self.model) {
             add_pull(&mut out, &self.model, &self.measure_kinematics, root, &pull);

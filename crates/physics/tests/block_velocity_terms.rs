@@ -209,3 +209,30 @@ fn block_diagonal_energy_never_grows_with_a_still_head() {
         }
     }
 }
+
+/// The guard's measure of Block-diagonal's own strain kinetic energy
+/// (suffix moments, O(N)) is ½ Σ q̇_Qᵀ M_QQ q̇_Q with the mass stage's
+/// diagonal blocks, at any head pose and motion (T_bd is the strain
+/// rates' alone).
+#[test]
+fn measured_block_kinetic_energy_is_the_diagonal_blocks() {
+    use helixhair_physics::step::block_velocity_terms::block_kinetic_energy_j;
+    for (seed, elements, curl) in [(31, 5, 60.0), (32, 9, 150.0), (33, 1, 0.0)] {
+        let mut rng = Rng::new(seed);
+        let m = model(&params(0.2, elements), 3);
+        let q = random_strains(&mut rng, elements, curl);
+        let v = random_strains(&mut rng, elements, 20.0);
+        let still = at_rest(rng.rotation());
+        let expected = block_kinetic(&m, &q, &v, &still);
+        let moving = RigidMotion {
+            velocity_m_per_s: rng.vec3(0.5),
+            angular_velocity_rad_per_s: rng.vec3(4.0),
+            ..still
+        };
+        for root in [still, moving] {
+            let got = block_kinetic_energy_j(&m, &kinematics(&m, &q, &v, &root), &v);
+            println!("seed {seed}: T_bd {got:.6e} against {expected:.6e}");
+            assert!((got - expected).abs() <= 1e-12 * expected, "seed {seed}");
+        }
+    }
+}

@@ -279,6 +279,15 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             args.out.display().to_string()
         },
     )?;
+    let handed = sim.handed_to_exact();
+    if handed > 0 {
+        writeln!(
+            stdout,
+            "  Block-diagonal could not hold this style at its time step: the guard stepped \
+             {handed} strand-frame(s) with Exact instead, and that is what the picture shows \
+             there (more substeps may let Block-diagonal hold it)"
+        )?;
+    }
     let lost = sim.strands_lost();
     if lost > 0 {
         writeln!(

@@ -8,11 +8,10 @@
 //! frame where it happened.
 //!
 //! The engine ([`helixhair_physics::engine`]) is the style's `engine` or `--engine`:
-//! the f64 reference (whose guard normally prevents a blow-up; what it did
-//! is kept, [`HeadlessSim::guard_events`], for the report) or the f32
-//! batch path, which runs only Exact and Block-diagonal and whose guard
-//! resets a failing strand to rest (its resets are kept as sentences,
-//! [`HeadlessSim::batch_resets`]).
+//! the f64 reference or the f32 batch path, which runs only Exact and
+//! Block-diagonal. Both guards re-step a failing strand with Exact and more
+//! substeps, then reset or pin it; what they did is kept
+//! ([`HeadlessSim::guard_events`]) for the report.
 //! A combination the engine cannot run is refused before anything is
 //! built, naming the option or field that asked for it
 //! ([`SimError::Conflict`]).
@@ -128,9 +127,9 @@ pub struct HeadlessSim {
     /// The point the head turns about ([`crate::head::of_style`]), metres.
     head_pivot_m: DVec3,
     strands_lost: usize,
+    handed_to_exact: usize,
     choices: Vec<Choice>,
     guard_events: Vec<GuardEvent>,
-    batch_resets: Vec<String>,
 }
 
 impl HeadlessSim {
@@ -139,6 +138,13 @@ impl HeadlessSim {
     /// with Exact or more substeps still is).
     pub fn strands_lost(&self) -> usize {
         self.strands_lost
+    }
+
+    /// How many strand-frames of a Block-diagonal run the guard stepped
+    /// with Exact instead, because Block-diagonal could not hold them:
+    /// what those frames show is Exact, and the user is told so.
+    pub fn handed_to_exact(&self) -> usize {
+        self.handed_to_exact
     }
 
     /// Plays `clip` on the head from time zero, then holds the head still
@@ -276,9 +282,9 @@ impl HeadlessSim {
             clip: None,
             head_pivot_m: DVec3::ZERO,
             strands_lost: 0,
+            handed_to_exact: 0,
             choices,
             guard_events: Vec::new(),
-            batch_resets: Vec::new(),
         })
     }
 
@@ -333,51 +339,29 @@ impl HeadlessSim {
             None => self.engine.step_frame(&self.head),
         }
         let secs = start.elapsed().as_secs_f64();
-        if let Some(reference) = self.engine.reference() {
-            let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
-            let events = reference.last_guard_events();
-            self.strands_lost += events
+        let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.guard_events.len());
+        let events = self.engine.last_guard_events();
+        self.strands_lost += events
+            .iter()
+            .filter(|e| matches!(e.action, GuardAction::Reset | GuardAction::Pinned))
+            .count();
+        if self.engine.settings().method == Method::BlockDiagonal {
+            self.handed_to_exact += events
                 .iter()
-                .filter(|e| matches!(e.action, GuardAction::Reset | GuardAction::Pinned))
+                .filter(|e| {
+                    matches!(
+                        e.action,
+                        GuardAction::Retried {
+                            method: Method::Exact,
+                            ..
+                        }
+                    )
+                })
                 .count();
-            self.guard_events
-                .extend_from_slice(&events[..events.len().min(room)]);
         }
-        if let Some(batch) = self.engine.batch() {
-            let room = MAX_KEPT_GUARD_EVENTS.saturating_sub(self.batch_resets.len());
-            let events = batch.last_guard_events();
-            self.strands_lost += events.len();
-            let on_exact = self.engine.settings().method == Method::Exact;
-            let sentences = events.iter().take(room).map(|event| {
-                // What failed and by how much, and what the batch guard
-                // did (it resets to the strand's rest pose, its natural
-                // shape unless told, not the last good one as the
-                // reference's events say).
-                let (strand, t, cause) = (event.strand, event.time_secs, event.cause);
-                let group = self.group_name(strand);
-                let action = match event.action {
-                    // Advice for what the run does not already use.
-                    GuardAction::Pinned if on_exact => {
-                        "it kept failing, so it was pinned at rest in its rest shape; it is \
-                         no longer simulated (try more substeps)"
-                    }
-                    GuardAction::Pinned => {
-                        "it kept failing, so it was pinned at rest in its rest shape; it is \
-                         no longer simulated (try more substeps or the Exact solver)"
-                    }
-                    _ => "it was reset to its rest shape",
-                };
-                format!("strand {strand} (group {group}) at t = {t:.4} s: {cause}; {action}")
-            });
-            self.batch_resets.extend(sentences.collect::<Vec<_>>());
-        }
+        self.guard_events
+            .extend_from_slice(&events[..events.len().min(room)]);
         secs
-    }
-
-    /// The first [`MAX_KEPT_GUARD_EVENTS`] resets of the batch engine's
-    /// guard, as sentences (empty on the reference engine).
-    pub fn batch_resets(&self) -> &[String] {
-        &self.batch_resets
     }
 
     /// Advances `steps` frames, checking the state after each; returns the

@@ -89,6 +89,9 @@ pub struct GuardReport {
     pub event_count: usize,
     /// The first events (at most `MAX_KEPT_GUARD_EVENTS`), as sentences.
     pub events: Vec<String>,
+    /// On a Block-diagonal run, how many strand-frames Block-diagonal
+    /// could not hold and the guard stepped with Exact instead.
+    pub block_handed_to_exact: usize,
 }
 
 /// Energies in joules, summed over strands.
@@ -237,21 +240,15 @@ impl SimReport {
                 })
                 .collect(),
             tip_trajectories: None,
-            guard: reference
-                .map(|r| GuardReport {
-                    event_count: r.guard_event_count(),
-                    events: sim
-                        .guard_events()
-                        .iter()
-                        .map(|e| format!("{e} (group {})", sim.group_name(e.strand)))
-                        .collect(),
-                })
-                .or_else(|| {
-                    sim.engine().batch().map(|b| GuardReport {
-                        event_count: b.guard_reset_count(),
-                        events: sim.batch_resets().to_vec(),
-                    })
-                }),
+            guard: Some(GuardReport {
+                block_handed_to_exact: sim.handed_to_exact(),
+                event_count: sim.engine().guard_event_count(),
+                events: sim
+                    .guard_events()
+                    .iter()
+                    .map(|e| format!("{e} (group {})", sim.group_name(e.strand)))
+                    .collect(),
+            }),
         }
     }
 
@@ -313,6 +310,15 @@ impl SimReport {
                 "  warning: the stability guard stepped in {} time(s); first: {}",
                 guard.event_count,
                 guard.events.first().map_or("", String::as_str)
+            );
+        }
+        if let Some(guard) = self.guard.as_ref().filter(|g| g.block_handed_to_exact > 0) {
+            let _ = writeln!(
+                out,
+                "  Block-diagonal could not hold this style at dt {} s x {} substep(s): the guard \
+                 stepped {} strand-frame(s) with Exact instead, and that is what they show (more \
+                 substeps may let Block-diagonal hold it)",
+                self.dt_secs, self.substeps, guard.block_handed_to_exact
             );
         }
         out

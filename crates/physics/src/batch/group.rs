@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::contact::{LaneContact, SkinTest};
 use super::forward::NoContact;
-use super::guard::{check_and_reset, measure_lanes, set_at_rest};
+use super::guard::{check_lanes, measure_lanes, set_at_rest};
 use super::lane_model::{Constants, LaneModel};
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
@@ -16,7 +16,7 @@ use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView, KeptSamples, carried};
 use crate::batch::step::{BatchStep, Scratch, step_pulled};
 use crate::batch::volume::pull::SamplePull;
-use crate::frame_balance::{SteppedFrame, StrandMeasure};
+use crate::frame_balance::{KineticEnergy, SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
 use crate::motion::{RigidMotion, RootPose};
 
@@ -46,7 +46,10 @@ pub(super) struct Group {
     /// reset, a new strand or a state set from outside).
     pub(super) measured: bool,
     /// Per batch: its lanes' standing with the guard.
-    standing: Vec<BatchStanding>,
+    pub(super) standing: Vec<BatchStanding>,
+    /// `q` and `v` at the start of the frame, where a retry starts from
+    /// ([`super::retry`]); stale with the guard off.
+    pub(super) checkpoint: (Vec<V3<Lanes>>, Vec<V3<Lanes>>),
     /// Per batch: its quadrature samples (position relative to the root,
     /// world velocity; N × nodes) as the guard's end-of-frame measure
     /// found them, kept for the hair–hair model's next gather; empty where
@@ -59,18 +62,53 @@ pub(super) struct Group {
 
 /// One batch's standing with the guard.
 #[derive(Clone, Copy, Debug, Default)]
-struct BatchStanding {
-    /// Per lane: what the last check found (`None`: passed, or not judged).
-    failed: [Option<GuardCause>; LANES],
+pub(super) struct BatchStanding {
+    /// Per lane: what the last check found (`None`: passed, or not judged)
+    /// and, once the retry has run, what the guard did about it.
+    pub(super) failed: [Option<(GuardCause, Option<GuardAction>)>; LANES],
+    /// Per lane: the measure its failed frame started from, which a retry
+    /// is judged against (set only where the lane failed).
+    pub(super) retry_from: [StrandMeasure; LANES],
     /// Per lane: its recent resets and whether the guard pinned it.
-    lanes: [LaneStanding; LANES],
+    pub(super) lanes: [LaneStanding; LANES],
+    /// Frames the batch still steps with the retry's solver after a
+    /// retry passed (the f64 guard's [`Guard::hold_frames`], per batch:
+    /// its lanes share one step).
+    pub(super) hold_frames: u32,
+    /// Whether the last frame stepped with the settings' own solver (not
+    /// held on the retry's).
+    pub(super) stepped_own: bool,
 }
 
 /// One strand's standing with the batch guard.
 #[derive(Clone, Copy, Debug, Default)]
-struct LaneStanding {
-    resets: ResetMemory,
-    pinned: bool,
+pub(super) struct LaneStanding {
+    pub(super) resets: ResetMemory,
+    pub(super) pinned: bool,
+}
+
+/// The steps a frame takes: the settings' own, and the retry's, which a
+/// batch also takes while it holds a retry ([`BatchStanding::hold_frames`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct StepKinds {
+    pub(super) own: BatchStep,
+    pub(super) retry: BatchStep,
+}
+
+impl StepKinds {
+    /// GMRES iterations the scratch must hold for either step.
+    pub(super) fn iterations(self) -> usize {
+        self.own.iterations().max(self.retry.iterations())
+    }
+
+    /// The step a batch takes with `standing`.
+    fn of(self, standing: &BatchStanding) -> BatchStep {
+        if standing.hold_frames > 0 {
+            self.retry
+        } else {
+            self.own
+        }
+    }
 }
 
 /// What the guard needs to judge a frame at its end, batch by batch, in
@@ -87,6 +125,8 @@ pub(super) struct FrameCheck<'a> {
     pub(super) contact: Option<SkinTest<'a>>,
     /// The frame's length and substeps.
     pub(super) frame: SteppedFrame,
+    /// The energy the frame's step conserves, which it is judged by.
+    pub(super) kinetic: KineticEnergy,
 }
 
 /// One batch's state, roots and constants, read only, with where its
@@ -129,6 +169,7 @@ impl Group {
             measures: Vec::new(),
             measured: false,
             standing: Vec::new(),
+            checkpoint: (Vec::new(), Vec::new()),
             kept_samples: Vec::new(),
             kept_at: None,
         }
@@ -186,6 +227,7 @@ impl Group {
         env: &StepEnv,
         contact: Option<&SkinTest<'_>>,
         pulls: Option<(&BatchVolume, usize)>,
+        kinetic: KineticEnergy,
         parallel: bool,
     ) {
         let n = self.n;
@@ -203,6 +245,7 @@ impl Group {
                 contact,
                 pull.as_ref(),
                 None,
+                kinetic,
             );
             for (lane, out) in out.iter_mut().enumerate() {
                 *out = measured.strand(lane);
@@ -230,6 +273,14 @@ impl Group {
         self.measured = true;
     }
 
+    /// Keeps the state as the start of the frame, where a retry starts
+    /// from: one copy of the state per frame, with the guard on.
+    pub(super) fn save_checkpoint(&mut self) {
+        let (q, v) = &mut self.checkpoint;
+        q.clone_from(&self.q);
+        v.clone_from(&self.v);
+    }
+
     /// The group as the hair–hair model's gather reads it: with the
     /// samples the last judgement kept, while they describe the state.
     pub(super) fn view(&self) -> GroupView<'_> {
@@ -252,38 +303,26 @@ impl Group {
     }
 
     /// Turns the last check's findings ([`FrameCheck`], made in the
-    /// frame's last substep) into the guard's record for the frame that
-    /// started at `start_secs`: appends an event per reset or pinned strand.
-    /// The measures stay the start of the next frame unless a strand was
-    /// reset.
-    pub(super) fn record_check(
-        &mut self,
-        guard: &Guard,
-        start_secs: f64,
-        events: &mut Vec<GuardEvent>,
-    ) {
+    /// frame's last substep) and what the retry did about them
+    /// ([`super::retry`]) into the guard's record for the frame that
+    /// started at `start_secs`: appends an event per strand the guard
+    /// re-stepped, reset or pinned. The measures stay the start of the
+    /// next frame unless the guard stepped in.
+    pub(super) fn record_check(&mut self, start_secs: f64, events: &mut Vec<GuardEvent>) {
         let before = events.len();
         for (batch, standing) in self.standing.iter_mut().enumerate() {
             let failed = std::mem::take(&mut standing.failed);
-            for (lane, (cause, standing)) in failed.into_iter().zip(&mut standing.lanes).enumerate()
-            {
-                standing.resets.tick();
-                // A pinned strand is held, not judged.
-                let Some(cause) = cause.filter(|_| !standing.pinned) else {
+            for (lane, found) in failed.into_iter().enumerate() {
+                let Some((cause, Some(action))) = found else {
                     continue;
                 };
-                standing.pinned = standing.resets.record_reset(guard);
-                // Padding lanes are reset too, but name no strand.
+                // Padding lanes are stepped and judged too, but name no strand.
                 if let Some(&strand) = self.strands.get(batch * LANES + lane) {
                     events.push(GuardEvent {
                         strand,
                         time_secs: start_secs,
                         cause,
-                        action: if standing.pinned {
-                            GuardAction::Pinned
-                        } else {
-                            GuardAction::Reset
-                        },
+                        action,
                     });
                 }
             }
@@ -303,7 +342,7 @@ impl Group {
         &mut self,
         motion: &RigidMotion,
         env: &StepEnv,
-        step_kind: BatchStep,
+        kinds: StepKinds,
         contact: Option<SkinTest<'_>>,
         pulls: Option<(&BatchVolume, usize)>,
         check: Option<&FrameCheck<'_>>,
@@ -318,20 +357,11 @@ impl Group {
             usize,
             BatchRef<'_>,
         )| {
-            let motions = carried(motion, roots);
-            let root = RootMotion::<Lanes>::gather(&motions);
+            let kind = kinds.of(standing);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            // One branch per batch: without a collider, the sweep has no
-            // contact stage at all.
-            match contact {
-                Some(test) => {
-                    let positions = std::array::from_fn(|i| motions[i].position_m);
-                    let implicit = step_kind != BatchStep::BlockDiagonal;
-                    let end_force = LaneContact::new(test, model, positions, implicit);
-                    step_pulled(model, env, &root, step_kind, q, v, scratch, end_force, pull);
-                }
-                None => step_pulled(model, env, &root, step_kind, q, v, scratch, NoContact, pull),
-            }
+            step_one_batch(
+                model, env, motion, roots, kind, contact, pull, q, v, scratch,
+            );
             if let Some(check) = check {
                 let rest_q = &rest_q[b * n..(b + 1) * n];
                 let batch = BatchState {
@@ -341,8 +371,7 @@ impl Group {
                     q,
                     v,
                 };
-                let judged = judge_batch(check, env, batch, measures, &standing.lanes, pull, kept);
-                standing.failed = judged;
+                judge_batch(check, env, batch, measures, standing, kind, pull, kept);
             }
         };
         if parallel {
@@ -356,12 +385,12 @@ impl Group {
                 .zip(self.kept_samples.par_iter_mut())
                 .enumerate()
                 .for_each(|batch| {
-                    Scratch::with_thread_scratch(n, step_kind.iterations(), |scratch| {
+                    Scratch::with_thread_scratch(n, kinds.iterations(), |scratch| {
                         step_batch(scratch, batch)
                     })
                 });
         } else {
-            Scratch::with_thread_scratch(n, step_kind.iterations(), |scratch| {
+            Scratch::with_thread_scratch(n, kinds.iterations(), |scratch| {
                 self.q
                     .chunks_mut(n)
                     .zip(self.v.chunks_mut(n))
@@ -380,6 +409,41 @@ impl Group {
     }
 }
 
+/// One step of `kind` of one batch (constants `model`, roots `roots`
+/// carried by the head moving as `motion`) with the head's `contact` and
+/// the hair–hair model's `pull`, where on.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's inputs and buffers, passed through"
+)]
+#[inline(always)]
+pub(super) fn step_one_batch(
+    model: &LaneModel,
+    env: &StepEnv,
+    motion: &RigidMotion,
+    roots: &[RootPose],
+    kind: BatchStep,
+    contact: Option<SkinTest<'_>>,
+    pull: Option<SamplePull<'_>>,
+    q: &mut [V3<Lanes>],
+    v: &mut [V3<Lanes>],
+    scratch: &mut Scratch,
+) {
+    let motions = carried(motion, roots);
+    let root = RootMotion::<Lanes>::gather(&motions);
+    // One branch per batch: without a collider, the sweep has no contact
+    // stage at all.
+    match contact {
+        Some(test) => {
+            let positions = std::array::from_fn(|i| motions[i].position_m);
+            let implicit = kind != BatchStep::BlockDiagonal;
+            let end_force = LaneContact::new(test, model, positions, implicit);
+            step_pulled(model, env, &root, kind, q, v, scratch, end_force, pull);
+        }
+        None => step_pulled(model, env, &root, kind, q, v, scratch, NoContact, pull),
+    }
+}
+
 /// One batch as the guard's end-of-frame judgement takes it.
 struct BatchState<'a> {
     model: &'a LaneModel,
@@ -390,26 +454,32 @@ struct BatchState<'a> {
     v: &'a mut [V3<Lanes>],
 }
 
-/// The guard's end of a frame for one batch that has just stepped: holds
-/// its pinned lanes at rest, measures every lane at the end of the frame,
-/// checks each against its start `measures` (which then become the end's)
-/// and resets the lanes that fail; returns, per lane, what failed. With the
-/// hair–hair model on (`pull`), the measure's samples are kept in `kept`
-/// for the model's next gather (emptied if a lane is reset: they no
-/// longer describe it, and the gather sweeps that batch itself). Not
-/// inlined: folded into the step's closure it made the whole step twice as
-/// slow (one function too large for the compiler to keep the step's lanes
-/// in registers), guard on or off.
+/// The guard's end of a frame for one batch that has just stepped with
+/// `kind`: holds its pinned lanes at rest, measures every lane at the end
+/// of the frame, checks each against its start `measures` (which then
+/// become the end's) by the energy `kind` conserves, and notes in
+/// `standing` what failed and the measure it started from, for the retry
+/// ([`super::retry`]). With the hair–hair model on (`pull`), the
+/// measure's samples are kept in `kept` for the model's next gather
+/// (emptied if a lane failed: the retry changes it, and the gather sweeps
+/// that batch itself). Not inlined: folded into the step's closure it made
+/// the whole step twice as slow (one function too large for the compiler
+/// to keep the step's lanes in registers), guard on or off.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the batch, its standing, the step it took and the model's samples"
+)]
 #[inline(never)]
 fn judge_batch(
     check: &FrameCheck<'_>,
     env: &StepEnv,
     batch: BatchState<'_>,
     measures: &mut [StrandMeasure; LANES],
-    standing: &[LaneStanding; LANES],
+    standing: &mut BatchStanding,
+    kind: BatchStep,
     pull: Option<SamplePull<'_>>,
     kept: &mut Vec<[V3<Lanes>; 2]>,
-) -> [Option<GuardCause>; LANES] {
+) {
     let BatchState {
         model,
         roots,
@@ -417,7 +487,12 @@ fn judge_batch(
         q,
         v,
     } = batch;
-    for (lane, _) in standing.iter().enumerate().filter(|(_, s)| s.pinned) {
+    standing.stepped_own = standing.hold_frames == 0;
+    standing.hold_frames = standing.hold_frames.saturating_sub(1);
+    for lane in &mut standing.lanes {
+        lane.resets.tick();
+    }
+    for (lane, _) in standing.lanes.iter().enumerate().filter(|(_, s)| s.pinned) {
         set_at_rest(q, v, lane, lane_of(rest_q, lane));
     }
     let motions = carried(check.motion, roots);
@@ -437,10 +512,29 @@ fn judge_batch(
         contact,
         pull.as_ref(),
         samples,
+        check.kinetic,
     );
-    let failed = check_and_reset(check.guard, rest_q, q, v, measures, &end, check.frame);
-    if pull.is_none() || failed.iter().any(Option::is_some) {
+    let judged_by = if kind == BatchStep::BlockDiagonal {
+        check.kinetic
+    } else {
+        KineticEnergy::True
+    };
+    let failed = check_lanes(
+        check.guard,
+        q,
+        v,
+        measures,
+        &mut standing.retry_from,
+        &end,
+        check.frame,
+        judged_by,
+    );
+    for (lane, cause) in failed.into_iter().enumerate() {
+        // A pinned strand is held, not judged.
+        let cause = cause.filter(|_| !standing.lanes[lane].pinned);
+        standing.failed[lane] = cause.map(|cause| (cause, None));
+    }
+    if pull.is_none() || standing.failed.iter().any(Option::is_some) {
         kept.clear();
     }
-    failed
 }

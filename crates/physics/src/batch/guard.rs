@@ -40,15 +40,16 @@ use std::cell::RefCell;
 
 use glam::DVec3;
 
+use super::block_kinetic::{BlockKinetic, BlockKineticBuffer};
 use super::forward::{FrameState, sweep_samples};
 use super::lane_model::Constants;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
-use super::vec::{V3, lane_of, set_lane};
+use super::vec::{V3, set_lane};
 use crate::batch::contact::lane_screen::LaneScreen;
 use crate::batch::contact::near_cells::SkinTest;
 use crate::batch::volume::pull::{RootVelocity, SamplePull, add_pull_work};
-use crate::frame_balance::{SteppedFrame, StrandMeasure};
+use crate::frame_balance::{KineticEnergy, SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
 
@@ -67,7 +68,7 @@ pub fn speed_bound_m_per_s(model: &impl Constants<Lanes>, v: &[V3<Lanes>]) -> La
 }
 
 /// Per lane, whether every value of `values` is finite.
-fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
+pub(super) fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
     let zero = Lanes::splat(0.0);
     let mut nan_if_not = zero;
     for x in values {
@@ -83,6 +84,8 @@ pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
 thread_local! {
     /// Each thread's buffer of element end points for [`measure_lanes`].
     static KEPT_ENDS: RefCell<Vec<(V3<Lanes>, V3<Lanes>)>> = const { RefCell::new(Vec::new()) };
+    /// Each thread's buffer for Block-diagonal's kinetic energy.
+    static KEPT_BLOCK: RefCell<BlockKineticBuffer<Lanes>> = RefCell::new(BlockKineticBuffer::default());
 }
 
 /// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
@@ -108,6 +111,7 @@ pub fn measure_lanes<'a>(
     contact: Option<&SkinTest<'_>>,
     pull: Option<&SamplePull<'_>>,
     mut samples: Option<&mut [[V3<Lanes>; 2]]>,
+    judged_by: KineticEnergy,
 ) -> LaneMeasures<'a> {
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
@@ -115,6 +119,7 @@ pub fn measure_lanes<'a>(
     let air = V3::splat(env.air_velocity_m_per_s);
     let zero = Lanes::splat(0.0);
     let (mut kinetic, mut elastic, mut power, mut fastest_squared) = (zero, zero, zero, zero);
+    let mut strain_kinetic = zero;
     let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
         (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
     let (mut mass, mut second_moment) = (zero, zero);
@@ -126,12 +131,20 @@ pub fn measure_lanes<'a>(
     let mut ends = KEPT_ENDS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
     ends.clear();
     let carried = RootVelocity::of(root);
+    // Block-diagonal's own kinetic energy, only where a frame is judged by it.
+    let block = (judged_by == KineticEnergy::BlockDiagonal).then(|| {
+        let buffer = KEPT_BLOCK.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
+        RefCell::new(BlockKinetic::new(FrameState::at_root(root), buffer))
+    });
     let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
         if let Some(kept) = samples.as_deref_mut() {
             kept[e * nodes + j] = [r, vel];
         }
         let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
         let w_mass = w_len * rho_s;
+        if let Some(block) = &block {
+            block.borrow_mut().sample(w_mass, r, vel);
+        }
         kinetic = (vel.dot(vel) * w_mass).mul_add(Lanes::splat(0.5), kinetic);
         momentum = vel.scale_add(w_mass, momentum);
         angular = r.cross(vel).scale_add(w_mass, angular);
@@ -139,6 +152,7 @@ pub fn measure_lanes<'a>(
         mass += w_mass;
         second_moment = r.dot(r).mul_add(w_mass, second_moment);
         let rel = vel - carried.at(r);
+        strain_kinetic = (rel.dot(rel) * w_mass).mul_add(Lanes::splat(0.5), strain_kinetic);
         if let Some(pull) = pull {
             let sums = (&mut force, &mut torque, &mut power);
             add_pull_work(pull, e, j, r, (vel, rel), w_len, sums);
@@ -154,8 +168,16 @@ pub fn measure_lanes<'a>(
         if contact.is_some() {
             ends.push((s.point_m, s.point_velocity));
         }
+        if let Some(block) = &block {
+            block.borrow_mut().element_end(s);
+        }
     };
     sweep_samples(model, root, q, v, sample, element_end);
+    let block_kinetic = block.map_or(zero, |block| {
+        let (t, buffer) = block.into_inner().finish();
+        KEPT_BLOCK.with(|kept| *kept.borrow_mut() = buffer);
+        t
+    });
     // Gravity and drag, summed from the sums above: the drag per unit
     // length is ν (ṙ − v_air) = (ν/ρS) ρS (ṙ − v_air), so its force,
     // torque and power over the samples are (ν/ρS) times those of the
@@ -172,6 +194,8 @@ pub fn measure_lanes<'a>(
     KEPT_ENDS.with(|kept| *kept.borrow_mut() = ends);
     LaneMeasures {
         kinetic,
+        strain_kinetic,
+        block_kinetic,
         elastic,
         power,
         mass,
@@ -194,6 +218,8 @@ pub fn measure_lanes<'a>(
 #[derive(Clone, Copy, Debug)]
 pub struct LaneMeasures<'a> {
     kinetic: Lanes,
+    strain_kinetic: Lanes,
+    block_kinetic: Lanes,
     elastic: Lanes,
     power: Lanes,
     fastest: Lanes,
@@ -222,6 +248,8 @@ impl LaneMeasures<'_> {
         let (kinetic, elastic) = (x(self.kinetic), x(self.elastic));
         StrandMeasure {
             kinetic_j: kinetic,
+            strain_kinetic_j: x(self.strain_kinetic),
+            block_kinetic_j: x(self.block_kinetic),
             energy_j: kinetic + elastic + gravity_j,
             size_j: kinetic + elastic + relative_gravity_j.abs(),
             momentum: x3(self.momentum),
@@ -309,19 +337,24 @@ fn lanes_in_contact(
 }
 
 /// Checks one batch (`q`, `v`: N triples each) whose lanes started the
-/// frame measured as `measures` and ended it as `end`, and leaves the end's
-/// measures in `measures`; resets each failing lane to its rest pose
-/// `rest_q` (its natural strains unless told, [`crate::Strand::rest_pose`])
-/// at rest. Returns, per lane, what failed (`None`: the lane passed), as
-/// the f64 guard names it.
-pub fn check_and_reset(
+/// frame measured as `measures` and ended it as `end`, by the energy of
+/// the dynamics `judged_by`, and leaves the end's measures in `measures`;
+/// a failing lane's start measure goes to `retry_from`, which its retry
+/// is judged against ([`super::retry`]). Returns, per lane, what failed
+/// (`None`: the lane passed), as the f64 guard names it.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the batch, both ends' measures, the frame and its dynamics"
+)]
+pub fn check_lanes(
     guard: &Guard,
-    rest_q: &[V3<Lanes>],
-    q: &mut [V3<Lanes>],
-    v: &mut [V3<Lanes>],
+    q: &[V3<Lanes>],
+    v: &[V3<Lanes>],
     measures: &mut [StrandMeasure; LANES],
+    retry_from: &mut [StrandMeasure; LANES],
     end: &LaneMeasures<'_>,
     frame: SteppedFrame,
+    judged_by: KineticEnergy,
 ) -> [Option<GuardCause>; LANES] {
     let finite_q = finite_lanes(q);
     let finite_v = finite_lanes(v);
@@ -329,14 +362,15 @@ pub fn check_and_reset(
     for (lane, (start, failed)) in measures.iter_mut().zip(&mut failed).enumerate() {
         let end = end.strand(lane);
         *failed = if finite_q[lane] && finite_v[lane] {
-            guard.check_with_round_off(&[], &[], start, &end, frame, F32_ENERGY_ROUND_OFF)
+            let (from, to) = (start.judged_by(judged_by), end.judged_by(judged_by));
+            guard.check_with_round_off(&[], &[], &from, &to, frame, F32_ENERGY_ROUND_OFF)
         } else {
             Some(GuardCause::NotFinite)
         };
+        if failed.is_some() {
+            retry_from[lane] = *start;
+        }
         *start = end;
-    }
-    for (lane, _) in failed.iter().enumerate().filter(|(_, f)| f.is_some()) {
-        set_at_rest(q, v, lane, lane_of(rest_q, lane));
     }
     failed
 }

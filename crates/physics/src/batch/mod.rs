@@ -107,6 +107,7 @@
 //! `tests/batch_volume.rs` (its known answers, and agreement with the
 //! reference running it).
 
+pub mod block_kinetic;
 pub mod contact;
 pub mod forward;
 pub mod geometry;
@@ -115,6 +116,7 @@ pub mod guard;
 pub mod lane_model;
 pub mod lanes;
 pub mod layout;
+mod retry;
 pub mod step;
 pub mod suffix;
 mod system;

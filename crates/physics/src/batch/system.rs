@@ -23,17 +23,18 @@ use glam::{DVec3, Vec3};
 
 use super::contact::{NearCells, SkinTest};
 use super::forward::{FrameState, advance};
-use super::group::{FrameCheck, Group};
+use super::group::{FrameCheck, Group, StepKinds};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
+use super::retry::RetryInputs;
 use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView};
 use crate::batch::step::exact::Elimination;
 use crate::batch::step::{BatchStep, krylov_bytes_per_element};
-use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
+use crate::collision::{ContactSettings, SignedDistanceField};
 use crate::error::ParamError;
-use crate::frame_balance::SteppedFrame;
+use crate::frame_balance::{KineticEnergy, SteppedFrame};
 use crate::guard::{Guard, GuardAction, GuardEvent};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -66,6 +67,8 @@ pub struct BatchSystem {
     last_pins: Vec<usize>,
     last_events: Vec<GuardEvent>,
     reset_count: usize,
+    /// Every intervention since the system was built.
+    event_count: usize,
     /// The hair–hair model, when on ([`super::volume`]).
     volume: Option<BatchVolume>,
 }
@@ -100,6 +103,7 @@ impl BatchSystem {
             last_pins: Vec::new(),
             last_events: Vec::new(),
             reset_count: 0,
+            event_count: 0,
             volume: interaction.enabled.then(|| BatchVolume::new(interaction)),
         })
     }
@@ -267,6 +271,12 @@ impl BatchSystem {
         self.reset_count
     }
 
+    /// How many times the guard stepped in (retries, resets and pins)
+    /// since the system was built.
+    pub fn guard_event_count(&self) -> usize {
+        self.event_count
+    }
+
     /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
     /// along `head`, root motion sampled at the start of each substep. With
     /// the guard on, strands that fail its checks are reset at rest.
@@ -277,7 +287,11 @@ impl BatchSystem {
             gravity_m_per_s2: self.settings.gravity_m_per_s2.as_vec3().to_array(),
             air_velocity_m_per_s: self.settings.air_velocity_m_per_s.as_vec3().to_array(),
         };
-        let step_kind = BatchStep::of(&self.settings);
+        let kinds = StepKinds {
+            own: BatchStep::of(&self.settings),
+            retry: BatchStep::retry_of(&self.settings),
+        };
+        let kinetic = KineticEnergy::of(self.settings.method, self.settings.scheme);
         let start_secs = self.time_secs;
         if let Some(volume) = &mut self.volume {
             let views: Vec<GroupView<'_>> = self.groups.iter().map(Group::view).collect();
@@ -286,11 +300,13 @@ impl BatchSystem {
         let volume = self.volume.as_ref();
         if self.guard.is_some() {
             let motion = head.motion_at(start_secs);
-            let contact = contact_test(&self.collider, self.contact, &motion, h);
+            let contact = SkinTest::of_head(&self.collider, self.contact, &motion, h);
             for (i, group) in self.groups.iter_mut().enumerate() {
+                group.save_checkpoint();
                 if !group.measured {
                     let pulls = volume.map(|v| (v, i));
-                    group.measure(&motion, &env, contact.as_ref(), pulls, self.parallel);
+                    let contact = contact.as_ref();
+                    group.measure(&motion, &env, contact, pulls, kinetic, self.parallel);
                 } else if let Some(volume) = volume {
                     // The model's pull is new each frame: the reused
                     // measure counts its work instead of the old one's.
@@ -300,7 +316,7 @@ impl BatchSystem {
         }
         for substep in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
-            let contact = contact_test(&self.collider, self.contact, &motion, h);
+            let contact = SkinTest::of_head(&self.collider, self.contact, &motion, h);
             let end_secs = self.time_secs + h;
             // The guard judges the frame in its last substep's pass.
             let last = substep + 1 == self.settings.substeps;
@@ -309,24 +325,17 @@ impl BatchSystem {
             let check = check.map(|(guard, motion)| FrameCheck {
                 guard,
                 motion,
-                contact: contact_test(&self.collider, self.contact, motion, h),
+                contact: SkinTest::of_head(&self.collider, self.contact, motion, h),
                 frame: SteppedFrame {
                     dt_secs: self.settings.dt_secs,
                     substeps: self.settings.substeps,
                 },
+                kinetic,
             });
             for (i, group) in self.groups.iter_mut().enumerate() {
                 let pulls = volume.map(|v| (v, i));
                 let check = check.as_ref();
-                group.step(
-                    &motion,
-                    &env,
-                    step_kind,
-                    contact,
-                    pulls,
-                    check,
-                    self.parallel,
-                );
+                group.step(&motion, &env, kinds, contact, pulls, check, self.parallel);
             }
             self.time_secs = end_secs;
         }
@@ -335,15 +344,32 @@ impl BatchSystem {
         self.last_pins.clear();
         self.last_events.clear();
         if let Some(guard) = &self.guard {
-            for group in &mut self.groups {
-                group.record_check(guard, start_secs, &mut self.last_events);
+            let frame = SteppedFrame {
+                dt_secs: self.settings.dt_secs,
+                substeps: self.settings.substeps,
+            };
+            for (i, group) in self.groups.iter_mut().enumerate() {
+                group.retry_failed(&RetryInputs {
+                    guard,
+                    head,
+                    start_secs,
+                    frame,
+                    env,
+                    kinds,
+                    measured: kinetic,
+                    collider: &self.collider,
+                    contact: self.contact,
+                    pulls: volume.map(|v| (v, i)),
+                });
+                group.record_check(start_secs, &mut self.last_events);
             }
             // Groups are by element count, not by index: events in index order.
             self.last_events.sort_by_key(|event| event.strand);
             for event in &self.last_events {
                 match event.action {
                     GuardAction::Pinned => self.last_pins.push(event.strand),
-                    _ => self.last_resets.push(event.strand),
+                    GuardAction::Reset => self.last_resets.push(event.strand),
+                    GuardAction::Retried { .. } => {}
                 }
             }
         } else {
@@ -355,6 +381,7 @@ impl BatchSystem {
             }
         }
         self.reset_count += self.last_resets.len() + self.last_pins.len();
+        self.event_count += self.last_events.len();
     }
 
     /// Strand `index`'s group, batch and lane (panics if out of range).
@@ -485,22 +512,4 @@ pub struct LaneUse {
     pub strands: usize,
     /// Lanes of padding (computed and ignored).
     pub padding: usize,
-}
-
-/// The contact test for the head moving as `motion`, if a collider is set.
-fn contact_test<'a>(
-    collider: &'a Option<(Arc<SignedDistanceField>, NearCells)>,
-    settings: ContactSettings,
-    motion: &'a RigidMotion,
-    h_secs: f64,
-) -> Option<SkinTest<'a>> {
-    collider.as_ref().map(|(collider, near)| {
-        let inputs = ContactInputs {
-            collider,
-            head: motion,
-            settings,
-            h_secs,
-        };
-        SkinTest::new(inputs, near)
-    })
 }

@@ -296,6 +296,23 @@ impl Engine {
         }
     }
 
+    /// What the stability guard did in the last frame, on either engine
+    /// (the same policy: [`crate::guard`]).
+    pub fn last_guard_events(&self) -> &[crate::guard::GuardEvent] {
+        match self {
+            Self::Reference(system) => system.last_guard_events(),
+            Self::Batch { system, .. } => system.last_guard_events(),
+        }
+    }
+
+    /// How many times the guard stepped in since the engine was built.
+    pub fn guard_event_count(&self) -> usize {
+        match self {
+            Self::Reference(system) => system.guard_event_count(),
+            Self::Batch { system, .. } => system.guard_event_count(),
+        }
+    }
+
     /// Whether every strand's state is finite.
     pub fn is_finite(&self) -> bool {
         match self {

@@ -281,12 +281,9 @@ impl LiveSim {
         self.engine.reference().map(|s| s.last_stage_times())
     }
 
-    /// What the guard did in the last frame (nothing on the batch engine,
-    /// which has no guard).
+    /// What the guard did in the last frame, on either engine.
     pub fn guard_events(&self) -> &[GuardEvent] {
-        self.engine
-            .reference()
-            .map_or(&[], |s| s.last_guard_events())
+        self.engine.last_guard_events()
     }
 
     /// Energies of the current state; `None` on the batch engine (they

@@ -321,10 +321,6 @@ impl AppState {
         self.readouts
             .record_physics(sample, self.sim.guard_events(), &label);
         let guard = self.sim.guard_frame();
-        if self.sim.kind() == EngineKind::Batch {
-            let now = self.sim.now_secs();
-            self.readouts.record_batch_losses(&guard.lost, now, &label);
-        }
         self.guard.record(self.doc.style(), &guard);
         if let Some((right, m)) = &self.compare {
             let events = right.guard_events().to_vec();

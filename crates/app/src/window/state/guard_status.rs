@@ -34,17 +34,11 @@ impl LiveSim {
     /// What the guard did in the last frame, on either engine.
     pub fn guard_frame(&self) -> GuardFrame {
         let mut frame = GuardFrame::default();
-        if let Some(reference) = self.engine().reference() {
-            for e in reference.last_guard_events() {
-                match e.action {
-                    GuardAction::Retried { .. } => frame.retried.push(e.strand),
-                    GuardAction::Reset | GuardAction::Pinned => frame.lost.push(e.strand),
-                }
+        for e in self.engine().last_guard_events() {
+            match e.action {
+                GuardAction::Retried { .. } => frame.retried.push(e.strand),
+                GuardAction::Reset | GuardAction::Pinned => frame.lost.push(e.strand),
             }
-        }
-        if let Some(batch) = self.engine().batch() {
-            frame.lost.extend(batch.last_guard_resets());
-            frame.lost.extend(batch.last_guard_pins());
         }
         frame
     }
@@ -105,6 +99,19 @@ impl GuardStatus {
                  style asks for. {advice}",
                 plural(self.lost_strands.len(), "strand"),
                 self.losses,
+                self.retries
+            ));
+        }
+        let on_block = self
+            .style
+            .as_ref()
+            .is_some_and(|s| s.sim.method == Method::BlockDiagonal);
+        if self.retries > 0 && on_block {
+            return Some(format!(
+                "Stability guard: Block-diagonal could not hold {} at this time step, so the \
+                 guard stepped them with Exact {} times: where it did, what you see is Exact. \
+                 More substeps may let Block-diagonal hold them.",
+                plural(self.retried_strands.len(), "strand"),
                 self.retries
             ));
         }
@@ -169,6 +176,29 @@ mod tests {
         let sentence = status.sentence().unwrap();
         assert!(
             sentence.contains("re-stepped 2 strands 2 times"),
+            "{sentence}"
+        );
+    }
+
+    /// Issue #33: where Block-diagonal could not hold strands and the guard
+    /// stepped them with Exact, the sentence says so: what the user sees
+    /// there is Exact, not the solver they chose.
+    #[test]
+    fn a_block_style_handed_to_exact_says_so() {
+        let mut style = default_style(4);
+        style.sim.method = Method::BlockDiagonal;
+        let mut status = GuardStatus::default();
+        status.record(
+            &style,
+            &GuardFrame {
+                retried: vec![0, 3],
+                lost: vec![],
+            },
+        );
+        let sentence = status.sentence().unwrap();
+        assert!(
+            sentence.contains("Block-diagonal could not hold 2 strands")
+                && sentence.contains("stepped them with Exact 2 times"),
             "{sentence}"
         );
     }

@@ -75,22 +75,6 @@ impl Readouts {
         }
     }
 
-    /// Records the batch engine's guard resets and pins of the last
-    /// frame (strand indices; that guard has no retries and no causes).
-    pub fn record_batch_losses(&mut self, strands: &[usize], time_secs: f64, label: &str) {
-        for strand in strands {
-            self.guard_total += 1;
-            push_capped(
-                &mut self.guard_log,
-                format!(
-                    "{label} t = {time_secs:.2} s: strand {strand} failed the batch guard's \
-                     checks and was reset to rest (or pinned)"
-                ),
-                GUARD_LOG_LINES,
-            );
-        }
-    }
-
     /// Mean frame time over the last `n` frames, seconds.
     pub fn mean_frame_secs(&self, n: usize) -> Option<f64> {
         mean(self.frames_secs.iter().rev().take(n).copied())

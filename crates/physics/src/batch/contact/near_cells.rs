@@ -12,7 +12,10 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::collision::{ContactInputs, SignedDistanceField};
+use std::sync::Arc;
+
+use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
+use crate::motion::RigidMotion;
 
 /// The eight corners of a grid cell, as offsets.
 const CELL_CORNERS: [(usize, usize, usize); 8] = [
@@ -157,6 +160,26 @@ impl<'a> SkinTest<'a> {
             near,
             body_from_world: inputs.head.world_from_body.transpose(),
         }
+    }
+
+    /// The test for the head moving as `motion`, with the step length
+    /// `h_secs` the contact's stiffness is set for; `None` without a
+    /// `collider` (with its near cells).
+    pub fn of_head(
+        collider: &'a Option<(Arc<SignedDistanceField>, NearCells)>,
+        settings: ContactSettings,
+        motion: &'a RigidMotion,
+        h_secs: f64,
+    ) -> Option<Self> {
+        collider.as_ref().map(|(collider, near)| {
+            let inputs = ContactInputs {
+                collider,
+                head: motion,
+                settings,
+                h_secs,
+            };
+            Self::new(inputs, near)
+        })
     }
 
     /// Whether the point at `point_m` (world) can feel the collider: false

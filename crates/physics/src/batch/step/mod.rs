@@ -96,6 +96,15 @@ impl BatchStep {
         }
     }
 
+    /// The step the guard retries a failing frame with: Exact, with the
+    /// settings' velocity terms ([`crate::batch::retry`]).
+    pub(super) fn retry_of(settings: &SimSettings) -> Self {
+        Self::of(&SimSettings {
+            method: Method::Exact,
+            ..*settings
+        })
+    }
+
     /// GMRES iterations the scratch must hold.
     pub(super) fn iterations(self) -> usize {
         match self {
