@@ -39,6 +39,7 @@ pub mod error;
 pub mod fit;
 pub mod frame_balance;
 pub mod geometry;
+pub mod gmres;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod guard;

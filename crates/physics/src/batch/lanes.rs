@@ -35,6 +35,9 @@ pub trait Real:
     const WIDTH: usize;
     /// The same value in every lane.
     fn splat(x: f32) -> Self;
+    /// The same value in every lane, from an f64 constant: rounded once to
+    /// the type's own precision (kept exact by `f64`).
+    fn splat_f64(x: f64) -> Self;
     /// Lane `i` from `f(i)`, for `i` in `0..WIDTH`.
     fn from_fn(f: impl Fn(usize) -> f32) -> Self;
     /// The value of lane `i`.
@@ -64,6 +67,10 @@ impl Real for f32 {
     #[inline(always)]
     fn splat(x: f32) -> Self {
         x
+    }
+    #[inline(always)]
+    fn splat_f64(x: f64) -> Self {
+        x as f32
     }
     #[inline(always)]
     fn from_fn(f: impl Fn(usize) -> f32) -> Self {
@@ -119,6 +126,10 @@ impl Real for f64 {
     #[inline(always)]
     fn splat(x: f32) -> Self {
         x as f64
+    }
+    #[inline(always)]
+    fn splat_f64(x: f64) -> Self {
+        x
     }
     #[inline(always)]
     fn from_fn(f: impl Fn(usize) -> f32) -> Self {
@@ -249,6 +260,10 @@ impl Real for Lanes {
     #[inline(always)]
     fn splat(x: f32) -> Self {
         Lanes(f32x8::splat(x))
+    }
+    #[inline(always)]
+    fn splat_f64(x: f64) -> Self {
+        Lanes(f32x8::splat(x as f32))
     }
     #[inline(always)]
     fn from_fn(f: impl Fn(usize) -> f32) -> Self {

@@ -32,7 +32,10 @@ use std::time::Instant;
 
 use glam::{DMat3, DVec3};
 
+use crate::batch::vec::V3;
 use crate::geometry::helix::outer;
+use crate::gmres;
+pub use crate::gmres::GMRES_TOLERANCE;
 use crate::model::StrandModel;
 use crate::settings::{Method, StepScheme};
 use crate::step::block_velocity_terms::BlockVelocityTerms;
@@ -92,7 +95,7 @@ pub struct StepWorkspace {
     pub scheme: StepScheme,
     velocity_terms: VelocityTerms,
     block_terms: BlockVelocityTerms,
-    krylov: Krylov,
+    gmres: GmresBridge,
     contact_weights: Vec<(usize, DMat3)>,
     step_mass: MassData,
     velocity_product: Vec<DVec3>,
@@ -113,7 +116,7 @@ impl StepWorkspace {
             scheme: StepScheme::default(),
             velocity_terms: VelocityTerms::default(),
             block_terms: BlockVelocityTerms::default(),
-            krylov: Krylov::default(),
+            gmres: GmresBridge::default(),
             contact_weights: Vec::new(),
             step_mass: MassData::default(),
             velocity_product: Vec::new(),
@@ -291,21 +294,10 @@ fn dense_velocity_matrix(
 }
 
 /// The velocity-implicit solve (P + hG) Δv = rhs for the O(N) solvers:
-/// GMRES, right-preconditioned by the solver's own P = s M̃ + D (+ contact),
-/// matrix-free, at most `corrections` iterations, from Δv₀ = P⁻¹ rhs.
-///
-/// Why GMRES and not plain Richardson (Δv ← P⁻¹(rhs − h G Δv)): both cost
-/// one product G x and one solve with P per iteration, but Richardson
-/// diverges where the spectral radius of P⁻¹hG passes 1, which long coiled
-/// strands reach (measured: a 0.66 m curl kept gaining energy with 8
-/// Richardson corrections, which Dense's exact solve never did); GMRES
-/// minimises the residual over the Krylov space instead.
-///
-/// How: with Δv₀ = P⁻¹ rhs the residual is r₀ = −h G Δv₀. Arnoldi runs on
-/// A P⁻¹, and since P z = v exactly, A z = v + h G z needs no product with
-/// P. The small least-squares problem is kept triangular by Givens
-/// rotations, so the residual norm is known at every iteration; the loop
-/// stops once it is below [`GMRES_TOLERANCE`] of |rhs|.
+/// [`crate::gmres`] (the GMRES the batch engine runs too, here on one f64
+/// lane), right-preconditioned by the solver's own P = s M̃ + D
+/// (+ contact), matrix-free, at most `corrections` iterations, from
+/// Δv₀ = P⁻¹ rhs in `ws.delta_v`, which it corrects.
 #[allow(clippy::too_many_arguments)] // the step's state, named as the step names it
 fn velocity_corrections(
     model: &StrandModel,
@@ -317,147 +309,91 @@ fn velocity_corrections(
     in_contact: bool,
     ws: &mut StepWorkspace,
 ) {
-    let k_max = (corrections as usize).min(MAX_GMRES);
-    if k_max == 0 {
-        return;
-    }
+    let StepWorkspace {
+        kinematics,
+        mass,
+        solver,
+        velocity_terms,
+        gmres: bridge,
+        step_mass,
+        velocity_product,
+        rhs,
+        delta_v,
+        ..
+    } = ws;
+    let matrix = if in_contact { &*step_mass } else { &*mass };
+    let rhs_norm = rhs.iter().map(|r| r.length_squared()).sum::<f64>().sqrt();
     let n = q.len();
-    let dot = |a: &[DVec3], b: &[DVec3]| a.iter().zip(b).map(|(x, y)| x.dot(*y)).sum::<f64>();
-    let rhs_norm = dot(&ws.rhs, &ws.rhs).sqrt();
-    let tol = GMRES_TOLERANCE;
-    ws.velocity_product.resize(n, DVec3::ZERO);
-    ws.velocity_terms.apply(
-        Derivative::JacobianRates,
-        model,
-        &ws.kinematics,
-        q,
-        v,
-        root,
-        &ws.delta_v,
-        &mut ws.velocity_product,
+    let GmresBridge {
+        krylov,
+        delta_v: lane_delta_v,
+        solve_in,
+        solve_out,
+        product_in,
+    } = bridge;
+    lane_delta_v.clear();
+    lane_delta_v.extend(delta_v.iter().map(|d| V3::new(d.x, d.y, d.z)));
+    for buffer in [
+        &mut *solve_in,
+        &mut *solve_out,
+        &mut *product_in,
+        &mut *velocity_product,
+    ] {
+        buffer.resize(n, DVec3::ZERO);
+    }
+    gmres::correct(
+        corrections as usize,
+        h,
+        rhs_norm,
+        lane_delta_v,
+        krylov,
+        |b, z| {
+            to_dvec3(b, solve_in);
+            solver.solve(kinematics, matrix, solve_in, solve_out);
+            from_dvec3(solve_out, z);
+        },
+        |x, out| {
+            to_dvec3(x, product_in);
+            velocity_terms.apply(
+                Derivative::JacobianRates,
+                model,
+                kinematics,
+                q,
+                v,
+                root,
+                product_in,
+                velocity_product,
+            );
+            from_dvec3(velocity_product, out);
+        },
     );
-    // r₀ = −h G Δv₀.
-    let beta = ws
-        .velocity_product
-        .iter()
-        .map(|g| (-h * *g).length_squared())
-        .sum::<f64>()
-        .sqrt();
-    if beta.is_nan() || beta <= tol * rhs_norm {
-        return;
-    }
-    let krylov = &mut ws.krylov;
-    krylov.reserve(k_max, n);
-    for (b, g) in krylov.basis[0].iter_mut().zip(&ws.velocity_product) {
-        *b = -h * *g / beta;
-    }
-    let mut hessenberg = [[0.0; MAX_GMRES]; MAX_GMRES + 1];
-    let mut rotations = [(1.0, 0.0); MAX_GMRES];
-    let mut g = [0.0; MAX_GMRES + 1];
-    g[0] = beta;
-    let mut used = 0;
-    for j in 0..k_max {
-        // z = P⁻¹ v_j; w = A z = v_j + h G z.
-        let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
-        let z = &mut krylov.directions[j];
-        ws.solver.solve(&ws.kinematics, matrix, &krylov.basis[j], z);
-        ws.velocity_terms.apply(
-            Derivative::JacobianRates,
-            model,
-            &ws.kinematics,
-            q,
-            v,
-            root,
-            z,
-            &mut ws.velocity_product,
-        );
-        let (done, rest) = krylov.basis.split_at_mut(j + 1);
-        let w = &mut rest[0];
-        for ((x, b), gz) in w.iter_mut().zip(&done[j]).zip(&ws.velocity_product) {
-            *x = *b + h * *gz;
-        }
-        for (i, b) in done.iter().enumerate() {
-            let hij = dot(w, b);
-            hessenberg[i][j] = hij;
-            for (x, y) in w.iter_mut().zip(b) {
-                *x -= hij * *y;
-            }
-        }
-        let w_norm = dot(w, w).sqrt();
-        hessenberg[j + 1][j] = w_norm;
-        // Apply the earlier rotations to the new column, then a new one.
-        for (i, (c, s)) in rotations.iter().take(j).enumerate() {
-            let (a, b) = (hessenberg[i][j], hessenberg[i + 1][j]);
-            hessenberg[i][j] = c * a + s * b;
-            hessenberg[i + 1][j] = -s * a + c * b;
-        }
-        let (a, b) = (hessenberg[j][j], hessenberg[j + 1][j]);
-        let r = a.hypot(b);
-        let (c, s) = if r == 0.0 { (1.0, 0.0) } else { (a / r, b / r) };
-        rotations[j] = (c, s);
-        hessenberg[j][j] = r;
-        hessenberg[j + 1][j] = 0.0;
-        g[j + 1] = -s * g[j];
-        g[j] *= c;
-        used = j + 1;
-        if !g[j + 1].is_finite() || g[j + 1].abs() <= tol * rhs_norm || w_norm == 0.0 {
-            break;
-        }
-        for x in w.iter_mut() {
-            *x /= w_norm;
-        }
-    }
-    // Back substitution for y, then Δv = Δv₀ + Σ y_j z_j.
-    let mut y = [0.0; MAX_GMRES];
-    for i in (0..used).rev() {
-        let mut sum = g[i];
-        for (l, y_l) in y.iter().enumerate().take(used).skip(i + 1) {
-            sum -= hessenberg[i][l] * y_l;
-        }
-        y[i] = sum / hessenberg[i][i];
-    }
-    if y[..used].iter().all(|x| x.is_finite()) {
-        for (y_j, z) in y[..used].iter().zip(&krylov.directions) {
-            for (dv, zi) in ws.delta_v.iter_mut().zip(z) {
-                *dv += *y_j * *zi;
-            }
-        }
-    }
+    to_dvec3(lane_delta_v, delta_v);
 }
 
-/// Most GMRES iterations a step runs: the range of
-/// [`StepScheme::VelocityImplicit`]'s `corrections`.
-const MAX_GMRES: usize = crate::settings::MAX_VELOCITY_CORRECTIONS as usize;
-
-/// GMRES's vectors, kept from step to step so that stepping allocates
-/// nothing: the Arnoldi basis v₀…v_k and the preconditioned directions
-/// z_j = P⁻¹ v_j.
+/// What the reference's f64 vectors need to run [`gmres::correct`], which
+/// works on [`V3`]: its Krylov vectors and Δv in that form, and the f64
+/// vectors the solver and the product read and write, kept from step to
+/// step so that stepping allocates nothing.
 #[derive(Clone, Debug, Default)]
-struct Krylov {
-    basis: Vec<Vec<DVec3>>,
-    directions: Vec<Vec<DVec3>>,
+struct GmresBridge {
+    krylov: gmres::Krylov<f64>,
+    delta_v: Vec<V3<f64>>,
+    solve_in: Vec<DVec3>,
+    solve_out: Vec<DVec3>,
+    product_in: Vec<DVec3>,
 }
 
-impl Krylov {
-    /// Room for `k` iterations on vectors of `n` triples.
-    fn reserve(&mut self, k: usize, n: usize) {
-        for (vectors, count) in [(&mut self.basis, k + 1), (&mut self.directions, k)] {
-            if vectors.len() < count {
-                vectors.resize(count, Vec::new());
-            }
-            for x in vectors.iter_mut() {
-                x.resize(n, DVec3::ZERO);
-            }
-        }
+fn to_dvec3(from: &[V3<f64>], to: &mut [DVec3]) {
+    for (t, f) in to.iter_mut().zip(from) {
+        *t = DVec3::new(f.x, f.y, f.z);
     }
 }
 
-/// GMRES stops once its residual is below this fraction of |rhs|.
-/// Measured on the 0.66 m curl of `tests/stable_step.rs` and the shake of
-/// `examples/shake_probe.rs`: at 1e-2 the curl still gained energy on a
-/// frame (which the guard caught), at 1e-3 and below never; each tenfold
-/// tightening costs about one more iteration (0.7 of an explicit step).
-pub const GMRES_TOLERANCE: f64 = 1e-3;
+fn from_dvec3(from: &[DVec3], to: &mut [V3<f64>]) {
+    for (t, f) in to.iter_mut().zip(from) {
+        *t = V3::new(f.x, f.y, f.z);
+    }
+}
 
 /// The implicit contact's per-sample weights w h (h k + c) n nᵀ, in sample
 /// order (empty without a collider or out of contact).
