@@ -165,7 +165,7 @@ fn max_diff(a: &[DVec3], b: &[DVec3]) -> f64 {
 const ONE_STEP_TOL: f64 = 1e-4;
 
 /// The same against Dense's exact solve of (P + hG) Δv = rhs: GMRES stops
-/// at a residual of 1e-3 of |rhs| (`step::GMRES_TOLERANCE`), and the step
+/// at a residual of 1e-3 of |rhs| (`gmres::GMRES_TOLERANCE`), and the step
 /// matrix's conditioning carries that into the rates. Measured: 1.3e-3
 /// (straight), 4.6e-4 (curl), as the f64 Exact step's own distance from
 /// Dense.
