@@ -11,6 +11,8 @@
 //! | AMD TressFX `.tfx` ([`tfx`]) | 4.x and 3.x: points, colours | 4.0, one frame |
 //! | Cem Yuksel's `.hair` ([`hair`]) | points, thickness, colours | the same, one frame |
 //! | USD `.usda` ([`usda`]) | `BasisCurves`: points, time samples, widths, colours, transforms, units | the same, plus a head `Mesh` |
+//! | USD `.usdc`, `.usd` ([`usdc`]) | the same, from binary crate files (a text `.usd` as `.usda`) | the same, crate version 0.8.0 |
+//! | USD `.usdz` ([`usdc::usdz`]) | the package's first layer (`.usdc` or `.usda`) | one `.usdc` layer |
 //! | OBJ ([`obj`]) | `l` polylines (chained), `v` points | one frame |
 //!
 //! # How it works
@@ -45,6 +47,7 @@ pub mod read;
 pub mod repair;
 pub mod tfx;
 pub mod usda;
+pub mod usdc;
 mod warnings;
 pub mod write;
 
@@ -61,4 +64,7 @@ pub use repair::{RepairReason, RepairSummary};
 pub use tfx::{read_tfx, write_tfx};
 pub use usda::read_usda;
 pub use usda::write::{write_usda, write_usda_with_head_poses};
+pub use usdc::read_usdc;
+pub use usdc::usdz::{read_usdz, write_usdz};
+pub use usdc::write::write_usdc;
 pub use write::write;
