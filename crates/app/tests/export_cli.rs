@@ -161,7 +161,7 @@ fn bad_paths_and_formats_fail_before_simulating_and_leave_nothing() {
         ),
         (
             &["--export", unknown.to_str().expect("UTF-8")],
-            "unknown export format; the extension picks one of .tfx, .hair, .usda, .obj".into(),
+            "unknown export format; the extension picks one of .tfx, .hair, .usda, .usdc, .usd, .usdz, .obj".into(),
         ),
         (
             &[

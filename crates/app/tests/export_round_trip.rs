@@ -6,7 +6,8 @@
 //!   point is an element end), to f32 rounding;
 //! - the curves captured in memory, to the bit (the formats print the
 //!   shortest decimal that reads back as the same f32);
-//! - for `.usda`, Pixar's own reader (`pxr`, from `usd-core`): the same
+//! - for USD (`.usda`, `.usdc`, `.usdz`), Pixar's own reader (`pxr`,
+//!   from `usd-core`): the same
 //!   points at every time sample, and the head's transform at every time
 //!   sample equal to the head's pose in the simulation. Skips without
 //!   `pxr` unless `HELIXHAIR_REQUIRE_USD=1`.
@@ -201,6 +202,33 @@ fn usda_round_trips_with_time_samples_widths_and_a_moving_head() {
     }
     pixar_reads(&path, &ends, &head);
     std::fs::remove_dir_all(&dir).expect("clean up");
+}
+
+/// Binary USD (issue 30): a crate file and a package hold what the text
+/// layer holds, read back to the bit here and point for point by Pixar's
+/// library, the head's pose at every sample included.
+#[test]
+fn binary_usd_round_trips_with_time_samples_widths_and_a_moving_head() {
+    let (ends, captured) = expected_frames(&curly());
+    let head = helixhair_app::export::head_triangle_mesh(&default_head());
+    for format in [Format::Usdc, Format::Usdz] {
+        let dir = scratch(format.name());
+        let path = export(format, &dir, Some(&head));
+        let imported = read_file(&path);
+        let animation = imported.animation.as_ref().expect("time samples");
+        assert_eq!(animation.time_codes_per_second, 60.0);
+        assert_eq!(animation.frames.len(), STEPS + 1);
+        for (frame, sample) in animation.frames.iter().enumerate() {
+            assert_eq!(sample.time_code, frame as f64);
+            let what = format!("{format} time code {frame}");
+            assert_frame(&sample.points_m, &ends[frame], &captured[frame], &what);
+        }
+        for curve in &imported.curves.curves {
+            assert_eq!(curve.width_m, Some(StrandValue::PerStrand(70e-6)));
+        }
+        pixar_reads(&path, &ends, &head);
+        std::fs::remove_dir_all(&dir).expect("clean up");
+    }
 }
 
 /// Drawn strands need the groom; they come back as exported, widths per

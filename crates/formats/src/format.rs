@@ -33,6 +33,10 @@ impl Format {
         Format::Obj,
     ];
 
+    /// Every file extension read and written (lower case, no dot): each
+    /// format's name, and `usd` (USD's default extension, binary or text).
+    pub const EXTENSIONS: [&'static str; 7] = ["tfx", "hair", "usda", "usdc", "usd", "usdz", "obj"];
+
     /// The short lower-case name, also the usual file extension.
     pub fn name(self) -> &'static str {
         match self {
@@ -45,8 +49,7 @@ impl Format {
         }
     }
 
-    /// Whether the format is one of USD's (text, binary or package): the
-    /// ones that hold time samples and a head mesh.
+    /// Whether the format is one of USD's (text, binary or package).
     pub fn is_usd(self) -> bool {
         matches!(self, Format::Usda | Format::Usdc | Format::Usdz)
     }

@@ -48,7 +48,7 @@ pub struct ExportShapeArgs {
     /// last. Default: all for `sim`, last for `export`.
     #[arg(long, value_enum, value_name = "WHICH")]
     pub export_frames: Option<FrameChoice>,
-    /// Leave the head mesh out of a .usda file.
+    /// Leave the head mesh out of a USD file (.usda, .usdc, .usd, .usdz).
     #[arg(long)]
     pub no_head: bool,
 }
@@ -56,9 +56,10 @@ pub struct ExportShapeArgs {
 /// `helixhair sim`'s export options.
 #[derive(Clone, Debug, Args)]
 pub struct SimExportArgs {
-    /// Export the hair to FILE: .usda (USD BasisCurves, time samples and
-    /// the head), .hair, .tfx or .obj (one frame each: a numbered sequence
-    /// for an animation); missing folders are created.
+    /// Export the hair to FILE: USD BasisCurves with time samples and the
+    /// head, as text (.usda), binary (.usdc, .usd) or a package (.usdz);
+    /// or .hair, .tfx or .obj (one frame each: a numbered sequence for an
+    /// animation); missing folders are created.
     #[arg(long, value_name = "FILE")]
     pub export: Option<PathBuf>,
     /// What to export.
@@ -84,7 +85,7 @@ pub struct ExportArgs {
     /// default head.
     #[arg(long, value_name = "OBJ")]
     pub head: Option<PathBuf>,
-    /// The file to write: .usda, .hair, .tfx or .obj.
+    /// The file to write: .usda, .usdc, .usd, .usdz, .hair, .tfx or .obj.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// What to export.

@@ -22,19 +22,21 @@ pub(crate) fn error(offset: u64, kind: ReadErrorKind, message: impl Into<String>
     ReadError::new(Format::Usdc, Location::Byte(offset), kind, message)
 }
 
-/// What the reader may still allocate.
+/// What the reader may still allocate (also the Alembic reader's).
 #[derive(Debug)]
 pub(crate) struct Budget {
     left: Cell<usize>,
     total: usize,
+    format: Format,
 }
 
 impl Budget {
-    pub fn for_file(file_bytes: usize) -> Budget {
+    pub fn for_file(file_bytes: usize, format: Format) -> Budget {
         let total = file_bytes.saturating_mul(BUDGET_PER_FILE_BYTE).max(4096);
         Budget {
             left: Cell::new(total),
             total,
+            format,
         }
     }
 
@@ -46,8 +48,9 @@ impl Budget {
                 self.left.set(left);
                 Ok(())
             }
-            None => Err(error(
-                offset,
+            None => Err(ReadError::new(
+                self.format,
+                Location::Byte(offset),
                 ReadErrorKind::TooLarge,
                 format!(
                     "{what} would take {bytes} bytes, past the {} bytes of decoded data this file's size allows",

@@ -62,7 +62,7 @@ pub fn read_usdc(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadEr
     if bytes.starts_with(b"#usda") {
         return usda::read_usda(bytes, options);
     }
-    let budget = Budget::for_file(bytes.len());
+    let budget = Budget::for_file(bytes.len(), Format::Usdc);
     let file = sections::read_sections(bytes, &budget)?;
     let values = Values {
         file: &file,

@@ -434,7 +434,7 @@ impl Element {
 }
 
 /// An IEEE half-precision float's value.
-fn half(bits: u16) -> f32 {
+pub(crate) fn half(bits: u16) -> f32 {
     let sign = if bits & 0x8000 != 0 { -1.0 } else { 1.0 };
     let exponent = i32::from((bits >> 10) & 0x1F);
     let fraction = f32::from(bits & 0x3FF);
