@@ -11,7 +11,7 @@ runs="${1:-1000000}"
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 export RUSTC_BOOTSTRAP=1
 failed=0
-for target in ${FUZZ_TARGETS:-tfx hair usda usdc usdz obj}; do
+for target in ${FUZZ_TARGETS:-tfx hair usda usdc usdz obj abc}; do
     mkdir -p "fuzz/corpus/$target"
     cp -n fuzz/seeds/"$target"/* "fuzz/corpus/$target/"
     start=$(date +%s)

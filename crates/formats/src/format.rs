@@ -20,22 +20,26 @@ pub enum Format {
     Usdz,
     /// Wavefront OBJ polylines (`l` elements).
     Obj,
+    /// Alembic archives (`.abc`, Ogawa): `AbcGeom` curves.
+    Abc,
 }
 
 impl Format {
     /// Every format, in a fixed order.
-    pub const ALL: [Format; 6] = [
+    pub const ALL: [Format; 7] = [
         Format::Tfx,
         Format::Hair,
         Format::Usda,
         Format::Usdc,
         Format::Usdz,
         Format::Obj,
+        Format::Abc,
     ];
 
     /// Every file extension read and written (lower case, no dot): each
     /// format's name, and `usd` (USD's default extension, binary or text).
-    pub const EXTENSIONS: [&'static str; 7] = ["tfx", "hair", "usda", "usdc", "usd", "usdz", "obj"];
+    pub const EXTENSIONS: [&'static str; 8] =
+        ["tfx", "hair", "usda", "usdc", "usd", "usdz", "obj", "abc"];
 
     /// The short lower-case name, also the usual file extension.
     pub fn name(self) -> &'static str {
@@ -46,12 +50,19 @@ impl Format {
             Format::Usdc => "usdc",
             Format::Usdz => "usdz",
             Format::Obj => "obj",
+            Format::Abc => "abc",
         }
     }
 
     /// Whether the format is one of USD's (text, binary or package).
     pub fn is_usd(self) -> bool {
         matches!(self, Format::Usda | Format::Usdc | Format::Usdz)
+    }
+
+    /// Whether one file holds an animation and a head mesh (USD and
+    /// Alembic); the others hold one frame of hair.
+    pub fn holds_animation(self) -> bool {
+        self.is_usd() || self == Format::Abc
     }
 
     /// The format a file name's extension names (any case), if any. A

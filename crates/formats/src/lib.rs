@@ -14,6 +14,7 @@
 //! | USD `.usdc`, `.usd` ([`usdc`]) | the same, from binary crate files (a text `.usd` as `.usda`) | the same, crate version 0.8.0 |
 //! | USD `.usdz` ([`usdc::usdz`]) | the package's first layer (`.usdc` or `.usda`) | one `.usdc` layer |
 //! | OBJ ([`obj`]) | `l` polylines (chained), `v` points | one frame |
+//! | Alembic `.abc` ([`abc`]) | Ogawa `AbcGeom` curves: points, time samples, widths, transforms | the same, plus a head `PolyMesh` |
 //!
 //! # How it works
 //!
@@ -33,6 +34,7 @@
 
 #![warn(missing_docs)]
 
+pub mod abc;
 pub mod animation;
 mod bytes;
 pub mod curve_set;
@@ -51,6 +53,8 @@ pub mod usdc;
 mod warnings;
 pub mod write;
 
+pub use abc::read_abc;
+pub use abc::write::write_abc;
 pub use animation::{Animation, Frame};
 pub use curve_set::{Curve, CurveSet, Metadata, StrandValue, UpAxis};
 pub use error::{Location, ReadError, ReadErrorKind, WriteError};

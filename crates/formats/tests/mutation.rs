@@ -93,7 +93,7 @@ fn mutation_run(format: Format, seed: u64) {
     let valid = valid_file(format);
     let binary = matches!(
         format,
-        Format::Tfx | Format::Hair | Format::Usdc | Format::Usdz
+        Format::Tfx | Format::Hair | Format::Usdc | Format::Usdz | Format::Abc
     );
     let mut rng = Rng::new(seed);
     let (mut ok, mut errors) = (0, 0);
@@ -162,4 +162,9 @@ fn usdc_reader_survives_mutation() {
 #[test]
 fn usdz_reader_survives_mutation() {
     mutation_run(Format::Usdz, 0x05E);
+}
+
+#[test]
+fn abc_reader_survives_mutation() {
+    mutation_run(Format::Abc, 0x0AB);
 }

@@ -134,9 +134,11 @@ fn pixars_crate_file_survives_mutation() {
                 2 => {
                     // A word set to an edge value (counts, offsets, reps).
                     let edges = [0u64, 1, u64::MAX, 1 << 32, 1 << 48, 0x7FFF_FFFF];
-                    let at = at.min(bytes.len() - 8);
+                    let at = at.min(bytes.len().saturating_sub(8));
                     let value = edges[rng.below(edges.len())];
-                    bytes[at..at + 8].copy_from_slice(&value.to_le_bytes());
+                    if let Some(word) = bytes.get_mut(at..at + 8) {
+                        word.copy_from_slice(&value.to_le_bytes());
+                    }
                 }
                 _ => bytes.truncate(at.max(1)),
             }

@@ -8,10 +8,11 @@ use std::io::Write;
 use crate::curve_set::CurveSet;
 use crate::error::WriteError;
 use crate::format::Format;
-use crate::{hair, obj, tfx, usda, usdc};
+use crate::{abc, hair, obj, tfx, usda, usdc};
 
 /// Writes one frame of curves as `format` (USD without animation or head;
-/// call [`crate::write_usda`], [`crate::write_usdc`] or [`crate::write_usdz`] for those).
+/// call [`crate::write_usda`], [`crate::write_usdc`], [`crate::write_usdz`] or
+/// [`crate::write_abc`] for those).
 pub fn write(out: &mut impl Write, format: Format, curves: &CurveSet) -> Result<(), WriteError> {
     match format {
         Format::Tfx => tfx::write_tfx(out, curves),
@@ -20,5 +21,6 @@ pub fn write(out: &mut impl Write, format: Format, curves: &CurveSet) -> Result<
         Format::Usdc => usdc::write::write_usdc(out, curves, None, None, &[]),
         Format::Usdz => usdc::usdz::write_usdz(out, curves, None, None, &[]),
         Format::Obj => obj::write_obj(out, curves),
+        Format::Abc => abc::write::write_abc(out, curves, None, None, &[]),
     }
 }

@@ -1,5 +1,5 @@
-//! Checks every USD writer (`.usda`, `.usdc`, `.usdz`) makes before its
-//! first byte: the curves (as every writer checks them), the frames, the
+//! Checks every USD writer (`.usda`, `.usdc`, `.usdz`) and the Alembic
+//! writer make before their first byte: the curves (as every writer checks them), the frames, the
 //! head and its poses.
 
 use crate::animation::Animation;

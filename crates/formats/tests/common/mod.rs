@@ -111,8 +111,8 @@ pub fn assert_points_equal(read: &[Vec3], written: &[Vec3], what: &str) {
 }
 
 /// A valid file of each format, from [`groom`] (20 strands × 8 points,
-/// with widths and colours where the format holds them; the USD ones with
-/// three time samples).
+/// with widths and colours where the format holds them; the USD and
+/// Alembic ones with three time samples).
 pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
     use helixhair_formats::{Animation, Format, Frame};
     let mut bytes = Vec::new();
@@ -120,7 +120,7 @@ pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
         Format::Tfx => helixhair_formats::write_tfx(&mut bytes, &groom(11, 20, 8, false, true)),
         Format::Hair => helixhair_formats::write_hair(&mut bytes, &groom(12, 20, 8, true, true)),
         Format::Obj => helixhair_formats::write_obj(&mut bytes, &groom(13, 20, 8, false, false)),
-        Format::Usda | Format::Usdc | Format::Usdz => {
+        Format::Usda | Format::Usdc | Format::Usdz | Format::Abc => {
             let curves = groom(14, 20, 8, true, true);
             let frames = (0..3)
                 .map(|k| Frame::from_curves(k as f64, &curves))
@@ -135,6 +135,9 @@ pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
                 }
                 Format::Usdc => {
                     helixhair_formats::write_usdc(&mut bytes, &curves, Some(&animation), None, &[])
+                }
+                Format::Abc => {
+                    helixhair_formats::write_abc(&mut bytes, &curves, Some(&animation), None, &[])
                 }
                 _ => {
                     helixhair_formats::write_usdz(&mut bytes, &curves, Some(&animation), None, &[])
