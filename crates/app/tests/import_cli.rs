@@ -451,3 +451,42 @@ fn binary_usd_grooms_import_and_every_command_exports_them() {
     }
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
+
+/// Issue 30: an Alembic archive the Alembic library wrote (a transformed
+/// parent, samples at 30 per second, indexed and Unreal widths) imports;
+/// `sim --export` writes an `.abc` that imports again.
+#[test]
+fn alembic_grooms_import_and_sim_exports_them() {
+    let dir = scratch("alembic");
+    let groom = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../formats/tests/data/alembic3d_groom.abc"
+    );
+    let style = dir.join("abc.ron").display().to_string();
+    let report = dir.join("report.json").display().to_string();
+    let out = helixhair(&["import", groom, "--out", &style, "--json", &report]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).expect("report")).expect("JSON");
+    assert_eq!(json["strands_read"], 7, "{json}");
+    assert_eq!(json["format"], "abc", "{json}");
+    let abc = dir.join("sim.abc");
+    let abc_name = abc.display().to_string();
+    let args = [
+        "sim", "--style", &style, "--steps", "3", "--export", &abc_name,
+    ];
+    let out = helixhair(&args);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let bytes = std::fs::read(&abc).expect("the export");
+    let read = helixhair_formats::read(
+        &bytes,
+        helixhair_formats::Format::Abc,
+        &helixhair_formats::ReadOptions::default(),
+    )
+    .expect("reads");
+    assert_eq!(read.animation.expect("samples").frames.len(), 4);
+    let again = dir.join("again.ron").display().to_string();
+    let out = helixhair(&["import", &abc_name, "--out", &again]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}

@@ -12,8 +12,10 @@
 //!    resampled evenly by arc length, with the renderer's tapered ribbon
 //!    width per point and their colour.
 //! 2. **Collect** ([`ExportRecorder`]): USD (`.usda` text, `.usdc` or
-//!    `.usd` binary, `.usdz` package) keeps every frame as a time sample (time code = frame number, `timeCodesPerSecond` = 1 / `dt`),
-//!    the head as a `Mesh` that moves with the head's motion;
+//!    `.usd` binary, `.usdz` package) keeps every frame as a time sample
+//!    (time code = frame number, `timeCodesPerSecond` = 1 / `dt`), the
+//!    head as a `Mesh` that moves with the head's motion; Alembic (`.abc`)
+//!    the same as samples of its curves' points and of the head's `Xform`;
 //!    `.hair`, `.tfx` and `.obj` hold one frame, so an animation becomes a
 //!    numbered sequence `name.0000.hair` (the start), `name.0001.hair`, …,
 //!    each file written as soon as its frame is captured.
@@ -32,7 +34,7 @@ use anyhow::Context as _;
 use glam::Vec3;
 use helixhair_formats::{
     Animation, Curve, CurveSet, Format, Frame, MeshPose, StrandValue, TriangleMesh, WriteError,
-    write_usda_with_head_poses, write_usdc, write_usdz,
+    write_abc, write_usda_with_head_poses, write_usdc, write_usdz,
 };
 use helixhair_physics::engine::Engine;
 use helixhair_render::HeadMesh;
@@ -84,8 +86,8 @@ pub struct ExportSpec {
     pub points_per_strand: usize,
     /// Every frame or the last.
     pub frames: FrameChoice,
-    /// Whether a USD file (`.usda`, `.usdc`, `.usd`, `.usdz`) gets the head
-    /// as a `Mesh`.
+    /// Whether a USD file (`.usda`, `.usdc`, `.usd`, `.usdz`) or an
+    /// Alembic `.abc` gets the head as a mesh.
     pub head: bool,
 }
 
@@ -132,7 +134,7 @@ impl ExportSpec {
         })
     }
 
-    /// Whether the export is several frames in one file (USD) or a
+    /// Whether the export is several frames in one file (USD, Alembic) or a
     /// numbered sequence.
     pub fn animated(&self, steps: usize) -> bool {
         self.frames == FrameChoice::All && steps > 0
@@ -140,7 +142,7 @@ impl ExportSpec {
 
     /// Whether a head mesh is written (USD only).
     pub fn writes_head(&self) -> bool {
-        self.head && self.format.is_usd()
+        self.head && self.format.holds_animation()
     }
 }
 
@@ -299,7 +301,7 @@ impl ExportRecorder {
     }
 
     /// Captures frame `frame` (0: the start) of an animation: a time sample
-    /// for USD, or the next file of a numbered sequence, written now.
+    /// for USD and Alembic, or the next file of a numbered sequence, written now.
     pub fn capture(
         &mut self,
         engine: &Engine,
@@ -309,7 +311,7 @@ impl ExportRecorder {
         let curves = self.curves_now(engine, groom)?;
         let time_code = frame as f64;
         self.head_poses.push(head_pose(engine, time_code));
-        if self.spec.format.is_usd() {
+        if self.spec.format.holds_animation() {
             self.frames.push(Frame::from_curves(time_code, &curves));
             if self.first.is_none() {
                 self.first = Some(curves);
@@ -330,7 +332,7 @@ impl ExportRecorder {
     ) -> anyhow::Result<()> {
         let curves = self.curves_now(engine, groom)?;
         let path = self.spec.path.clone();
-        if !self.spec.format.is_usd() {
+        if !self.spec.format.holds_animation() {
             return self.write_one(&path, &curves);
         }
         let pose = head_pose(engine, 0.0);
@@ -349,7 +351,7 @@ impl ExportRecorder {
         self.write_usd(&path, &curves, Some(&rate), head, &poses)
     }
 
-    /// Writes the collected USD animation (nothing to do for a
+    /// Writes the collected USD or Alembic animation (nothing to do for a
     /// sequence, whose files are written as captured); returns the files
     /// written and their total size in bytes.
     pub fn finish(mut self, head: Option<&TriangleMesh>) -> anyhow::Result<(Vec<PathBuf>, u64)> {
@@ -378,8 +380,9 @@ impl ExportRecorder {
         }
     }
 
-    /// Writes one USD layer (text, crate file or package, as the spec's
-    /// format says) with its frames, head and head poses.
+    /// Writes one USD layer (text, crate file or package) or Alembic
+    /// archive, as the spec's format says, with its frames, head and head
+    /// poses.
     fn write_usd(
         &mut self,
         path: &Path,
@@ -392,6 +395,7 @@ impl ExportRecorder {
         self.encode_and_save(path, |bytes| match format {
             Format::Usdc => write_usdc(bytes, curves, animation, head, poses),
             Format::Usdz => write_usdz(bytes, curves, animation, head, poses),
+            Format::Abc => write_abc(bytes, curves, animation, head, poses),
             _ => write_usda_with_head_poses(bytes, curves, animation, head, poses),
         })
     }

@@ -49,7 +49,8 @@ pub const MAX_GROOM_BYTES: u64 = 1 << 30;
 #[derive(Clone, Debug, Args)]
 pub struct ImportArgs {
     /// The groom: .tfx (TressFX 3/4), .hair (Cem Yuksel), USD BasisCurves
-    /// (.usda text, .usdc or .usd binary, .usdz package) or .obj
+    /// (.usda text, .usdc or .usd binary, .usdz package), Alembic curves
+    /// (.abc) or .obj
     /// (polylines).
     #[arg(value_name = "GROOM")]
     pub groom: PathBuf,
@@ -133,7 +134,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     let groom_name = args.groom.display().to_string();
     let format = Format::from_path(&args.groom).with_context(|| {
         format!(
-            "{groom_name}: unknown groom format; expected .tfx, .hair, .usda, .usdc, .usd, .usdz or .obj"
+            "{groom_name}: unknown groom format; expected .tfx, .hair, .usda, .usdc, .usd, .usdz, .abc or .obj"
         )
     })?;
     let size = std::fs::metadata(&args.groom)

@@ -77,7 +77,7 @@ pub struct WindowArgs {
           value_parser = clap::value_parser!(u32).range(1..=200_000).map(|n| n as usize))]
     pub render_strands: usize,
     /// Groom to import at start (.tfx, .hair, .usda, .usdc, .usd, .usdz,
-    /// .obj): the window
+    /// .abc, .obj): the window
     /// opens with the import dialog, which asks for its head.
     #[arg(long, value_name = "GROOM")]
     pub import: Option<PathBuf>,

@@ -66,7 +66,7 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
                 ui.add(egui::TextEdit::singleline(&mut dialog.path).desired_width(360.0));
             });
             ui.small(
-                ".usda, .usdc, .usd or .usdz (USD curves with the head), .hair, .tfx or .obj; \
+                ".usda, .usdc, .usd, .usdz or .abc (curves with the head), .hair, .tfx or .obj; \
                  a folder is made if missing",
             );
             ui.horizontal(|ui| {

@@ -52,7 +52,7 @@ impl PickerMode {
             PickerMode::Open => ("Open style", "Open"),
             PickerMode::SaveAs => ("Save style as", "Save"),
             PickerMode::ImportGroom => (
-                "Import groom (.tfx, .hair, .usda, .usdc, .usd, .usdz, .obj)",
+                "Import groom (.tfx, .hair, .usda, .usdc, .usd, .usdz, .abc, .obj)",
                 "Import",
             ),
             PickerMode::PlayMotion => ("Play motion file", "Play"),
