@@ -441,3 +441,28 @@ fn a_text_usd_file_reads_as_text() {
     assert_eq!(read.curves.curves.len(), 36);
     assert_eq!(read.curves.metadata.source_format, Some(Format::Usda));
 }
+
+#[test]
+fn a_package_pixar_made_reads_as_its_layer() {
+    if !pxr_available() {
+        return;
+    }
+    let dir = temp_dir("pxr-package");
+    let layer = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pxr_groom.usdc");
+    let package = dir.join("groom.usdz");
+    let script = "import sys\nfrom pxr import Sdf, UsdUtils\n\
+                  UsdUtils.CreateNewUsdzPackage(Sdf.AssetPath(sys.argv[1]), sys.argv[2])";
+    python(&[
+        "-c",
+        script,
+        layer.to_str().expect("utf-8 path"),
+        package.to_str().expect("utf-8 path"),
+    ]);
+    let packaged = read_as(
+        &std::fs::read(&package).expect("pxr wrote it"),
+        Format::Usdz,
+    );
+    let plain = read_as(&fixture("pxr_groom.usdc"), Format::Usdc);
+    assert_eq!(packaged.curves.curves, plain.curves.curves);
+    assert_eq!(packaged.animation, plain.animation);
+}
