@@ -402,3 +402,60 @@ fn what_we_write_reads_back_exactly() {
         Some(Format::Abc)
     );
 }
+
+/// Cubic curves under an animated transform: read as control polylines at
+/// the transform's first sample, each with a warning.
+const CUBIC_UNDER_A_MOVING_XFORM: &str = r#"
+import sys
+import imath
+from alembic3d.Abc import OArchive
+from alembic3d.AbcCoreAbstract import TimeSampling
+from alembic3d.AbcGeom import (BasisType, CurvePeriodicity, CurveType, OCurves,
+                               OCurvesSchemaSample, OXform, XformSample)
+archive = OArchive(sys.argv[1])
+index = archive.addTimeSampling(TimeSampling(1.0 / 24.0, 0.0))
+xform = OXform(archive.getTop(), "moving", index)
+for t in range(2):
+    sample = XformSample()
+    sample.setTranslation(imath.V3d(0.5 * t, 0, 0))
+    xform.getSchema().set(sample)
+curves = OCurves(xform, "cubic")
+counts = imath.IntArray(1)
+counts[0] = 4
+points = imath.V3fArray(4)
+for k in range(4):
+    points[k] = imath.V3f(0, -0.1 * k, 0)
+sample = OCurvesSchemaSample(points, counts, CurveType.kCubic, CurvePeriodicity.kNonPeriodic)
+sample.setBasis(BasisType.kBezierBasis)
+curves.getSchema().set(sample)
+"#;
+
+#[test]
+fn cubic_curves_and_moving_transforms_are_read_with_warnings() {
+    if !alembic_available() {
+        return;
+    }
+    let path = temp_dir("cubic").join("cubic.abc");
+    python(&[
+        "-c",
+        CUBIC_UNDER_A_MOVING_XFORM,
+        path.to_str().expect("utf-8 path"),
+    ]);
+    let read = read_abc(&std::fs::read(&path).expect("alembic3d wrote it"));
+    assert_eq!(read.curves.curves.len(), 1);
+    let expected: Vec<Vec3> = (0..4)
+        .map(|k| Vec3::new(0.0, -0.1 * k as f32, 0.0))
+        .collect();
+    assert!(max_distance(&read.curves.curves[0].points_m, &expected) <= 1e-7);
+    assert_eq!(read.warnings.len(), 2, "{:?}", read.warnings);
+    assert!(
+        read.warnings.iter().any(|w| w.contains("cubic")),
+        "{:?}",
+        read.warnings
+    );
+    assert!(
+        read.warnings.iter().any(|w| w.contains("animated")),
+        "{:?}",
+        read.warnings
+    );
+}
