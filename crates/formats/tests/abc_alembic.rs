@@ -459,3 +459,21 @@ fn cubic_curves_and_moving_transforms_are_read_with_warnings() {
         read.warnings
     );
 }
+
+/// Thousands of samples of a tiny groom: every sample read once, so the
+/// reader's budget (proportional to the file) holds.
+#[test]
+fn a_long_animation_of_a_small_groom_reads() {
+    let curves = groom(43, 1, 2, false, false);
+    let frames: Vec<Frame> = (0..5000)
+        .map(|k| Frame::from_curves(f64::from(k), &curves))
+        .collect();
+    let animation = Animation {
+        time_codes_per_second: 60.0,
+        frames,
+    };
+    let mut bytes = Vec::new();
+    write_abc(&mut bytes, &curves, Some(&animation), None, &[]).expect("writes");
+    let read = read_abc(&bytes);
+    assert_eq!(read.animation.expect("frames").frames.len(), 5000);
+}

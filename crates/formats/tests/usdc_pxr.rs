@@ -466,3 +466,20 @@ fn a_package_pixar_made_reads_as_its_layer() {
     assert_eq!(packaged.curves.curves, plain.curves.curves);
     assert_eq!(packaged.animation, plain.animation);
 }
+
+/// Thousands of time samples of a tiny groom read within the budget.
+#[test]
+fn a_long_animation_of_a_small_groom_reads() {
+    let curves = groom(32, 1, 2, false, false);
+    let frames: Vec<Frame> = (0..5000)
+        .map(|k| Frame::from_curves(f64::from(k), &curves))
+        .collect();
+    let animation = Animation {
+        time_codes_per_second: 60.0,
+        frames,
+    };
+    let mut bytes = Vec::new();
+    write_usdc(&mut bytes, &curves, Some(&animation), None, &[]).expect("writes");
+    let read = read_as(&bytes, Format::Usdc);
+    assert_eq!(read.animation.expect("frames").frames.len(), 5000);
+}

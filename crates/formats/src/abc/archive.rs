@@ -464,9 +464,21 @@ impl<'a> Archive<'a> {
             })
     }
 
+    /// A property's stored samples (its group's children): read once per
+    /// property, so reading every sample costs the file's size, not its
+    /// square.
+    pub fn stored(&self, property: &Property) -> Result<Vec<Child>, ReadError> {
+        self.ogawa.group(property.group)
+    }
+
     /// Sample `index`'s values (after the 16-byte key), and the offset of
-    /// its data block.
-    pub fn sample(&self, property: &Property, index: u32) -> Result<(&'a [u8], u64), ReadError> {
+    /// its data block; `stored` is [`Archive::stored`] of the property.
+    pub fn sample(
+        &self,
+        property: &Property,
+        stored: &[Child],
+        index: u32,
+    ) -> Result<(&'a [u8], u64), ReadError> {
         if index >= property.samples {
             return Err(error(
                 0,
@@ -479,7 +491,7 @@ impl<'a> Archive<'a> {
                 ),
             ));
         }
-        let stored = if index < property.first_changed
+        let slot = if index < property.first_changed
             || (property.first_changed == 0 && property.last_changed == 0)
         {
             0
@@ -489,12 +501,11 @@ impl<'a> Archive<'a> {
             index - property.first_changed + 1
         } as usize;
         let per_sample = if property.kind == Kind::Array { 2 } else { 1 };
-        let groups = self.ogawa.group(property.group)?;
-        let child = groups.get(stored * per_sample).copied().ok_or_else(|| {
+        let child = stored.get(slot * per_sample).copied().ok_or_else(|| {
             error(
                 0,
                 ReadErrorKind::CountMismatch,
-                format!("{}: stored sample {stored} is missing", property.name),
+                format!("{}: stored sample {slot} is missing", property.name),
             )
         })?;
         let offset = match child {
@@ -506,7 +517,18 @@ impl<'a> Archive<'a> {
 
     /// Sample `index` of a numeric property, every value as `f64`.
     pub fn numbers(&self, property: &Property, index: u32) -> Result<Vec<f64>, ReadError> {
-        let (data, offset) = self.sample(property, index)?;
+        let stored = self.stored(property)?;
+        self.numbers_in(property, &stored, index)
+    }
+
+    /// [`Archive::numbers`] with the property's stored samples at hand.
+    pub fn numbers_in(
+        &self,
+        property: &Property,
+        stored: &[Child],
+        index: u32,
+    ) -> Result<Vec<f64>, ReadError> {
+        let (data, offset) = self.sample(property, stored, index)?;
         let size = match property.pod {
             pod::BOOL | pod::U8 | pod::I8 => 1,
             pod::U16 | pod::I16 | pod::F16 => 2,

@@ -267,10 +267,13 @@ fn curves_object(
         .collect::<Result<_, _>>()?;
     let total = sizes.iter().fold(0usize, |sum, &n| sum.saturating_add(n));
     let constant_counts = counts.first_changed == 0 && counts.last_changed == 0;
+    let stored_points = archive.stored(p)?;
+    let stored_counts = archive.stored(counts)?;
     let identity = world == DMat4::IDENTITY;
     let points_at = |index: u32| -> Result<Vec<Vec3>, ReadError> {
         if !constant_counts && index > 0 {
-            let now: Vec<f64> = archive.numbers(counts, index.min(counts.samples - 1))?;
+            let at = index.min(counts.samples - 1);
+            let now: Vec<f64> = archive.numbers_in(counts, &stored_counts, at)?;
             if now.len() != sizes.len() || now.iter().zip(&sizes).any(|(a, &b)| *a != b as f64) {
                 return Err(error(
                     0,
@@ -281,7 +284,7 @@ fn curves_object(
                 ));
             }
         }
-        let values = archive.numbers(p, index)?;
+        let values = archive.numbers_in(p, &stored_points, index)?;
         if values.len() != 3 * total {
             return Err(error(
                 0,
