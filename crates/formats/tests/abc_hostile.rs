@@ -117,3 +117,12 @@ fn alembics_own_archive_survives_mutation() {
     println!("alembic3d's abc: 4000 mutated files, {ok} read, {errors} refused, no panic");
     assert!(ok > 0 && errors > 0);
 }
+
+/// Found by the fuzzer: curve counts whose sum passes `usize::MAX / 3`
+/// (their sum saturates) made the point count check overflow.
+#[test]
+fn counts_past_any_point_count_are_an_error() {
+    let bytes = fixture("abc_counts_overflow.abc");
+    let error = read_abc(&bytes).expect_err("refused");
+    println!("{error}");
+}

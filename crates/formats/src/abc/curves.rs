@@ -285,7 +285,7 @@ fn curves_object(
             }
         }
         let values = archive.numbers_in(p, &stored_points, index)?;
-        if values.len() != 3 * total {
+        if total.checked_mul(3) != Some(values.len()) {
             return Err(error(
                 0,
                 ReadErrorKind::CountMismatch,
@@ -310,7 +310,13 @@ fn curves_object(
     let base = points_at(0)?;
     let sampling = archive.time_sampling(p)?;
     let (samples, rate) = if p.samples > 1 {
-        let mut list = Vec::with_capacity(p.samples as usize);
+        // The count is the file's word: charged before anything is sized by it.
+        let samples = p.samples as usize;
+        archive
+            .ogawa
+            .budget
+            .charge(samples.saturating_mul(64), 0, "P's samples")?;
+        let mut list = Vec::with_capacity(samples);
         for index in 0..p.samples {
             list.push((sampling.time(index), points_at(index)?));
         }
