@@ -152,7 +152,7 @@ fn bad_paths_and_formats_fail_before_simulating_and_leave_nothing() {
     let a_file = dir.join("a_file");
     std::fs::write(&a_file, "not a folder").expect("writes");
     let under_file = a_file.join("x.usda");
-    let unknown = dir.join("x.abc");
+    let unknown = dir.join("x.fbx");
     let tfx = dir.join("x.tfx");
     let cases: [(&[&str], String); 4] = [
         (
@@ -161,7 +161,7 @@ fn bad_paths_and_formats_fail_before_simulating_and_leave_nothing() {
         ),
         (
             &["--export", unknown.to_str().expect("UTF-8")],
-            "unknown export format; the extension picks one of .tfx, .hair, .usda, .obj".into(),
+            "unknown export format; the extension picks one of .tfx, .hair, .usda, .usdc, .usd, .usdz, .obj, .abc".into(),
         ),
         (
             &[

@@ -6,10 +6,13 @@
 //!   point is an element end), to f32 rounding;
 //! - the curves captured in memory, to the bit (the formats print the
 //!   shortest decimal that reads back as the same f32);
-//! - for `.usda`, Pixar's own reader (`pxr`, from `usd-core`): the same
+//! - for USD (`.usda`, `.usdc`, `.usdz`), Pixar's own reader (`pxr`,
+//!   from `usd-core`), and for Alembic (`.abc`) the Alembic library's
+//!   (`alembic3d`): the same
 //!   points at every time sample, and the head's transform at every time
 //!   sample equal to the head's pose in the simulation. Skips without
-//!   `pxr` unless `HELIXHAIR_REQUIRE_USD=1`.
+//!   `pxr` unless `HELIXHAIR_REQUIRE_USD=1`, without `alembic3d` unless
+//!   `HELIXHAIR_REQUIRE_ALEMBIC=1`.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -22,9 +25,12 @@ use helixhair_app::{HeadlessSim, SimOverrides, Style};
 use helixhair_formats::{CurveSet, Format, Imported, ReadOptions, StrandValue, TriangleMesh, read};
 use helixhair_render::head_generate::default_head;
 
+#[path = "../../formats/tests/support/alembic.rs"]
+mod alembic;
 #[path = "../../formats/tests/support/pxr.rs"]
 mod pxr;
 
+use alembic::alembic_available;
 use pxr::pxr_available;
 
 /// Frames simulated (the export holds the start too).
@@ -203,6 +209,57 @@ fn usda_round_trips_with_time_samples_widths_and_a_moving_head() {
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
+/// Binary USD (issue 30): a crate file and a package hold what the text
+/// layer holds, read back to the bit here and point for point by Pixar's
+/// library, the head's pose at every sample included.
+#[test]
+fn binary_usd_round_trips_with_time_samples_widths_and_a_moving_head() {
+    let (ends, captured) = expected_frames(&curly());
+    let head = helixhair_app::export::head_triangle_mesh(&default_head());
+    for format in [Format::Usdc, Format::Usdz] {
+        let dir = scratch(format.name());
+        let path = export(format, &dir, Some(&head));
+        let imported = read_file(&path);
+        let animation = imported.animation.as_ref().expect("time samples");
+        assert_eq!(animation.time_codes_per_second, 60.0);
+        assert_eq!(animation.frames.len(), STEPS + 1);
+        for (frame, sample) in animation.frames.iter().enumerate() {
+            assert_eq!(sample.time_code, frame as f64);
+            let what = format!("{format} time code {frame}");
+            assert_frame(&sample.points_m, &ends[frame], &captured[frame], &what);
+        }
+        for curve in &imported.curves.curves {
+            assert_eq!(curve.width_m, Some(StrandValue::PerStrand(70e-6)));
+        }
+        pixar_reads(&path, &ends, &head);
+        std::fs::remove_dir_all(&dir).expect("clean up");
+    }
+}
+
+/// Alembic (issue 30): the curves' point samples and the head's sampled
+/// transform, read back to the bit here and by the Alembic library.
+#[test]
+fn alembic_round_trips_with_samples_widths_and_a_moving_head() {
+    let (ends, captured) = expected_frames(&curly());
+    let head = helixhair_app::export::head_triangle_mesh(&default_head());
+    let dir = scratch("abc");
+    let path = export(Format::Abc, &dir, Some(&head));
+    let imported = read_file(&path);
+    let animation = imported.animation.as_ref().expect("samples");
+    assert_eq!(animation.time_codes_per_second, 60.0);
+    assert_eq!(animation.frames.len(), STEPS + 1);
+    for (frame, sample) in animation.frames.iter().enumerate() {
+        assert_eq!(sample.time_code, frame as f64);
+        let what = format!("abc sample {frame}");
+        assert_frame(&sample.points_m, &ends[frame], &captured[frame], &what);
+    }
+    for curve in &imported.curves.curves {
+        assert_eq!(curve.width_m, Some(StrandValue::PerStrand(70e-6)));
+    }
+    alembic_reads(&path, &ends, &head);
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}
+
 /// Drawn strands need the groom; they come back as exported, widths per
 /// point and colours per strand.
 #[test]
@@ -271,18 +328,62 @@ for time in curves.GetPointsAttr().GetTimeSamples():
     print("v0", repr(q[0]), repr(q[1]), repr(q[2]))
 "#;
 
+/// The same lines as [`READ_WITH_PXR`], from the Alembic library: the
+/// head's vertex 0 through its sampled `Xform`.
+const READ_WITH_ALEMBIC: &str = r#"
+import sys
+import imath
+from alembic3d.Abc import IArchive, ISampleSelector
+from alembic3d.AbcGeom import ICurves, IPolyMesh, IXform
+top = IArchive(sys.argv[1]).getTop()
+schema = ICurves(top, "hair").getSchema()
+times = schema.getTimeSampling()
+moving = IXform.matches(top.getChild("head").getHeader())
+mesh = IPolyMesh(top.getChild("head"), "headShape") if moving else IPolyMesh(top, "head")
+mesh = mesh.getSchema().getValue()
+print("counts", *schema.getValue().getCurvesNumVertices())
+print("head", len(mesh.getPositions()), len(mesh.getFaceCounts()))
+for index in range(schema.getNumSamples()):
+    time = times.getSampleTime(index)
+    print("frame", time)
+    for p in schema.getValue(ISampleSelector(time)).getPositions():
+        print("p", repr(p[0]), repr(p[1]), repr(p[2]))
+    v = mesh.getPositions()[0]
+    q = imath.V3d(v[0], v[1], v[2])
+    if moving:
+        q = q * IXform(top, "head").getSchema().getValue(ISampleSelector(time)).getMatrix()
+    print("v0", repr(q[0]), repr(q[1]), repr(q[2]))
+"#;
+
 fn pixar_reads(path: &Path, ends: &[Vec<Vec<Vec3>>], head: &TriangleMesh) {
-    if !pxr_available() {
-        return;
+    if pxr_available() {
+        library_reads("pxr", READ_WITH_PXR, path, ends, head);
     }
+}
+
+fn alembic_reads(path: &Path, ends: &[Vec<Vec<Vec3>>], head: &TriangleMesh) {
+    if alembic_available() {
+        library_reads("alembic", READ_WITH_ALEMBIC, path, ends, head);
+    }
+}
+
+/// Runs a reading script of another library and checks every frame's
+/// points and the head's vertex 0 against the simulation.
+fn library_reads(
+    library: &str,
+    script: &str,
+    path: &Path,
+    ends: &[Vec<Vec<Vec3>>],
+    head: &TriangleMesh,
+) {
     let output = Command::new("python3")
-        .args(["-c", READ_WITH_PXR])
+        .args(["-c", script])
         .arg(path)
         .output()
         .expect("python3 runs");
     assert!(
         output.status.success(),
-        "pxr: {}",
+        "{library}: {}",
         String::from_utf8_lossy(&output.stderr)
     );
     let text = String::from_utf8_lossy(&output.stdout);
@@ -314,7 +415,7 @@ fn pixar_reads(path: &Path, ends: &[Vec<Vec<Vec3>>], head: &TriangleMesh) {
             _ => {}
         }
     }
-    assert_eq!(frames.len(), STEPS + 1, "pxr sees every time sample");
+    assert_eq!(frames.len(), STEPS + 1, "{library} sees every time sample");
     // The shake clip's head pose at each frame's time, from the clip itself.
     let clip = helixhair_app::motion::clip::Clip::Shake;
     let v0 = head.vertices_m[0].as_dvec3();
@@ -324,7 +425,7 @@ fn pixar_reads(path: &Path, ends: &[Vec<Vec<Vec3>>], head: &TriangleMesh) {
                 let d = points[s * POINTS + k].distance(*want);
                 assert!(
                     d <= F32_ROUNDING_M,
-                    "pxr frame {frame} strand {s} point {k}: {d} m"
+                    "{library} frame {frame} strand {s} point {k}: {d} m"
                 );
             }
         }
@@ -333,7 +434,7 @@ fn pixar_reads(path: &Path, ends: &[Vec<Vec<Vec3>>], head: &TriangleMesh) {
         let got = DVec3::new(head_v0[0], head_v0[1], head_v0[2]);
         assert!(
             got.distance(want) < 1e-6,
-            "pxr frame {frame}: head vertex 0 at {got}, want {want}"
+            "{library} frame {frame}: head vertex 0 at {got}, want {want}"
         );
     }
 }

@@ -403,3 +403,90 @@ fn sim_export_of_an_imported_groom_carries_its_own_head_under_the_hair() {
         high.y
     );
 }
+
+/// Issue 30: a binary crate file Pixar's USD wrote (centimetres, Z up, a
+/// transformed parent, time samples) imports; `sim --export` writes a
+/// `.usdc` and `export` a `.usdz` and a `.usd`, which import again.
+#[test]
+fn binary_usd_grooms_import_and_every_command_exports_them() {
+    let dir = scratch("binary-usd");
+    let groom = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../formats/tests/data/pxr_groom.usdc"
+    );
+    let style = dir.join("pxr.ron").display().to_string();
+    let report = dir.join("report.json").display().to_string();
+    let out = helixhair(&["import", groom, "--out", &style, "--json", &report]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).expect("report")).expect("JSON");
+    // 20 animated strands and 16 static ones; a class and an inactive prim
+    // are not read.
+    assert_eq!(json["strands_read"], 36, "{json}");
+    assert_eq!(json["format"], "usdc", "{json}");
+    let read = |path: &Path| {
+        let bytes = std::fs::read(path).expect("the export");
+        let format = helixhair_formats::Format::from_path(path).expect("a USD name");
+        helixhair_formats::read(&bytes, format, &helixhair_formats::ReadOptions::default())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    };
+    let usdc = dir.join("sim.usdc");
+    let usdc_name = usdc.display().to_string();
+    let args = [
+        "sim", "--style", &style, "--steps", "3", "--export", &usdc_name,
+    ];
+    let out = helixhair(&args);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let frames = read(&usdc).animation.expect("time samples").frames;
+    assert_eq!(frames.len(), 4, "the start and 3 steps");
+    for name in ["last.usdz", "last.usd"] {
+        let path = dir.join(name);
+        let path_name = path.display().to_string();
+        let out = helixhair(&["export", "--style", &style, "--out", &path_name]);
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+        assert!(!read(&path).curves.curves.is_empty(), "{name}");
+        let again = dir.join(format!("{name}.ron")).display().to_string();
+        let out = helixhair(&["import", &path_name, "--out", &again]);
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+    }
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}
+
+/// Issue 30: an Alembic archive the Alembic library wrote (a transformed
+/// parent, samples at 30 per second, indexed and Unreal widths) imports;
+/// `sim --export` writes an `.abc` that imports again.
+#[test]
+fn alembic_grooms_import_and_sim_exports_them() {
+    let dir = scratch("alembic");
+    let groom = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../formats/tests/data/alembic3d_groom.abc"
+    );
+    let style = dir.join("abc.ron").display().to_string();
+    let report = dir.join("report.json").display().to_string();
+    let out = helixhair(&["import", groom, "--out", &style, "--json", &report]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).expect("report")).expect("JSON");
+    assert_eq!(json["strands_read"], 7, "{json}");
+    assert_eq!(json["format"], "abc", "{json}");
+    let abc = dir.join("sim.abc");
+    let abc_name = abc.display().to_string();
+    let args = [
+        "sim", "--style", &style, "--steps", "3", "--export", &abc_name,
+    ];
+    let out = helixhair(&args);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let bytes = std::fs::read(&abc).expect("the export");
+    let read = helixhair_formats::read(
+        &bytes,
+        helixhair_formats::Format::Abc,
+        &helixhair_formats::ReadOptions::default(),
+    )
+    .expect("reads");
+    assert_eq!(read.animation.expect("samples").frames.len(), 4);
+    let again = dir.join("again.ron").display().to_string();
+    let out = helixhair(&["import", &abc_name, "--out", &again]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}

@@ -4,13 +4,14 @@
 # target (also in fuzz/<target>.log). Needs cargo-fuzz (installed if
 # missing) and uses RUSTC_BOOTSTRAP=1 for the nightly flags libFuzzer's
 # build needs on a stable toolchain. Usage: crates/formats/fuzz/run.sh [RUNS]
+# (FUZZ_TARGETS="usdc usdz" runs some targets only).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs="${1:-1000000}"
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 export RUSTC_BOOTSTRAP=1
 failed=0
-for target in tfx hair usda obj; do
+for target in ${FUZZ_TARGETS:-tfx hair usda usdc usdz obj abc}; do
     mkdir -p "fuzz/corpus/$target"
     cp -n fuzz/seeds/"$target"/* "fuzz/corpus/$target/"
     start=$(date +%s)

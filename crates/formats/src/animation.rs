@@ -4,8 +4,8 @@
 //! points of all its curves, in curve order and flattened (curve 0's points,
 //! then curve 1's, …), so a frame is as long as
 //! [`crate::CurveSet::point_count`]. Widths and colours do not move. Only
-//! USD stores time samples; the other writers take one frame (write a
-//! numbered sequence for them).
+//! USD and Alembic store time samples; the other writers take one frame
+//! (write a numbered sequence for them).
 
 use glam::Vec3;
 

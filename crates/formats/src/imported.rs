@@ -4,7 +4,7 @@
 //! declares over the format's defaults), and the decoded strands repaired
 //! into the result ([`finish`]).
 //!
-//! The readers (`tfx`, `hair`, `obj`, `usda`) build on this module and
+//! The readers (`tfx`, `hair`, `obj`, `usda`, `usdc`, `abc`) build on this module and
 //! [`crate::read`] dispatches to them, so neither depends on the other.
 
 use glam::Vec3;
@@ -22,7 +22,7 @@ pub struct Imported {
     /// The curves, repaired, in metres, Y up. Animated files give the first
     /// frame here.
     pub curves: CurveSet,
-    /// The frames, when the file holds time samples (USD only); their points
+    /// The frames, when the file holds time samples (USD and Alembic); their points
     /// follow `curves` (same strands, same repairs).
     pub animation: Option<Animation>,
     /// What repair did, strand by strand.

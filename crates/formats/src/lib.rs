@@ -11,7 +11,10 @@
 //! | AMD TressFX `.tfx` ([`tfx`]) | 4.x and 3.x: points, colours | 4.0, one frame |
 //! | Cem Yuksel's `.hair` ([`hair`]) | points, thickness, colours | the same, one frame |
 //! | USD `.usda` ([`usda`]) | `BasisCurves`: points, time samples, widths, colours, transforms, units | the same, plus a head `Mesh` |
+//! | USD `.usdc`, `.usd` ([`usdc`]) | the same, from binary crate files (a text `.usd` as `.usda`) | the same, crate version 0.8.0 |
+//! | USD `.usdz` ([`usdc::usdz`]) | the package's first layer (`.usdc` or `.usda`) | one `.usdc` layer |
 //! | OBJ ([`obj`]) | `l` polylines (chained), `v` points | one frame |
+//! | Alembic `.abc` ([`abc`]) | Ogawa `AbcGeom` curves: points, time samples, widths, transforms | the same, plus a head `PolyMesh` |
 //!
 //! # How it works
 //!
@@ -31,6 +34,7 @@
 
 #![warn(missing_docs)]
 
+pub mod abc;
 pub mod animation;
 mod bytes;
 pub mod curve_set;
@@ -45,9 +49,12 @@ pub mod read;
 pub mod repair;
 pub mod tfx;
 pub mod usda;
+pub mod usdc;
 mod warnings;
 pub mod write;
 
+pub use abc::read_abc;
+pub use abc::write::write_abc;
 pub use animation::{Animation, Frame};
 pub use curve_set::{Curve, CurveSet, Metadata, StrandValue, UpAxis};
 pub use error::{Location, ReadError, ReadErrorKind, WriteError};
@@ -61,4 +68,7 @@ pub use repair::{RepairReason, RepairSummary};
 pub use tfx::{read_tfx, write_tfx};
 pub use usda::read_usda;
 pub use usda::write::{write_usda, write_usda_with_head_poses};
+pub use usdc::read_usdc;
+pub use usdc::usdz::{read_usdz, write_usdz};
+pub use usdc::write::write_usdc;
 pub use write::write;

@@ -3,8 +3,8 @@
 use crate::curve_set::UpAxis;
 
 /// Reading choices. The default reads every format as its own convention
-/// says: TressFX, `.hair` and OBJ in metres with Y up (they declare
-/// neither), USD as its `metersPerUnit` and `upAxis` say (USD's fallbacks
+/// says: TressFX, `.hair`, OBJ and Alembic in metres with Y up (they
+/// declare neither), USD as its `metersPerUnit` and `upAxis` say (USD's fallbacks
 /// when absent: 0.01 m, Y).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ReadOptions {

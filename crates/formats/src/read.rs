@@ -18,7 +18,7 @@ use crate::error::ReadError;
 use crate::format::Format;
 pub use crate::imported::Imported;
 use crate::options::ReadOptions;
-use crate::{hair, obj, tfx, usda};
+use crate::{abc, hair, obj, tfx, usda, usdc};
 
 /// Reads a file's bytes as `format`.
 pub fn read(bytes: &[u8], format: Format, options: &ReadOptions) -> Result<Imported, ReadError> {
@@ -26,6 +26,9 @@ pub fn read(bytes: &[u8], format: Format, options: &ReadOptions) -> Result<Impor
         Format::Tfx => tfx::read_tfx(bytes, options),
         Format::Hair => hair::read_hair(bytes, options),
         Format::Usda => usda::read_usda(bytes, options),
+        Format::Usdc => usdc::read_usdc(bytes, options),
+        Format::Usdz => usdc::usdz::read_usdz(bytes, options),
         Format::Obj => obj::read_obj(bytes, options),
+        Format::Abc => abc::read_abc(bytes, options),
     }
 }

@@ -91,7 +91,10 @@ fn mutate(rng: &mut Rng, valid: &[u8], binary: bool) -> Vec<u8> {
 
 fn mutation_run(format: Format, seed: u64) {
     let valid = valid_file(format);
-    let binary = matches!(format, Format::Tfx | Format::Hair);
+    let binary = matches!(
+        format,
+        Format::Tfx | Format::Hair | Format::Usdc | Format::Usdz | Format::Abc
+    );
     let mut rng = Rng::new(seed);
     let (mut ok, mut errors) = (0, 0);
     for case in 0..CASES {
@@ -149,4 +152,19 @@ fn usda_reader_survives_mutation() {
 #[test]
 fn obj_reader_survives_mutation() {
     mutation_run(Format::Obj, 0x0B1);
+}
+
+#[test]
+fn usdc_reader_survives_mutation() {
+    mutation_run(Format::Usdc, 0x05C);
+}
+
+#[test]
+fn usdz_reader_survives_mutation() {
+    mutation_run(Format::Usdz, 0x05E);
+}
+
+#[test]
+fn abc_reader_survives_mutation() {
+    mutation_run(Format::Abc, 0x0AB);
 }

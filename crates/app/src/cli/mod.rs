@@ -82,7 +82,9 @@ pub enum Command {
     /// frame) on any graphics adapter, lavapipe included.
     Render(crate::cli::render::RenderArgs),
     /// Export a style's hair (at rest, or after some frames, or every
-    /// frame) as .usda, .hair, .tfx or .obj, simulated on a head as
+    /// frame) as USD (.usda, .usdc, .usd, .usdz), Alembic (.abc), .hair,
+    /// .tfx or .obj,
+    /// simulated on a head as
     /// `render` does.
     Export(crate::export::command::ExportArgs),
     /// Import a groom (TressFX, .hair, USD, OBJ curves): fit Super-Helices,

@@ -48,7 +48,8 @@ pub struct ExportShapeArgs {
     /// last. Default: all for `sim`, last for `export`.
     #[arg(long, value_enum, value_name = "WHICH")]
     pub export_frames: Option<FrameChoice>,
-    /// Leave the head mesh out of a .usda file.
+    /// Leave the head mesh out of a USD (.usda, .usdc, .usd, .usdz) or
+    /// Alembic (.abc) file.
     #[arg(long)]
     pub no_head: bool,
 }
@@ -56,9 +57,11 @@ pub struct ExportShapeArgs {
 /// `helixhair sim`'s export options.
 #[derive(Clone, Debug, Args)]
 pub struct SimExportArgs {
-    /// Export the hair to FILE: .usda (USD BasisCurves, time samples and
-    /// the head), .hair, .tfx or .obj (one frame each: a numbered sequence
-    /// for an animation); missing folders are created.
+    /// Export the hair to FILE: USD BasisCurves with time samples and the
+    /// head, as text (.usda), binary (.usdc, .usd) or a package (.usdz);
+    /// Alembic curves with samples and the head (.abc);
+    /// or .hair, .tfx or .obj (one frame each: a numbered sequence for an
+    /// animation); missing folders are created.
     #[arg(long, value_name = "FILE")]
     pub export: Option<PathBuf>,
     /// What to export.
@@ -84,7 +87,8 @@ pub struct ExportArgs {
     /// default head.
     #[arg(long, value_name = "OBJ")]
     pub head: Option<PathBuf>,
-    /// The file to write: .usda, .hair, .tfx or .obj.
+    /// The file to write: .usda, .usdc, .usd, .usdz, .abc, .hair, .tfx or
+    /// .obj.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// What to export.

@@ -11,9 +11,11 @@
 //!    from the simulated guides, coloured, draped over the head),
 //!    resampled evenly by arc length, with the renderer's tapered ribbon
 //!    width per point and their colour.
-//! 2. **Collect** ([`ExportRecorder`]): `.usda` keeps every frame as a time
-//!    sample (time code = frame number, `timeCodesPerSecond` = 1 / `dt`),
-//!    the head as a `Mesh` that moves with the head's motion;
+//! 2. **Collect** ([`ExportRecorder`]): USD (`.usda` text, `.usdc` or
+//!    `.usd` binary, `.usdz` package) keeps every frame as a time sample
+//!    (time code = frame number, `timeCodesPerSecond` = 1 / `dt`), the
+//!    head as a `Mesh` that moves with the head's motion; Alembic (`.abc`)
+//!    the same as samples of its curves' points and of the head's `Xform`;
 //!    `.hair`, `.tfx` and `.obj` hold one frame, so an animation becomes a
 //!    numbered sequence `name.0000.hair` (the start), `name.0001.hair`, …,
 //!    each file written as soon as its frame is captured.
@@ -32,7 +34,7 @@ use anyhow::Context as _;
 use glam::Vec3;
 use helixhair_formats::{
     Animation, Curve, CurveSet, Format, Frame, MeshPose, StrandValue, TriangleMesh, WriteError,
-    write_usda_with_head_poses,
+    write_abc, write_usda_with_head_poses, write_usdc, write_usdz,
 };
 use helixhair_physics::engine::Engine;
 use helixhair_render::HeadMesh;
@@ -84,7 +86,8 @@ pub struct ExportSpec {
     pub points_per_strand: usize,
     /// Every frame or the last.
     pub frames: FrameChoice,
-    /// Whether a `.usda` gets the head as a `Mesh`.
+    /// Whether a USD file (`.usda`, `.usdc`, `.usd`, `.usdz`) or an
+    /// Alembic `.abc` gets the head as a mesh.
     pub head: bool,
 }
 
@@ -99,7 +102,7 @@ impl ExportSpec {
         frames: FrameChoice,
         head: bool,
     ) -> anyhow::Result<ExportSpec> {
-        let names: Vec<String> = Format::ALL.iter().map(|f| format!(".{f}")).collect();
+        let names: Vec<String> = Format::EXTENSIONS.iter().map(|e| format!(".{e}")).collect();
         let format = Format::from_path(path).with_context(|| {
             format!(
                 "{}: unknown export format; the extension picks one of {}",
@@ -131,7 +134,7 @@ impl ExportSpec {
         })
     }
 
-    /// Whether the export is several frames in one file (`.usda`) or a
+    /// Whether the export is several frames in one file (USD, Alembic) or a
     /// numbered sequence.
     pub fn animated(&self, steps: usize) -> bool {
         self.frames == FrameChoice::All && steps > 0
@@ -139,7 +142,7 @@ impl ExportSpec {
 
     /// Whether a head mesh is written (USD only).
     pub fn writes_head(&self) -> bool {
-        self.head && self.format == Format::Usda
+        self.head && self.format.holds_animation()
     }
 }
 
@@ -298,7 +301,7 @@ impl ExportRecorder {
     }
 
     /// Captures frame `frame` (0: the start) of an animation: a time sample
-    /// for `.usda`, or the next file of a numbered sequence, written now.
+    /// for USD and Alembic, or the next file of a numbered sequence, written now.
     pub fn capture(
         &mut self,
         engine: &Engine,
@@ -308,7 +311,7 @@ impl ExportRecorder {
         let curves = self.curves_now(engine, groom)?;
         let time_code = frame as f64;
         self.head_poses.push(head_pose(engine, time_code));
-        if self.spec.format == Format::Usda {
+        if self.spec.format.holds_animation() {
             self.frames.push(Frame::from_curves(time_code, &curves));
             if self.first.is_none() {
                 self.first = Some(curves);
@@ -329,7 +332,7 @@ impl ExportRecorder {
     ) -> anyhow::Result<()> {
         let curves = self.curves_now(engine, groom)?;
         let path = self.spec.path.clone();
-        if self.spec.format != Format::Usda {
+        if !self.spec.format.holds_animation() {
             return self.write_one(&path, &curves);
         }
         let pose = head_pose(engine, 0.0);
@@ -345,10 +348,10 @@ impl ExportRecorder {
             time_codes_per_second: 1.0 / self.dt_secs,
             frames: Vec::new(),
         };
-        self.write_usda(&path, &curves, Some(&rate), head, &poses)
+        self.write_usd(&path, &curves, Some(&rate), head, &poses)
     }
 
-    /// Writes the collected `.usda` animation (nothing to do for a
+    /// Writes the collected USD or Alembic animation (nothing to do for a
     /// sequence, whose files are written as captured); returns the files
     /// written and their total size in bytes.
     pub fn finish(mut self, head: Option<&TriangleMesh>) -> anyhow::Result<(Vec<PathBuf>, u64)> {
@@ -364,7 +367,7 @@ impl ExportRecorder {
                 std::mem::take(&mut self.head_poses)
             };
             let path = self.spec.path.clone();
-            self.write_usda(&path, &curves, Some(&animation), head, &poses)?;
+            self.write_usd(&path, &curves, Some(&animation), head, &poses)?;
         }
         Ok((self.written, self.bytes))
     }
@@ -377,7 +380,10 @@ impl ExportRecorder {
         }
     }
 
-    fn write_usda(
+    /// Writes one USD layer (text, crate file or package) or Alembic
+    /// archive, as the spec's format says, with its frames, head and head
+    /// poses.
+    fn write_usd(
         &mut self,
         path: &Path,
         curves: &CurveSet,
@@ -385,8 +391,12 @@ impl ExportRecorder {
         head: Option<&TriangleMesh>,
         poses: &[MeshPose],
     ) -> anyhow::Result<()> {
-        self.encode_and_save(path, |bytes| {
-            write_usda_with_head_poses(bytes, curves, animation, head, poses)
+        let format = self.spec.format;
+        self.encode_and_save(path, |bytes| match format {
+            Format::Usdc => write_usdc(bytes, curves, animation, head, poses),
+            Format::Usdz => write_usdz(bytes, curves, animation, head, poses),
+            Format::Abc => write_abc(bytes, curves, animation, head, poses),
+            _ => write_usda_with_head_poses(bytes, curves, animation, head, poses),
         })
     }
 

@@ -48,8 +48,10 @@ pub const MAX_GROOM_BYTES: u64 = 1 << 30;
 /// Arguments of `helixhair import`.
 #[derive(Clone, Debug, Args)]
 pub struct ImportArgs {
-    /// The groom: .tfx (TressFX 3/4), .hair (Cem Yuksel), .usda (USD
-    /// BasisCurves) or .obj (polylines).
+    /// The groom: .tfx (TressFX 3/4), .hair (Cem Yuksel), USD BasisCurves
+    /// (.usda text, .usdc or .usd binary, .usdz package), Alembic curves
+    /// (.abc) or .obj
+    /// (polylines).
     #[arg(value_name = "GROOM")]
     pub groom: PathBuf,
     /// The head mesh (OBJ) the roots are attached to, drawn and exported
@@ -131,7 +133,9 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     }
     let groom_name = args.groom.display().to_string();
     let format = Format::from_path(&args.groom).with_context(|| {
-        format!("{groom_name}: unknown groom format; expected .tfx, .hair, .usda or .obj")
+        format!(
+            "{groom_name}: unknown groom format; expected .tfx, .hair, .usda, .usdc, .usd, .usdz, .abc or .obj"
+        )
     })?;
     let size = std::fs::metadata(&args.groom)
         .with_context(|| format!("{groom_name}: cannot read the groom"))?

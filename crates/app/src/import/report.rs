@@ -58,7 +58,7 @@ pub struct ImportTimings {
 pub struct ImportReport {
     /// The groom file.
     pub groom: String,
-    /// Its format (`tfx`, `hair`, `usda`, `obj`).
+    /// Its format (`tfx`, `hair`, `usda`, `usdc`, `usdz`, `obj`, `abc`).
     pub format: String,
     /// The style written.
     pub style: String,

@@ -76,7 +76,8 @@ pub struct WindowArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_RENDER_STRANDS,
           value_parser = clap::value_parser!(u32).range(1..=200_000).map(|n| n as usize))]
     pub render_strands: usize,
-    /// Groom to import at start (.tfx, .hair, .usda, .obj): the window
+    /// Groom to import at start (.tfx, .hair, .usda, .usdc, .usd, .usdz,
+    /// .abc, .obj): the window
     /// opens with the import dialog, which asks for its head.
     #[arg(long, value_name = "GROOM")]
     pub import: Option<PathBuf>,

@@ -19,8 +19,17 @@ pub const USD_FALLBACK_METERS_PER_UNIT: f64 = 0.01;
 /// `timeCodesPerSecond` nor `framesPerSecond`.
 pub const USD_FALLBACK_TIME_CODES_PER_SECOND: f64 = 24.0;
 
-fn error(line: usize, kind: ReadErrorKind, message: String) -> ReadError {
-    ReadError::new(Format::Usda, Location::Line(line), kind, message)
+/// Where a value is: a line of a `.usda` layer, a byte of a `.usdc` file
+/// (the layer model keeps one number for either).
+fn location(format: Format, at: usize) -> Location {
+    match format {
+        Format::Usda => Location::Line(at),
+        _ => Location::Byte(at as u64),
+    }
+}
+
+fn error(format: Format, at: usize, kind: ReadErrorKind, message: String) -> ReadError {
+    ReadError::new(format, location(format, at), kind, message)
 }
 
 /// One prim's strands, with its frames when animated.
@@ -35,6 +44,7 @@ struct PrimCurves {
 /// `file_bytes` bounds the frames: repeating static prims in every frame
 /// may not make more points than the file has bytes.
 pub(crate) fn curves_from_layer(
+    format: Format,
     layer: Layer,
     options: &ReadOptions,
     file_bytes: usize,
@@ -48,6 +58,7 @@ pub(crate) fn curves_from_layer(
     let meters_per_unit = match metadata.meters_per_unit {
         Some((line, value)) if !(value.is_finite() && value > 0.0) => {
             return Err(error(
+                format,
                 line,
                 ReadErrorKind::BadValue,
                 format!("metersPerUnit must be positive, not {value}"),
@@ -72,13 +83,14 @@ pub(crate) fn curves_from_layer(
         Some((_, axis)) if axis == "Z" => UpAxis::Z,
         Some((line, axis)) => {
             return Err(error(
+                format,
                 line,
                 ReadErrorKind::BadValue,
                 format!("upAxis must be \"Y\" or \"Z\", not {axis:?}"),
             ));
         }
     };
-    let units = Units::resolve(Format::Usda, options, Some((meters_per_unit, up_axis)))?;
+    let units = Units::resolve(format, options, Some((meters_per_unit, up_axis)))?;
     let time_codes_per_second = metadata
         .time_codes_per_second
         .or(metadata.frames_per_second)
@@ -92,18 +104,18 @@ pub(crate) fn curves_from_layer(
             index: prim.prim,
         };
         let transform = world[prim.prim];
-        if let Some(read) = prim_curves(prim, &path, transform, &units, &mut warnings)? {
+        if let Some(read) = prim_curves(format, prim, &path, transform, &units, &mut warnings)? {
             per_prim.push(read);
         }
     }
     if per_prim.is_empty() {
         warnings.push(|| "the layer has no BasisCurves prim with points".to_string());
     }
-    let frames = merge_frames(&per_prim, file_bytes)?;
+    let frames = merge_frames(format, &per_prim, file_bytes)?;
     let curves = per_prim.into_iter().flat_map(|prim| prim.curves).collect();
     let animation = (!frames.is_empty()).then_some((time_codes_per_second, frames));
     Ok(finish(
-        Format::Usda,
+        format,
         &units,
         curves,
         animation,
@@ -112,6 +124,7 @@ pub(crate) fn curves_from_layer(
 }
 
 fn prim_curves(
+    format: Format,
     prim: CurvesPrim,
     path: &PrimPath,
     world: DMat4,
@@ -131,6 +144,7 @@ fn prim_curves(
         }),
         Some(other) => {
             return Err(error(
+                format,
                 prim.line,
                 ReadErrorKind::BadValue,
                 format!("<{path}>: curve type {other:?} is neither linear nor cubic"),
@@ -144,6 +158,7 @@ fn prim_curves(
     for (time, line, values) in prim.point_samples {
         if !time.is_finite() {
             return Err(error(
+                format,
                 line,
                 ReadErrorKind::BadValue,
                 format!("time code {time} is not finite"),
@@ -153,7 +168,8 @@ fn prim_curves(
             Some(values) => samples.push((time, line, values)),
             None => warnings.push(|| {
                 format!(
-                    "line {line}: <{path}>: the blocked points sample at time {time} is skipped"
+                    "{}: <{path}>: the blocked points sample at time {time} is skipped",
+                    location(format, line)
                 )
             }),
         }
@@ -161,6 +177,7 @@ fn prim_curves(
     samples.sort_by(|a, b| a.0.total_cmp(&b.0));
     if let Some(pair) = samples.windows(2).find(|pair| pair[0].0 == pair[1].0) {
         return Err(error(
+            format,
             pair[1].1,
             ReadErrorKind::BadValue,
             format!("<{path}>: time code {} has two samples", pair[1].0),
@@ -169,6 +186,7 @@ fn prim_curves(
     let Some(counts) = prim.counts else {
         if prim.points.is_some() || !samples.is_empty() {
             return Err(error(
+                format,
                 prim.line,
                 ReadErrorKind::CountMismatch,
                 format!("<{path}> has points but no curveVertexCounts"),
@@ -181,6 +199,7 @@ fn prim_curves(
     for &count in &counts.values {
         if !(count.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&count)) {
             return Err(error(
+                format,
                 counts.line,
                 ReadErrorKind::BadValue,
                 format!("<{path}>: curve vertex count {count} is not a count"),
@@ -206,6 +225,7 @@ fn prim_curves(
             Ok(())
         } else {
             Err(error(
+                format,
                 line,
                 ReadErrorKind::CountMismatch,
                 format!(
@@ -243,10 +263,17 @@ fn prim_curves(
     }
     let widths = prim
         .widths
-        .and_then(|widths| per_curve(widths, &sizes, path, "widths", warnings));
-    let colours = prim
-        .colours
-        .and_then(|colours| per_curve(colours, &sizes, path, "primvars:displayColor", warnings));
+        .and_then(|widths| per_curve(format, widths, &sizes, path, "widths", warnings));
+    let colours = prim.colours.and_then(|colours| {
+        per_curve(
+            format,
+            colours,
+            &sizes,
+            path,
+            "primvars:displayColor",
+            warnings,
+        )
+    });
     let mut curves = Vec::with_capacity(sizes.len());
     let mut first = 0;
     for (index, &size) in sizes.iter().enumerate() {
@@ -303,6 +330,7 @@ impl<T: Copy> Matched<T> {
 /// inferred from the length); a mismatch is warned about and the primvar
 /// ignored, as USD ignores it.
 fn per_curve<T>(
+    format: Format,
     array: ArrayValue<T>,
     sizes: &[usize],
     path: &PrimPath,
@@ -331,8 +359,8 @@ fn per_curve<T>(
     };
     if interpolation.is_none() || len < expected || (len != expected && expected != 1) {
         warnings.push(|| format!(
-            "line {}: <{path}>: {what} has {len} values, which fits neither its interpolation ({}) nor {} curves of {total} points; ignored",
-            array.line,
+            "{}: <{path}>: {what} has {len} values, which fits neither its interpolation ({}) nor {} curves of {total} points; ignored",
+            location(format, array.line),
             short(array.interpolation.as_deref().unwrap_or("none authored")),
             sizes.len()
         ));
@@ -346,7 +374,11 @@ fn per_curve<T>(
 
 /// Frames over all prims: animated prims must share their sample times;
 /// static prims repeat their points in every frame.
-fn merge_frames(per_prim: &[PrimCurves], file_bytes: usize) -> Result<Vec<Frame>, ReadError> {
+fn merge_frames(
+    format: Format,
+    per_prim: &[PrimCurves],
+    file_bytes: usize,
+) -> Result<Vec<Frame>, ReadError> {
     let Some(times) = per_prim
         .iter()
         .find_map(|prim| prim.samples.as_ref())
@@ -359,6 +391,7 @@ fn merge_frames(per_prim: &[PrimCurves], file_bytes: usize) -> Result<Vec<Frame>
             && (samples.len() != times.len() || samples.iter().zip(&times).any(|(s, t)| s.0 != *t))
         {
             return Err(error(
+                format,
                 prim.line,
                 ReadErrorKind::Unsupported,
                 "BasisCurves prims with different sample times are not read together".to_string(),
@@ -373,6 +406,7 @@ fn merge_frames(per_prim: &[PrimCurves], file_bytes: usize) -> Result<Vec<Frame>
     if frame_points > file_bytes {
         let line = per_prim.first().map_or(1, |prim| prim.line);
         return Err(error(
+            format,
             line,
             ReadErrorKind::TooLarge,
             format!(

@@ -7,12 +7,11 @@
 //! is on 1.95) and it brings about 55 crates where this one has two; the
 //! `usd` crates are bindings to Pixar's C++ build. So this module reads a
 //! careful subset of the text format ([`parse`]) and writes plain `usda`
-//! ([`mod@write`]); binary `usdc` is not supported (convert with `usdcat
-//! file.usdc -o file.usda`). `docs/formats.md` has the evaluation. Pixar's
-//! own library (`usd-core` on PyPI) reads back what this module writes, in
-//! a test. Alembic is not supported: nothing in Rust writes it, and the one
-//! reader (`ogawa-rs`) calls itself a work in progress that partially reads
-//! curves.
+//! ([`mod@write`]); binary crate files have their own reader and writer
+//! ([`crate::usdc`]), which build the same layer model ([`parse::Layer`])
+//! and share the step from it to curves. `docs/formats.md` has the
+//! evaluation. Pixar's own library (`usd-core` on PyPI) reads back what
+//! this module writes, in a test.
 //!
 //! # What is read
 //!
@@ -36,7 +35,7 @@
 //! metres, Y up, with widths, colours, time samples for an animation and an
 //! optional head `Mesh`.
 
-mod curves;
+pub(crate) mod curves;
 mod lexer;
 pub mod parse;
 pub mod transform;
@@ -66,7 +65,7 @@ pub fn read_usda(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadEr
     let first_line = bytes[..first_line_end].trim_ascii();
     if !first_line.starts_with(b"#usda") {
         let message = if bytes.starts_with(b"PXR-USDC") {
-            "this is a binary usdc file; convert it with `usdcat in.usdc -o out.usda`"
+            "this is a binary crate file: name it .usdc (or .usd) to read it as one"
         } else {
             "a usda layer starts with \"#usda 1.0\""
         };
@@ -88,5 +87,5 @@ pub fn read_usda(bytes: &[u8], options: &ReadOptions) -> Result<Imported, ReadEr
         error(line, ReadErrorKind::Syntax, "the text is not UTF-8")
     })?;
     let layer = parse::parse_layer(text, 1)?;
-    curves::curves_from_layer(layer, options, bytes.len())
+    curves::curves_from_layer(Format::Usda, layer, options, bytes.len())
 }

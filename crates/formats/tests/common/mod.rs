@@ -111,8 +111,8 @@ pub fn assert_points_equal(read: &[Vec3], written: &[Vec3], what: &str) {
 }
 
 /// A valid file of each format, from [`groom`] (20 strands × 8 points,
-/// with widths and colours where the format holds them; the USD one with
-/// three time samples).
+/// with widths and colours where the format holds them; the USD and
+/// Alembic ones with three time samples).
 pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
     use helixhair_formats::{Animation, Format, Frame};
     let mut bytes = Vec::new();
@@ -120,7 +120,7 @@ pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
         Format::Tfx => helixhair_formats::write_tfx(&mut bytes, &groom(11, 20, 8, false, true)),
         Format::Hair => helixhair_formats::write_hair(&mut bytes, &groom(12, 20, 8, true, true)),
         Format::Obj => helixhair_formats::write_obj(&mut bytes, &groom(13, 20, 8, false, false)),
-        Format::Usda => {
+        Format::Usda | Format::Usdc | Format::Usdz | Format::Abc => {
             let curves = groom(14, 20, 8, true, true);
             let frames = (0..3)
                 .map(|k| Frame::from_curves(k as f64, &curves))
@@ -129,7 +129,20 @@ pub fn valid_file(format: helixhair_formats::Format) -> Vec<u8> {
                 time_codes_per_second: 24.0,
                 frames,
             };
-            helixhair_formats::write_usda(&mut bytes, &curves, Some(&animation), None)
+            match format {
+                Format::Usda => {
+                    helixhair_formats::write_usda(&mut bytes, &curves, Some(&animation), None)
+                }
+                Format::Usdc => {
+                    helixhair_formats::write_usdc(&mut bytes, &curves, Some(&animation), None, &[])
+                }
+                Format::Abc => {
+                    helixhair_formats::write_abc(&mut bytes, &curves, Some(&animation), None, &[])
+                }
+                _ => {
+                    helixhair_formats::write_usdz(&mut bytes, &curves, Some(&animation), None, &[])
+                }
+            }
         }
     }
     .expect("the sample groom writes");
@@ -159,4 +172,12 @@ pub fn expect_error(
 /// Overwrites a little-endian `u32` (a header field) in a file.
 pub fn put_u32(bytes: &mut [u8], offset: usize, value: u32) {
     bytes[offset..offset + 4].copy_from_slice(&value.to_le_bytes());
+}
+
+/// A file of `crates/formats/tests/data` (fixtures written by other tools).
+pub fn fixture(name: &str) -> Vec<u8> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name);
+    std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }

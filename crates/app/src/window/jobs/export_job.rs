@@ -1,5 +1,6 @@
 //! File → "Export frame…" and "Record animation…": the hair as curve files
-//! (.usda, .hair, .tfx, .obj), written by the same code as `helixhair sim
+//! (.usda, .usdc, .usd, .usdz, .abc, .hair, .tfx, .obj), written by the same
+//! code as `helixhair sim
 //! --export` ([`crate::export::command::SimExport`]).
 //!
 //! # How it works
@@ -12,7 +13,7 @@
 //! frame through the command line's export loop. "Export frame…" is the
 //! same with no frame stepped: the state on screen. The window goes on
 //! with its own run meanwhile; the recording is what the next N frames
-//! would have been with the user's hands off the head. A `.usda` is
+//! would have been with the user's hands off the head. A USD or Alembic file is
 //! written once, atomically, at the end; a sequence's frames are each
 //! written atomically as they come, and Cancel removes the ones written.
 

@@ -65,7 +65,10 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
                 ui.label("file");
                 ui.add(egui::TextEdit::singleline(&mut dialog.path).desired_width(360.0));
             });
-            ui.small(".usda (USD curves with the head), .hair, .tfx or .obj; a folder is made if missing");
+            ui.small(
+                ".usda, .usdc, .usd, .usdz or .abc (curves with the head), .hair, .tfx or .obj; \
+                 a folder is made if missing",
+            );
             ui.horizontal(|ui| {
                 ui.label("strands");
                 ui.radio_value(&mut dialog.strands, StrandChoice::Simulated, "simulated");
@@ -73,9 +76,10 @@ pub fn export_dialog(ctx: &egui::Context, dialog: &mut ExportDialog) -> DialogAn
             });
             ui.horizontal(|ui| {
                 ui.label("points per strand");
-                ui.add(egui::DragValue::new(&mut dialog.points_per_strand).range(
-                    MIN_POINTS_PER_STRAND..=MAX_POINTS_PER_STRAND,
-                ));
+                ui.add(
+                    egui::DragValue::new(&mut dialog.points_per_strand)
+                        .range(MIN_POINTS_PER_STRAND..=MAX_POINTS_PER_STRAND),
+                );
             });
             if dialog.animation {
                 ui.horizontal(|ui| {

@@ -37,7 +37,7 @@ impl PickerMode {
     /// The extensions listed (lower case, no dot).
     pub fn extensions(self) -> &'static [&'static str] {
         match self {
-            PickerMode::ImportGroom => &["tfx", "hair", "usda", "obj"],
+            PickerMode::ImportGroom => &helixhair_formats::Format::EXTENSIONS,
             _ => &["ron"],
         }
     }
@@ -51,7 +51,10 @@ impl PickerMode {
         match self {
             PickerMode::Open => ("Open style", "Open"),
             PickerMode::SaveAs => ("Save style as", "Save"),
-            PickerMode::ImportGroom => ("Import groom (.tfx, .hair, .usda, .obj)", "Import"),
+            PickerMode::ImportGroom => (
+                "Import groom (.tfx, .hair, .usda, .usdc, .usd, .usdz, .abc, .obj)",
+                "Import",
+            ),
             PickerMode::PlayMotion => ("Play motion file", "Play"),
             PickerMode::SaveMotion => ("Save head motion as", "Save"),
         }
