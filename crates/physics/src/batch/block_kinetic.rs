@@ -61,6 +61,15 @@ impl<T: Real> Moments<T> {
         }
     }
 
+    /// Both sets of samples, about the same point.
+    fn plus(self, o: Self) -> Self {
+        Self {
+            mass: self.mass + o.mass,
+            first: self.first + o.first,
+            second: self.second + o.second,
+        }
+    }
+
     /// Σ m |u + β × d|².
     fn rigid_motion_square(&self, u: V3<T>, beta: V3<T>) -> T {
         let s = &self.second;
@@ -140,16 +149,7 @@ impl<T: Real> BlockKinetic<T> {
         for e in self.elements.iter().rev() {
             twice += beyond.rigid_motion_square(e.u, e.beta);
             // To the element's start point, then its own samples.
-            let moved = beyond.moved(e.span);
-            beyond = Moments {
-                mass: moved.mass + e.own.mass,
-                first: moved.first + e.own.first,
-                second: M3::from_cols(
-                    moved.second.c0 + e.own.second.c0,
-                    moved.second.c1 + e.own.second.c1,
-                    moved.second.c2 + e.own.second.c2,
-                ),
-            };
+            beyond = beyond.moved(e.span).plus(e.own);
         }
         (twice * T::splat(0.5), BlockKineticBuffer(self.elements))
     }
