@@ -12,9 +12,10 @@
 #[path = "support/alembic.rs"]
 mod alembic;
 mod common;
+#[path = "support/python.rs"]
+mod python;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use alembic::alembic_available;
 use common::{fixture, groom};
@@ -23,6 +24,7 @@ use helixhair_formats::{
     Animation, Format, Frame, Imported, MeshPose, ReadOptions, StrandValue, TriangleMesh, read,
     write_abc,
 };
+use python::{max_distance, numbers, python};
 
 /// The round trip's promise (issue 30): every point within 0.1 mm.
 const ROUND_TRIP_TOLERANCE_M: f64 = 1e-4;
@@ -35,37 +37,6 @@ fn temp_dir(name: &str) -> PathBuf {
 
 fn read_abc(bytes: &[u8]) -> Imported {
     read(bytes, Format::Abc, &ReadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn python(args: &[&str]) -> Vec<String> {
-    let output = Command::new("python3")
-        .args(args)
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "python failed:\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8_lossy(&output.stdout)
-        .lines()
-        .map(str::to_string)
-        .collect()
-}
-
-fn numbers(line: &str) -> Vec<f64> {
-    line.split_whitespace()
-        .skip(1)
-        .map(|word| word.parse().expect("a number"))
-        .collect()
-}
-
-fn max_distance(a: &[Vec3], b: &[Vec3]) -> f64 {
-    assert_eq!(a.len(), b.len(), "point counts");
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| f64::from(p.distance(*q)))
-        .fold(0.0, f64::max)
 }
 
 /// The fixture's points as its script states them: strand i, point j at

@@ -11,9 +11,10 @@
 mod common;
 #[path = "support/pxr.rs"]
 mod pxr;
+#[path = "support/python.rs"]
+mod python;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use common::{fixture, groom};
 use glam::{DMat3, DVec3, Vec3};
@@ -22,6 +23,7 @@ use helixhair_formats::{
     read, write_usdc, write_usdz,
 };
 use pxr::pxr_available;
+use python::{max_distance, numbers, python};
 
 /// The round trip's promise (issue 30): every point within 0.1 mm.
 const ROUND_TRIP_TOLERANCE_M: f64 = 1e-4;
@@ -37,38 +39,6 @@ fn temp_dir(name: &str) -> PathBuf {
 
 fn read_as(bytes: &[u8], format: Format) -> Imported {
     read(bytes, format, &ReadOptions::default()).unwrap_or_else(|e| panic!("{format}: {e}"))
-}
-
-fn python(args: &[&str]) -> Vec<String> {
-    let output = Command::new("python3")
-        .args(args)
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "python failed:\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8_lossy(&output.stdout)
-        .lines()
-        .map(str::to_string)
-        .collect()
-}
-
-fn numbers(line: &str) -> Vec<f64> {
-    line.split_whitespace()
-        .skip(1)
-        .map(|word| word.parse().expect("a number"))
-        .collect()
-}
-
-/// The largest distance between two point lists, metres.
-fn max_distance(a: &[Vec3], b: &[Vec3]) -> f64 {
-    assert_eq!(a.len(), b.len(), "point counts");
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| f64::from(p.distance(*q)))
-        .fold(0.0, f64::max)
 }
 
 /// Warnings without their "line N: " or "byte N: " prefix.
