@@ -1,18 +1,17 @@
 //! How deep hair rests in the head's collider, by the physics' own distance
-//! field, with the reference engine's contact stiffness of your choice: the
+//! field, with the contact stiffness of your choice: the
 //! probe behind the contact measurements of issues 32 and 33.
 //!
 //! `cargo run --release -p helixhair-app --example contact_depth -- STYLE.ron FRAMES SKIN_M ALPHA [CLIP]`
 //!
 //! Grows and settles STYLE as `render` and `sim --export` do, sets the
-//! reference engine's contact skin (metres) and implicit stiffness ratio α
+//! engine's contact skin (metres) and implicit stiffness ratio α
 //! (`ContactSettings`), settles it again with them (so no stored spring
 //! energy is left over from the change), then steps FRAMES frames on a
 //! still head or under CLIP (`nod`, `shake`, `turn`, `jerk`). It prints
 //! the first guard events, and the share of quadrature samples at a signed
 //! distance below 0, −1 mm and −3 mm, the deepest one, and per element
-//! index how many samples are inside. On the batch engine the contact
-//! settings are the defaults (the engine has no setter through `Engine`).
+//! index how many samples are inside. Either engine (the style's `engine`).
 //!
 //! Measured with it (2026-11-28, 300 frames, every clip): at α = 4 the
 //! groomed curly and coily examples rest with 6.6% and 7.8% of samples
@@ -49,13 +48,11 @@ fn main() -> anyhow::Result<()> {
     };
     let (_groom, mut sim) = grown_sim(style, None, SimOverrides::default())?;
     let engine = sim.engine_mut();
-    if let Some(reference) = engine.reference_mut() {
-        let mut contact = reference.contact_settings();
-        contact.skin_m = skin_m;
-        contact.implicit_stiffness_ratio = alpha;
-        reference.set_contact_settings(contact);
-        settle_on_head(engine);
-    }
+    let mut contact = engine.contact_settings();
+    contact.skin_m = skin_m;
+    contact.implicit_stiffness_ratio = alpha;
+    engine.set_contact_settings(contact);
+    settle_on_head(engine);
     if let Some(clip) = clip {
         sim.play(clip);
     }

@@ -199,7 +199,6 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         gravity_m_per_s2: (!args.no_sag_free).then_some(SimSettings::default().gravity_m_per_s2),
         support: collider.as_ref().map(|collider| {
             RestContact::for_engine(
-                IMPORTED_ENGINE,
                 &SimSettings::default(),
                 ContactSettings::default(),
                 collider,

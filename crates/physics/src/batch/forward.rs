@@ -22,7 +22,7 @@ use super::geometry::{
 };
 use super::lane_model::Constants;
 use super::lanes::Real;
-use super::layout::{ElementData, RootMotion, StepEnv};
+use super::layout::{ContactInertia, ElementData, RootMotion, StepEnv};
 use super::vec::{M3, V3};
 
 /// The frame and point at an element boundary, with time derivatives.
@@ -245,6 +245,18 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     let mut local_force = V3::zero();
     let mut u_local = M3::zero();
     let mut v_local = M3::zero();
+    let mut contact = ContactInertia::zero();
+    let mut touching = false;
+    // The head's implicit contact adds h (h k + c) Jᵀ n nᵀ J to the step
+    // matrix, which the steps scale by s with the mass: its own-element
+    // share is taken over s here, so that it enters unscaled, as the
+    // parent's share (`contact`) does (crate::batch::contact).
+    let inverse_sqrt_scale = if H::SAMPLE_CONTACT {
+        let drag = nu / rho_s + T::splat(hook.drag_rate_per_s());
+        T::splat(1.0) / (T::splat(1.0) + T::splat(env.h_secs) * drag).sqrt()
+    } else {
+        T::splat(1.0)
+    };
     for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
         let sigma = T::splat(*node) * length_m;
         let co = match coefficients {
@@ -259,8 +271,24 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
         if H::SAMPLE_FORCES {
             per_length += hook.sample_force(e, j, hook_origin_m + r, vel);
         }
-        let force = per_length.scale(w_len);
         let jac = &lp.jacobian;
+        if H::SAMPLE_CONTACT
+            && let Some((push, gain_axis)) = hook.sample_contact(e, j, hook_origin_m + r, vel)
+        {
+            per_length += push;
+            // a aᵀ = w ℓ h (h k + c) n nᵀ: this sample's point inertia.
+            let a = gain_axis.scale(w_len.sqrt());
+            contact.add_point(a, r);
+            touching = true;
+            let a_local = s.frame.t_mul_vec(a).scale(inverse_sqrt_scale);
+            let psi = jac.t_mul_vec(a_local);
+            add_upper_outer(&mut gram, psi);
+            if OFF_DIAGONAL {
+                u_local = M3::outer_add(a_local, psi, u_local);
+                v_local = M3::outer_add(lp.h.cross(a_local), psi, v_local);
+            }
+        }
+        let force = per_length.scale(w_len);
         local_force = jac.t_mul_vec_add(s.frame.t_mul_vec(force), local_force);
         let (c0, c1, c2) = (jac.c0, jac.c1, jac.c2);
         gram[0] = w_mass.mul_add(c0.dot(c0), gram[0]);
@@ -295,9 +323,28 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
     el.inertia = M3::symmetric(second.map(|s| -s)).add_diagonal(V3::new(trace, trace, trace));
     el.own_force = local_force;
     el.own_mass_block = M3::symmetric(gram);
+    el.contact = contact;
+    el.touching = touching;
     if OFF_DIAGONAL {
         el.u = s.frame.mul_mat(&u_local);
         el.v = M3::cross_cols(s.point_m, &el.u) + s.frame.mul_mat(&v_local);
+    }
+}
+
+/// Adds x xᵀ to a symmetric matrix held by its upper triangle (00, 01,
+/// 02, 11, 12, 22).
+#[inline(always)]
+fn add_upper_outer<T: Real>(upper: &mut [T; 6], x: V3<T>) {
+    let pairs = [
+        (x.x, x.x),
+        (x.x, x.y),
+        (x.x, x.z),
+        (x.y, x.y),
+        (x.y, x.z),
+        (x.z, x.z),
+    ];
+    for (u, (a, b)) in upper.iter_mut().zip(pairs) {
+        *u = a.mul_add(b, *u);
     }
 }
 
@@ -314,8 +361,8 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
     forward_with::<T, OFF_DIAGONAL, false, _>(model, env, root, q, v, out, &mut NoContact, None);
 }
 
-/// [`forward`] with a force at each element's end point (stage "collide",
-/// [`super::contact`]), and with moments about the root (`LOCAL = false`,
+/// [`forward`] with the hook's forces (the head's contact at the samples,
+/// stage "collide", [`super::contact`]; the hair–hair model's pull), and with moments about the root (`LOCAL = false`,
 /// as the Dense kernel takes them) or about each element's own points
 /// (`LOCAL = true`).
 ///
@@ -388,13 +435,14 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
         };
         el.b = b;
         el.span = span;
-        el.contact_axis = V3::zero();
         end_force.at_end::<LOCAL>(e, &next, el);
         s = next;
     }
 }
 
-/// A force applied at each element's end point during the forward sweep.
+/// What the forward sweep adds to the strand's own forces: the head's
+/// contact and the hair–hair model's pull at the quadrature samples, and a
+/// hook at each element's end point.
 pub trait EndPointForce<T> {
     /// Called once element `e`'s data `el` is complete (own sums, A_Q,
     /// B_Q), with `end` the state at its end point.
@@ -406,6 +454,31 @@ pub trait EndPointForce<T> {
     /// switch, so that without the hair–hair model ([`crate::batch::volume::pull`]) the
     /// sample loop is exactly as before.
     const SAMPLE_FORCES: bool = false;
+
+    /// Whether [`Self::sample_contact`] can touch: a compile-time switch,
+    /// so that without a collider the sample loop is exactly as before.
+    const SAMPLE_CONTACT: bool = false;
+
+    /// The head's implicit contact at quadrature node `j` of element `e`
+    /// at `r` (relative to the root point, m) moving at `velocity` (world,
+    /// m/s): `None` when no lane touches; else each lane's predicted push
+    /// per unit length (N/m, zero for lanes out of contact) and its gain
+    /// axis g, with g gᵀ = h (h k + c) n nᵀ (kg·s⁻¹·m⁻¹·s: the step
+    /// matrix gains w ℓ g gᵀ through the sample's Jacobian), as
+    /// [`crate::collision::ContactInputs::implicit_force`] gives them.
+    #[inline(always)]
+    fn sample_contact(
+        &self,
+        _e: usize,
+        _j: usize,
+        _r: V3<T>,
+        _velocity: V3<T>,
+    ) -> Option<(V3<T>, V3<T>)>
+    where
+        T: Real,
+    {
+        None
+    }
 
     /// An extra drag rate, 1/s, taken implicitly through the mass scale
     /// (the hair–hair friction μ, [`crate::batch::volume::pull`]).

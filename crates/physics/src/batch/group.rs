@@ -436,8 +436,7 @@ pub(super) fn step_one_batch(
     match contact {
         Some(test) => {
             let positions = std::array::from_fn(|i| motions[i].position_m);
-            let implicit = kind != BatchStep::BlockDiagonal;
-            let end_force = LaneContact::new(test, model, positions, implicit);
+            let end_force = LaneContact::new(test, model, positions);
             step_pulled(model, env, &root, kind, q, v, scratch, end_force, pull);
         }
         None => step_pulled(model, env, &root, kind, q, v, scratch, NoContact, pull),

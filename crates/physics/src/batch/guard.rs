@@ -10,7 +10,7 @@
 //! gravitational energy, momentum, angular momentum about the root, the
 //! external forces with their torque and power (gravity, drag and the
 //! hair–hair model's pull, [`crate::batch::volume::pull`]), whether the head's contact
-//! acts at any element end point, as the step applies it (a frame in
+//! acts at any quadrature sample, as the step applies it (a frame in
 //! contact is judged by finiteness and speed alone, so the contact's force
 //! itself is not summed), and the fastest point relative to the root's
 //! rigid motion. Each lane's sums go
@@ -82,8 +82,8 @@ pub(super) fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
 pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
 
 thread_local! {
-    /// Each thread's buffer of element end points for [`measure_lanes`].
-    static KEPT_ENDS: RefCell<Vec<(V3<Lanes>, V3<Lanes>)>> = const { RefCell::new(Vec::new()) };
+    /// Each thread's buffer of quadrature samples for [`measure_lanes`].
+    static KEPT_POINTS: RefCell<Vec<(V3<Lanes>, V3<Lanes>)>> = const { RefCell::new(Vec::new()) };
     /// Each thread's buffer for Block-diagonal's kinetic energy.
     static KEPT_BLOCK: RefCell<BlockKineticBuffer<Lanes>> = RefCell::new(BlockKineticBuffer::default());
 }
@@ -124,12 +124,12 @@ pub fn measure_lanes<'a>(
         (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
     let (mut mass, mut second_moment) = (zero, zero);
     let nodes = model.nodes().len();
-    // Element end points (relative to the root) and their velocities, for
-    // the contact's terms after the sweep: kept out of the SIMD loop, whose
+    // Quadrature samples (relative to the root) and their velocities, for
+    // the contact's test after the sweep: kept out of the SIMD loop, whose
     // state would otherwise be spilled for the per-lane lookups.
     // The thread's buffer, kept: a batch's measure allocates nothing.
-    let mut ends = KEPT_ENDS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
-    ends.clear();
+    let mut points = KEPT_POINTS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
+    points.clear();
     let carried = RootVelocity::of(root);
     // Block-diagonal's own kinetic energy, only where a frame is judged by it.
     let block = (judged_by == KineticEnergy::BlockDiagonal).then(|| {
@@ -151,6 +151,9 @@ pub fn measure_lanes<'a>(
         first_moment = r.scale_add(w_mass, first_moment);
         mass += w_mass;
         second_moment = r.dot(r).mul_add(w_mass, second_moment);
+        if contact.is_some() {
+            points.push((r, vel));
+        }
         let rel = vel - carried.at(r);
         strain_kinetic = (rel.dot(rel) * w_mass).mul_add(Lanes::splat(0.5), strain_kinetic);
         if let Some(pull) = pull {
@@ -165,9 +168,6 @@ pub fn measure_lanes<'a>(
         let d = q[e] - model.natural(e);
         let k = model.stiffness(e);
         elastic += (d.x * d.x * k.x + d.y * d.y * k.y + d.z * d.z * k.z) * Lanes::splat(0.5);
-        if contact.is_some() {
-            ends.push((s.point_m, s.point_velocity));
-        }
         if let Some(block) = &block {
             block.borrow_mut().element_end(s);
         }
@@ -188,10 +188,10 @@ pub fn measure_lanes<'a>(
     torque += first_moment.cross(g) - (angular - first_moment.cross(air)).scale(drag_per_mass);
     power -= (kinetic + kinetic - air.dot(momentum)) * drag_per_mass;
     let in_contact = match contact {
-        Some(contact) => lanes_in_contact(model, contact, motions, &ends),
+        Some(contact) => lanes_in_contact(model, contact, motions, &points),
         None => 0,
     };
-    KEPT_ENDS.with(|kept| *kept.borrow_mut() = ends);
+    KEPT_POINTS.with(|kept| *kept.borrow_mut() = points);
     LaneMeasures {
         kinetic,
         strain_kinetic,
@@ -272,13 +272,11 @@ impl LaneMeasures<'_> {
 }
 
 /// Per lane (bit `lane` of the mask), whether the head's contact acts at
-/// any element end point of a batch whose end points (relative to each
-/// lane's root) and velocities are `ends`. The step's contact: a force at
-/// each end point, carrying half of each element beside it
-/// ([`super::contact`]), screened in lanes first ([`crate::batch::contact::lane_screen`]),
-/// then as the step screens (exact: a rejected point has no force), then
-/// the implicit push: where it acts is where the Exact steps' contact
-/// acts, and a superset of where the explicit penalty does.
+/// any quadrature sample of a batch whose samples (relative to each lane's
+/// root) and velocities are `points`: the step's own test
+/// ([`super::contact`]), screened in lanes first
+/// ([`crate::batch::contact::lane_screen`]), then as the step screens
+/// (exact: a rejected point has no force), then the implicit push.
 ///
 /// Only "is there contact" is found, not the force: a frame that starts or
 /// ends in contact is judged by finiteness and true speed alone
@@ -289,24 +287,17 @@ fn lanes_in_contact(
     model: &impl Constants<Lanes>,
     contact: &SkinTest<'_>,
     motions: &[RigidMotion; LANES],
-    ends: &[(V3<Lanes>, V3<Lanes>)],
+    points: &[(V3<Lanes>, V3<Lanes>)],
 ) -> u32 {
     const ALL: u32 = (1 << LANES) - 1;
     let screen = LaneScreen::new(contact, &motions.map(|m| m.position_m));
     let rho_s = model.mass_per_length();
-    let n = ends.len();
     let mut found = 0;
-    for (e, (point_m, velocity_m_per_s)) in ends.iter().enumerate() {
+    for (point_m, velocity_m_per_s) in points {
         let screened = screen.may_feel(contact.near, *point_m, *velocity_m_per_s, true) & !found;
         if screened == 0 {
             continue;
         }
-        let next_m = if e + 1 < n {
-            model.length_m(e + 1)
-        } else {
-            Lanes::splat(0.0)
-        };
-        let share = model.length_m(e) + next_m;
         for lane in (0..LANES).filter(|lane| screened & (1 << lane) != 0) {
             let pick = |x: V3<Lanes>| {
                 DVec3::new(
@@ -320,12 +311,12 @@ fn lanes_in_contact(
             if !contact.may_feel(world, velocity, true) {
                 continue;
             }
-            let f = contact
+            let rho_s = f64::from(rho_s.lane(lane));
+            if contact
                 .inputs
-                .implicit_force(world, velocity, f64::from(rho_s.lane(lane)))
-                .map_or(DVec3::ZERO, |c| c.force_n_per_m)
-                * f64::from(0.5 * share.lane(lane));
-            if f != DVec3::ZERO {
+                .implicit_force(world, velocity, rho_s)
+                .is_some()
+            {
                 found |= 1 << lane;
             }
         }

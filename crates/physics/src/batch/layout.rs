@@ -157,12 +157,80 @@ pub struct ElementData<T> {
     /// The element's end point minus its start point, metres (set by the
     /// sweep with local moments, see [`super::forward::forward_with`]).
     pub span: V3<T>,
-    /// The implicit contact at the element's end point, as an axis a with
-    /// a aᵀ = h (h k + c) ℓ n nᵀ (kg·s⁻¹·m·s → kg): the term the Exact
-    /// elimination adds to the articulated inertia there
-    /// ([`super::contact`]). Zero out of contact, and always zero on the
-    /// explicit-contact paths.
-    pub contact_axis: V3<T>,
+    /// The implicit contact of the element's own quadrature samples
+    /// ([`super::contact`]): the point inertias they add to the rigid
+    /// motion of the element's start frame, for the elimination's
+    /// articulated inertia and Block-diagonal's suffix sums. Zero out of
+    /// contact, and when no lane of the batch touched (`touching` false).
+    pub contact: ContactInertia<T>,
+    /// Whether any lane's sample of this element is in contact this step.
+    pub touching: bool,
+}
+
+/// The rigid-motion inertia of point inertias a aᵀ (one per sample in
+/// contact, each at offset d from the moments' origin: the element's start
+/// with local moments, else the root), as the three blocks of the 6×6
+/// Σ φ φᵀ, φ = (a, d × a): for a twist (linear velocity u at the origin,
+/// angular velocity ω) the points' normal speeds are φᵀ(u, ω) =
+/// a·(u + ω × d). Units: kg, kg·m, kg·m².
+#[derive(Clone, Copy, Debug)]
+pub struct ContactInertia<T> {
+    /// Σ a aᵀ.
+    pub aa: M3<T>,
+    /// Σ a (d × a)ᵀ.
+    pub ab: M3<T>,
+    /// Σ (d × a)(d × a)ᵀ.
+    pub bb: M3<T>,
+}
+
+impl<T: Real> ContactInertia<T> {
+    /// No contact.
+    pub fn zero() -> Self {
+        Self {
+            aa: M3::zero(),
+            ab: M3::zero(),
+            bb: M3::zero(),
+        }
+    }
+
+    /// Adds the point inertia a aᵀ at offset `d_m`.
+    #[inline(always)]
+    pub fn add_point(&mut self, a: V3<T>, d_m: V3<T>) {
+        let turn = d_m.cross(a);
+        self.aa = M3::outer_add(a, a, self.aa);
+        self.ab = M3::outer_add(a, turn, self.ab);
+        self.bb = M3::outer_add(turn, turn, self.bb);
+    }
+
+    /// Adds `o`.
+    #[inline(always)]
+    pub fn add(&mut self, o: &Self) {
+        self.aa += o.aa;
+        self.ab += o.ab;
+        self.bb += o.bb;
+    }
+
+    /// Moves the origin by `delta` (new origin minus old): each d becomes
+    /// d − δ, so d × a loses δ × a.
+    #[inline(always)]
+    pub fn shift(&mut self, delta: V3<T>) {
+        let skew = M3::skew(delta);
+        // (d − δ) × a = (d × a) − [δ]× a.
+        // Σ t′t′ᵀ = Σ ttᵀ − S Σ a tᵀ − (S Σ a tᵀ)ᵀ + S Σ a aᵀ Sᵀ, S = [δ]×.
+        let s_ab = skew.mul_mat(&self.ab);
+        self.bb = self.bb - s_ab - s_ab.transpose() + skew.mul_mat(&self.aa).mul_mat_t(&skew);
+        self.ab = self.ab - self.aa.mul_mat_t(&skew);
+    }
+
+    /// φᵀ-weighted block of a 3-column map (A, B) from rates to the
+    /// twist: [A; B]ᵀ (Σ φ φᵀ) [A; B], kg·m⁴ (the Block-diagonal mass
+    /// block's share of the points beyond an element).
+    #[inline(always)]
+    pub fn project(&self, a: &M3<T>, b: &M3<T>) -> M3<T> {
+        let top = self.aa.mul_mat_add(a, &self.ab.mul_mat(b));
+        let bottom = self.ab.t_mul_mat(a) + self.bb.mul_mat(b);
+        a.t_mul_mat_add(&top, &b.t_mul_mat(&bottom))
+    }
 }
 
 impl<T: Real> ElementData<T> {
@@ -181,7 +249,8 @@ impl<T: Real> ElementData<T> {
             u: M3::zero(),
             v: M3::zero(),
             span: V3::zero(),
-            contact_axis: V3::zero(),
+            contact: ContactInertia::zero(),
+            touching: false,
         }
     }
 }

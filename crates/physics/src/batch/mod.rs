@@ -60,13 +60,12 @@
 //! - **Threads**: rayon over batches; a batch's arithmetic does not depend
 //!   on which thread runs it, so serial and parallel runs are bit-identical.
 //! - **Collide** ([`contact`], optional): the head's collider
-//!   ([`BatchSystem::set_collider`]) pushes on each element's END point
-//!   (looked up once per lane, against every quadrature sample in the f64
-//!   reference), and the point force enters the suffix sums of the
-//!   tip-to-root sweep; the module derives where. On Exact the contact is
-//!   implicit, as in the reference: its stiffness and damping enter the
-//!   elimination as a point inertia at the end point. Without a collider
-//!   the sweep has no such stage at all.
+//!   ([`BatchSystem::set_collider`]) pushes on every quadrature sample
+//!   with the reference's implicit law: the push joins the sample's force,
+//!   and its stiffness and damping enter the step matrix as a point inertia
+//!   at the sample (Exact's elimination and Block-diagonal's blocks alike);
+//!   the module derives where. Without a collider the sweep has no such
+//!   stage at all.
 //! - **Hair–hair model** ([`volume`], [`pull`], when
 //!   `SimSettings::interaction` is on): once per frame, before the
 //!   steps, an f32 sweep per batch gathers every lane's quadrature samples

@@ -209,8 +209,8 @@ impl BatchSystem {
     }
 
     /// Sets the head's collider (head coordinates; it moves with the head),
-    /// or removes it with `None`. Contact acts at element end points
-    /// ([`super::contact`]).
+    /// or removes it with `None`. Contact acts at every quadrature sample,
+    /// as in the reference ([`super::contact`]).
     pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
         self.collider = collider.map(|field| {
             let near = NearCells::new(&field, self.contact.skin_m);

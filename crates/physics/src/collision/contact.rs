@@ -11,13 +11,13 @@
 //! k = α ρS / h² and c = 2 √α ρS / h make the spring-mass pair of one
 //! sample critically damped at the step's stability edge scaled by α: an
 //! explicit force in the linearly implicit step stays stable for α < 1.
-//! That is what the f32 batch path applies ([`ContactInputs::force`]).
+//! That is what the GPU kernels apply ([`ContactInputs::force`]).
 //!
-//! # Implicit contact (the f64 reference)
+//! # Implicit contact (both CPU engines)
 //!
 //! An explicit penalty that stable is soft: hair resting on the head sinks
 //! g h²/α into it (11 mm at 60 Hz with α = 0.25), and a bouncing head
-//! pushes hair into the skull. The reference therefore treats contact in
+//! pushes hair into the skull. Both CPU engines therefore treat contact in
 //! the step matrix, as it treats the stiffness: over a step the sample's
 //! normal distance moves by h (v_rel·n + n·J Δv), so the force at the
 //! step's end is
@@ -50,13 +50,14 @@ pub struct ContactSettings {
     /// 2 mm: hair rests on the scalp a little above the mesh, which hides
     /// the penetration the penalty needs (about g h² / α, 0.5 mm at 240 Hz).
     pub skin_m: f64,
-    /// α in k = α ρS / h². Default 0.25: a quarter of the explicit
+    /// α in k = α ρS / h² of the explicit penalty the GPU kernels apply.
+    /// Default 0.25: a quarter of the explicit
     /// stability limit, so samples sharing an element's force stay stable.
     pub stiffness_ratio: f64,
     /// Cap on the contact acceleration, m/s². Default 300 (about 30 g): a
     /// head jumping into the hair pushes it aside without flinging it.
     pub max_acceleration_m_per_s2: f64,
-    /// α of the implicit contact the f64 reference steps (see the module
+    /// α of the implicit contact both CPU engines step (see the module
     /// docs). Default 4: a sample held by contact alone sinks g h²/α =
     /// 2.7 mm at 60 Hz (16 times stiffer than the explicit penalty), and
     /// the contact is critically damped per sample. Stiffer is not better

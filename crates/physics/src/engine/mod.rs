@@ -46,14 +46,14 @@
 
 pub mod rest_contact;
 
-pub use rest_contact::{ContactPoints, RestContact};
+pub use rest_contact::RestContact;
 
 use std::ops::Range;
 use std::sync::Arc;
 
 use crate::batch::BatchSystem;
 use crate::batch::layout::BatchModel;
-use crate::collision::SignedDistanceField;
+use crate::collision::{ContactSettings, SignedDistanceField};
 use crate::step::reconstruct::{Kinematics, reconstruct};
 use crate::volume::{ModelState, RestDensity, VolumeField};
 use crate::{
@@ -178,6 +178,22 @@ impl Engine {
         }
     }
 
+    /// How hair meets the head (either engine steps the same law).
+    pub fn contact_settings(&self) -> ContactSettings {
+        match self {
+            Self::Reference(system) => system.contact_settings(),
+            Self::Batch { system, .. } => system.contact_settings(),
+        }
+    }
+
+    /// Sets how hair meets the head, on either engine.
+    pub fn set_contact_settings(&mut self, settings: ContactSettings) {
+        match self {
+            Self::Reference(system) => system.set_contact_settings(settings),
+            Self::Batch { system, .. } => system.set_contact_settings(settings),
+        }
+    }
+
     /// Mutable access to the reference system, when this is the reference
     /// engine.
     pub fn reference_mut(&mut self) -> Option<&mut HairSystem> {
@@ -225,7 +241,6 @@ impl Engine {
         };
         let collider = self.collider()?;
         Some(RestContact::for_engine(
-            self.kind(),
             self.settings(),
             contact,
             collider,

@@ -20,38 +20,19 @@
 //! strands hanging free held to 1 µm.
 //!
 //! So the support is the engine's contact force at rest, in the shape:
-//!
-//! - **which law**: the implicit contact (α = `implicit_stiffness_ratio`)
-//!   where the engine steps it (the reference always; the batch engine on
-//!   Exact), the explicit penalty (α = `stiffness_ratio`) on the batch
-//!   engine's Block-diagonal; h is the engine's step, dt / substeps;
-//! - **where it acts**: at every quadrature sample on the reference; at
-//!   each element's end point on the batch engine, carrying the force of
-//!   the half of each element beside it ([`crate::batch::contact`]).
-//!
-//! Solved this way, the shape is an equilibrium of that engine's step
-//! exactly; another engine's contact differs by the points it pushes on,
-//! which the rest shape is not solved for.
+//! the implicit contact (α = `implicit_stiffness_ratio`) at every
+//! quadrature sample, the one law both CPU engines step
+//! ([`crate::batch::contact`]), with h the engine's step, dt / substeps.
+//! Solved this way, the shape is an equilibrium of either engine's step.
 
 use glam::{DMat3, DVec3};
 
 use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
-use crate::engine::EngineKind;
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
-use crate::settings::{Method, SimSettings};
-use crate::step::forces::{project_end_point_forces, project_sample_forces};
+use crate::settings::SimSettings;
+use crate::step::forces::project_sample_forces;
 use crate::step::reconstruct::Kinematics;
-
-/// Where an engine's head contact pushes on a strand.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ContactPoints {
-    /// Every quadrature sample (the f64 reference).
-    Samples,
-    /// Each element's end point, for the half of each element beside it
-    /// (the batch engine).
-    ElementEnds,
-}
 
 /// The head as a support: its surface, where it is, and the contact law
 /// of the engine that will hold the strand.
@@ -65,38 +46,23 @@ pub struct RestContact<'a> {
     pub settings: ContactSettings,
     /// The engine's step h, seconds (k = α ρS / h²).
     pub h_secs: f64,
-    /// Whether the engine steps the contact implicitly (α =
-    /// `implicit_stiffness_ratio`) or explicitly (α = `stiffness_ratio`).
-    pub implicit: bool,
-    /// Where the engine pushes.
-    pub points: ContactPoints,
 }
 
 impl<'a> RestContact<'a> {
-    /// The contact of engine `kind` stepping with `settings` and `contact`
+    /// The contact of an engine stepping with `settings` and `contact`
     /// against `collider` on a head at rest at `head_position_m` and
-    /// `world_from_head`.
+    /// `world_from_head` (either engine: they step one law).
     pub fn for_engine(
-        kind: EngineKind,
         settings: &SimSettings,
         contact: ContactSettings,
         collider: &'a SignedDistanceField,
         head: RigidMotion,
     ) -> Self {
-        let (implicit, points) = match kind {
-            EngineKind::Reference => (true, ContactPoints::Samples),
-            EngineKind::Batch => (
-                settings.method != Method::BlockDiagonal,
-                ContactPoints::ElementEnds,
-            ),
-        };
         Self {
             collider,
             head: RigidMotion::at_rest(head.position_m, head.world_from_body),
             settings: contact,
             h_secs: settings.dt_secs / f64::from(settings.substeps.max(1)),
-            implicit,
-            points,
         }
     }
 
@@ -109,13 +75,9 @@ impl<'a> RestContact<'a> {
             settings: self.settings,
             h_secs: self.h_secs,
         };
-        if self.implicit {
-            inputs
-                .implicit_force(world_m, DVec3::ZERO, rho_s)
-                .map_or(DVec3::ZERO, |c| c.force_n_per_m)
-        } else {
-            inputs.force(world_m, DVec3::ZERO, rho_s)
-        }
+        inputs
+            .implicit_force(world_m, DVec3::ZERO, rho_s)
+            .map_or(DVec3::ZERO, |c| c.force_n_per_m)
     }
 
     /// Adds the generalized contact force on the strand in shape `kin`
@@ -129,7 +91,6 @@ impl<'a> RestContact<'a> {
     ) {
         let rho_s = model.mass_per_length;
         project(
-            self.points,
             model,
             kin,
             root,
@@ -152,14 +113,10 @@ impl<'a> RestContact<'a> {
     /// neck, judged stable without this term, slid up to 58 mm off in a second.
     pub fn linearize(&self, model: &StrandModel, kin: &Kinematics, root: &RigidMotion) -> Springs {
         let rho_s = model.mass_per_length;
-        let alpha = if self.implicit {
-            self.settings.implicit_stiffness_ratio
-        } else {
-            self.settings.stiffness_ratio
-        };
+        let alpha = self.settings.implicit_stiffness_ratio;
         let stiffness = alpha * rho_s / (self.h_secs * self.h_secs);
         let cap = rho_s * self.settings.max_acceleration_m_per_s2;
-        let springs = contact_points(self.points, model, kin, root)
+        let springs = contact_points(kin, root)
             .into_iter()
             .map(|(world_m, _)| {
                 let push = self.push_n_per_m(world_m, rho_s);
@@ -177,10 +134,7 @@ impl<'a> RestContact<'a> {
                 }
             })
             .collect();
-        Springs {
-            points: self.points,
-            springs,
-        }
+        Springs { springs }
     }
 }
 
@@ -223,7 +177,6 @@ struct Spring {
 /// The head's contact linearized about a shape ([`RestContact::linearize`]).
 #[derive(Clone, Debug)]
 pub struct Springs {
-    points: ContactPoints,
     springs: Vec<Spring>,
 }
 
@@ -238,7 +191,6 @@ impl Springs {
         out: &mut [DVec3],
     ) {
         project(
-            self.points,
             model,
             kin,
             root,
@@ -254,55 +206,32 @@ impl Springs {
     }
 }
 
-/// Where `points` lie in shape `kin` (reconstructed at rest from `root`),
-/// world, metres, and the length of strand each stands for, metres: each
-/// quadrature sample with its weight, or each element's end point with
-/// the half of each element beside it.
-fn contact_points(
-    points: ContactPoints,
-    model: &StrandModel,
-    kin: &Kinematics,
-    root: &RigidMotion,
-) -> Vec<(DVec3, f64)> {
-    match points {
-        ContactPoints::Samples => kin
-            .samples
-            .iter()
-            .map(|s| (root.position_m + s.position_m, s.weight_m))
-            .collect(),
-        ContactPoints::ElementEnds => (0..model.elements())
-            .map(|e| {
-                let beside_m =
-                    0.5 * (model.lengths_m[e] + model.lengths_m.get(e + 1).copied().unwrap_or(0.0));
-                (root.position_m + kin.points_m[e + 1], beside_m)
-            })
-            .collect(),
-    }
+/// The quadrature samples of shape `kin` (reconstructed at rest from
+/// `root`), world, metres, each with the length of strand it stands for
+/// (its weight), metres.
+fn contact_points(kin: &Kinematics, root: &RigidMotion) -> Vec<(DVec3, f64)> {
+    kin.samples
+        .iter()
+        .map(|s| (root.position_m + s.position_m, s.weight_m))
+        .collect()
 }
 
-/// Adds to `out` the generalized force of `force_n_per_m(point, world_m)`
-/// acting at `points` ([`contact_points`]: point = sample index or element
-/// index).
+/// Adds to `out` the generalized force of `force_n_per_m(sample, world_m)`
+/// acting at every quadrature sample.
 fn project(
-    points: ContactPoints,
     model: &StrandModel,
     kin: &Kinematics,
     root: &RigidMotion,
     force_n_per_m: impl Fn(usize, DVec3) -> DVec3,
     out: &mut [DVec3],
 ) {
-    let forces: Vec<DVec3> = contact_points(points, model, kin, root)
+    let forces: Vec<DVec3> = contact_points(kin, root)
         .into_iter()
         .enumerate()
         .map(|(i, (world_m, length_m))| force_n_per_m(i, world_m) * length_m)
         .collect();
     let mut load = vec![DVec3::ZERO; out.len()];
-    match points {
-        ContactPoints::Samples => project_sample_forces(model, kin, |i| forces[i], &mut load),
-        ContactPoints::ElementEnds => {
-            project_end_point_forces(model, kin, |e| forces[e], &mut load)
-        }
-    }
+    project_sample_forces(model, kin, |i| forces[i], &mut load);
     for (o, l) in out.iter_mut().zip(load) {
         *o += l;
     }

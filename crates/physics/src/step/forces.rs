@@ -110,27 +110,3 @@ pub fn project_sample_forces(
         out[e] = own;
     }
 }
-
-/// Σ (∂p_{e+1}/∂q)ᵀ F_e per element for point forces `point_force(e)` (N)
-/// on each element's end point p_{e+1}: the end point moves with its own
-/// element through a_e = A_e − \[p\]×B_e and with every earlier one through
-/// the beyond-Jacobian, so it is one more "beyond" point for the suffix
-/// sums, entering after element e's own samples
-/// (`batch/contact/mod.rs` derives it).
-pub fn project_end_point_forces(
-    model: &StrandModel,
-    kin: &Kinematics,
-    point_force: impl Fn(usize) -> DVec3,
-    out: &mut [DVec3],
-) {
-    let mut force_beyond = DVec3::ZERO;
-    let mut torque_beyond = DVec3::ZERO;
-    for e in (0..model.elements()).rev() {
-        let jac = &kin.elements[e];
-        let f = point_force(e);
-        let p = kin.points_m[e + 1];
-        force_beyond += f;
-        torque_beyond += p.cross(f);
-        out[e] = jac.a.transpose() * force_beyond + jac.b.transpose() * torque_beyond;
-    }
-}

@@ -6,10 +6,12 @@
 //! [`SkinTest::may_feel`] is exact and scalar: per lane it widens the
 //! point to f64, takes it into head coordinates, divides by the cell and
 //! reads one bit, twice with the implicit contact's predicted point. On an
-//! imported groom it ran at every element end point of every lane, in the
-//! step and in the guard's measure, and fewer than 3% of those points
-//! passed it (Sintel on a still head: 58,365 of 2,000,000); the screening
-//! alone was about a seventh of a frame's CPU time.
+//! imported groom it ran at every element end point of every lane (where
+//! contact acted then), in the step and in the guard's measure, and fewer
+//! than 3% of those points passed it (Sintel on a still head: 58,365 of
+//! 2,000,000); the screening alone was about a seventh of a frame's CPU
+//! time. Contact now acts at every quadrature sample, so the screen runs
+//! there.
 //!
 //! # How it works
 //!

@@ -85,8 +85,8 @@ fn shift_articulated<T: Real>(h: &mut [M3<T>; 4], carried: &mut [V3<T>; 2], delt
     carried[1] = carried[1] - delta.cross(carried[0]);
 }
 
-/// [`step_exact`] with a force at each element's end point
-/// ([`crate::batch::contact`]), and with moments about the root or, with
+/// [`step_exact`] with the hook's forces and the head's implicit contact
+/// at the samples ([`crate::batch::contact`]), and with moments about the root or, with
 /// `LOCAL`, about each element's own points (see
 /// [`crate::batch::forward::forward_with`]): then the suffix sums, H and the
 /// carried wrench move by −span from each element to the next towards the
@@ -158,13 +158,6 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
         } else {
             el.v
         };
-        if LOCAL {
-            // Implicit contact at this element's end point, the origin of
-            // H here: a point inertia a aᵀ, which H holds with a minus
-            // sign (crate::batch::contact). Zero for every lane out of contact.
-            let axis = el.contact_axis;
-            h[0] = h[0] - M3::outer(axis, axis);
-        }
         let [h_aa, h_ab, h_ba, h_bb] = &mut h;
         let [carried_a, carried_b] = &mut carried;
         let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);
@@ -199,6 +192,17 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
             let delta = -el.span;
             shift_articulated(&mut h, &mut carried, delta);
             beyond.shift(delta);
+        }
+        if el.touching {
+            // The implicit contact of this element's samples, about the
+            // origin H has now (its start, or the root): point inertias
+            // that move with the parent's frame as the rest of the subtree
+            // does, which H holds with a minus sign (crate::batch::contact).
+            let c = &el.contact;
+            h[0] = h[0] - c.aa;
+            h[1] = h[1] - c.ab;
+            h[2] = h[2] - c.ab.transpose();
+            h[3] = h[3] - c.bb;
         }
         beyond.add(el);
     }

@@ -1,7 +1,7 @@
 //! One batch's step: which step the settings ask for ([`BatchStep`]), the
 //! buffers it works in ([`Scratch`], kept per thread), and the call that
 //! runs it with the head's contact and the hair–hair model's pull as the
-//! end-point force hook.
+//! forward sweep's hook.
 //!
 //! The buffers are sized by element count and GMRES iterations and made
 //! once per thread: a step allocates nothing.

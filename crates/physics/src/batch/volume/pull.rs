@@ -95,9 +95,22 @@ impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
         self.inner.at_end::<LOCAL>(e, end, el);
     }
 
+    const SAMPLE_CONTACT: bool = H::SAMPLE_CONTACT;
+
     #[inline(always)]
     fn drag_rate_per_s(&self) -> f32 {
         self.pull.friction_per_s
+    }
+
+    #[inline(always)]
+    fn sample_contact(
+        &self,
+        e: usize,
+        j: usize,
+        r: V3<Lanes>,
+        velocity: V3<Lanes>,
+    ) -> Option<(V3<Lanes>, V3<Lanes>)> {
+        self.inner.sample_contact(e, j, r, velocity)
     }
 
     #[inline(always)]
