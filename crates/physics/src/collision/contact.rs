@@ -61,9 +61,14 @@ pub struct ContactSettings {
     /// docs). Default 4: a sample held by contact alone sinks g h²/α =
     /// 2.7 mm at 60 Hz (16 times stiffer than the explicit penalty), and
     /// the contact is critically damped per sample. Stiffer is not better
-    /// yet: at α = 16 and 64, strands landing on a sphere gained energy at
-    /// impact (the contact set is frozen over a step), which the guard
-    /// flagged; at α = 1 and 4 it never did.
+    /// yet: the contact set is frozen over a step, and with both engines
+    /// at the samples, α = 16 drew real blow-ups as 30 cm straight hair
+    /// landed on the head (a point at 73 m/s on a still head), α = 32 4 to
+    /// 12 guard events per clip on the straight and wavy examples; at
+    /// α = 4 none. Stiffer would hold the groomed curly and coily examples'
+    /// loops out of the head (at α = 32 and a 3 mm skin, no sample inside;
+    /// at α = 4, 7% and 9% of exported points), which their own elasticity
+    /// presses in (`examples/contact_depth.rs`).
     pub implicit_stiffness_ratio: f64,
 }
 
