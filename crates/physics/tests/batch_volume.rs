@@ -97,7 +97,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
         let motion = common::side_to_side(k as f64 / 60.0);
         let motions: Vec<RigidMotion> = roots.iter().map(|r| motion.carry(r)).collect();
         let root = RootMotion::<Lanes>::gather(&motions);
-        let mut hook = WithPull {
+        let hook = WithPull {
             inner: NoContact,
             pull,
             root: RootVelocity::of(&root),
@@ -110,7 +110,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
             &mut v_pull,
             &mut scratch,
             &mut elimination,
-            &mut hook,
+            &hook,
         );
         step_exact_with::<_, true, _>(
             &dragged_model,
@@ -120,7 +120,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
             &mut v_drag,
             &mut scratch,
             &mut elimination,
-            &mut NoContact,
+            &NoContact,
         );
     }
     for l in 0..LANES {

@@ -220,7 +220,7 @@ pub fn own_sums<T: Real, const OFF_DIAGONAL: bool>(
     reason = "the element's inputs, its output and the hook"
 )]
 #[inline(always)]
-pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: EndPointForce<T>>(
+pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: SampleHook<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     e: usize,
@@ -358,7 +358,7 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
     v: &[V3<T>],
     out: &mut [ElementData<T>],
 ) {
-    forward_with::<T, OFF_DIAGONAL, false, _>(model, env, root, q, v, out, &mut NoContact, None);
+    forward_with::<T, OFF_DIAGONAL, false, _>(model, env, root, q, v, out, &NoContact, None);
 }
 
 /// [`forward`] with the hook's forces (the head's contact at the samples,
@@ -387,14 +387,14 @@ pub fn forward<T: Real, const OFF_DIAGONAL: bool>(
     reason = "the sweep's inputs, its output, the hook and the known coefficients"
 )]
 #[inline(always)]
-pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: EndPointForce<T>>(
+pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: SampleHook<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &[V3<T>],
     v: &[V3<T>],
     out: &mut [ElementData<T>],
-    end_force: &mut H,
+    hook: &H,
     coefficients: Option<&[Coefficients<T>]>,
 ) {
     let per_element = model.nodes().len() + 1;
@@ -419,7 +419,7 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
             q[e],
             v[e],
             el,
-            (end_force, s.point_m - moments_origin.point_m),
+            (hook, s.point_m - moments_origin.point_m),
             co.map(|(nodes, _)| nodes),
         );
         let length_m = model.length_m(e);
@@ -435,21 +435,13 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: End
         };
         el.b = b;
         el.span = span;
-        end_force.at_end::<LOCAL>(e, &next, el);
         s = next;
     }
 }
 
-/// What the forward sweep adds to the strand's own forces: the head's
-/// contact and the hair–hair model's pull at the quadrature samples, and a
-/// hook at each element's end point.
-pub trait EndPointForce<T> {
-    /// Called once element `e`'s data `el` is complete (own sums, A_Q,
-    /// B_Q), with `end` the state at its end point.
-    /// `LOCAL`: `el` holds local moments (see
-    /// [`forward_with`]).
-    fn at_end<const LOCAL: bool>(&mut self, e: usize, end: &FrameState<T>, el: &mut ElementData<T>);
-
+/// What the forward sweep adds at the quadrature samples to the strand's
+/// own forces: the head's contact and the hair–hair model's pull.
+pub trait SampleHook<T> {
     /// Whether [`Self::sample_force`] adds anything: a compile-time
     /// switch, so that without the hair–hair model ([`crate::batch::volume::pull`]) the
     /// sample loop is exactly as before.
@@ -499,17 +491,9 @@ pub trait EndPointForce<T> {
     }
 }
 
-/// No collider: nothing happens at the end points.
+/// No collider and no hair–hair model: the samples feel only gravity,
+/// inertia and the air.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoContact;
 
-impl<T> EndPointForce<T> for NoContact {
-    #[inline(always)]
-    fn at_end<const LOCAL: bool>(
-        &mut self,
-        _e: usize,
-        _end: &FrameState<T>,
-        _el: &mut ElementData<T>,
-    ) {
-    }
-}
+impl<T> SampleHook<T> for NoContact {}

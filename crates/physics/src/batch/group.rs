@@ -436,8 +436,8 @@ pub(super) fn step_one_batch(
     match contact {
         Some(test) => {
             let positions = std::array::from_fn(|i| motions[i].position_m);
-            let end_force = LaneContact::new(test, model, positions);
-            step_pulled(model, env, &root, kind, q, v, scratch, end_force, pull);
+            let hook = LaneContact::new(test, model.mass_per_length, positions);
+            step_pulled(model, env, &root, kind, q, v, scratch, hook, pull);
         }
         None => step_pulled(model, env, &root, kind, q, v, scratch, NoContact, pull),
     }

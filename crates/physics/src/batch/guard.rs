@@ -46,7 +46,7 @@ use super::lane_model::Constants;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
 use super::vec::{V3, set_lane};
-use crate::batch::contact::lane_screen::LaneScreen;
+use crate::batch::contact::LaneContact;
 use crate::batch::contact::near_cells::SkinTest;
 use crate::batch::volume::pull::{RootVelocity, SamplePull, add_pull_work};
 use crate::frame_balance::{KineticEnergy, SteppedFrame, StrandMeasure};
@@ -274,9 +274,7 @@ impl LaneMeasures<'_> {
 /// Per lane (bit `lane` of the mask), whether the head's contact acts at
 /// any quadrature sample of a batch whose samples (relative to each lane's
 /// root) and velocities are `points`: the step's own test
-/// ([`super::contact`]), screened in lanes first
-/// ([`crate::batch::contact::lane_screen`]), then as the step screens
-/// (exact: a rejected point has no force), then the implicit push.
+/// ([`LaneContact::touching`]).
 ///
 /// Only "is there contact" is found, not the force: a frame that starts or
 /// ends in contact is judged by finiteness and true speed alone
@@ -285,41 +283,19 @@ impl LaneMeasures<'_> {
 /// the sweep at the point where every lane is.
 fn lanes_in_contact(
     model: &impl Constants<Lanes>,
-    contact: &SkinTest<'_>,
+    test: &SkinTest<'_>,
     motions: &[RigidMotion; LANES],
     points: &[(V3<Lanes>, V3<Lanes>)],
 ) -> u32 {
     const ALL: u32 = (1 << LANES) - 1;
-    let screen = LaneScreen::new(contact, &motions.map(|m| m.position_m));
-    let rho_s = model.mass_per_length();
+    let contact = LaneContact::new(
+        *test,
+        model.mass_per_length(),
+        motions.map(|m| m.position_m),
+    );
     let mut found = 0;
     for (point_m, velocity_m_per_s) in points {
-        let screened = screen.may_feel(contact.near, *point_m, *velocity_m_per_s, true) & !found;
-        if screened == 0 {
-            continue;
-        }
-        for lane in (0..LANES).filter(|lane| screened & (1 << lane) != 0) {
-            let pick = |x: V3<Lanes>| {
-                DVec3::new(
-                    f64::from(x.x.lane(lane)),
-                    f64::from(x.y.lane(lane)),
-                    f64::from(x.z.lane(lane)),
-                )
-            };
-            let velocity = pick(*velocity_m_per_s);
-            let world = motions[lane].position_m + pick(*point_m);
-            if !contact.may_feel(world, velocity, true) {
-                continue;
-            }
-            let rho_s = f64::from(rho_s.lane(lane));
-            if contact
-                .inputs
-                .implicit_force(world, velocity, rho_s)
-                .is_some()
-            {
-                found |= 1 << lane;
-            }
-        }
+        found |= contact.touching(*point_m, *velocity_m_per_s, ALL & !found, |_, _| {});
         if found == ALL {
             break;
         }

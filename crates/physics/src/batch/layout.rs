@@ -169,27 +169,23 @@ pub struct ElementData<T> {
 
 /// The rigid-motion inertia of point inertias a aᵀ (one per sample in
 /// contact, each at offset d from the moments' origin: the element's start
-/// with local moments, else the root), as the three blocks of the 6×6
-/// Σ φ φᵀ, φ = (a, d × a): for a twist (linear velocity u at the origin,
-/// angular velocity ω) the points' normal speeds are φᵀ(u, ω) =
-/// a·(u + ω × d). Units: kg, kg·m, kg·m².
+/// with local moments, else the root): the 6×6 Σ φ φᵀ, φ = (a, d × a), as
+/// four 3×3 blocks in the order the Exact elimination holds its
+/// articulated inertia H (twist to wrench: linear-linear, linear-angular,
+/// angular-linear, angular-angular). For a twist (linear velocity u at
+/// the origin, angular velocity ω) the points' normal speeds are
+/// φᵀ(u, ω) = a·(u + ω × d). Units: kg, kg·m, kg·m, kg·m².
 #[derive(Clone, Copy, Debug)]
 pub struct ContactInertia<T> {
-    /// Σ a aᵀ.
-    pub aa: M3<T>,
-    /// Σ a (d × a)ᵀ.
-    pub ab: M3<T>,
-    /// Σ (d × a)(d × a)ᵀ.
-    pub bb: M3<T>,
+    /// Σ a aᵀ, Σ a (d × a)ᵀ, Σ (d × a) aᵀ, Σ (d × a)(d × a)ᵀ.
+    pub blocks: [M3<T>; 4],
 }
 
 impl<T: Real> ContactInertia<T> {
     /// No contact.
     pub fn zero() -> Self {
         Self {
-            aa: M3::zero(),
-            ab: M3::zero(),
-            bb: M3::zero(),
+            blocks: [M3::zero(); 4],
         }
     }
 
@@ -197,40 +193,56 @@ impl<T: Real> ContactInertia<T> {
     #[inline(always)]
     pub fn add_point(&mut self, a: V3<T>, d_m: V3<T>) {
         let turn = d_m.cross(a);
-        self.aa = M3::outer_add(a, a, self.aa);
-        self.ab = M3::outer_add(a, turn, self.ab);
-        self.bb = M3::outer_add(turn, turn, self.bb);
+        let [aa, ab, ba, bb] = &mut self.blocks;
+        *aa = M3::outer_add(a, a, *aa);
+        *ab = M3::outer_add(a, turn, *ab);
+        *ba = M3::outer_add(turn, a, *ba);
+        *bb = M3::outer_add(turn, turn, *bb);
     }
 
     /// Adds `o`.
     #[inline(always)]
     pub fn add(&mut self, o: &Self) {
-        self.aa += o.aa;
-        self.ab += o.ab;
-        self.bb += o.bb;
+        for (block, other) in self.blocks.iter_mut().zip(&o.blocks) {
+            *block += *other;
+        }
     }
 
-    /// Moves the origin by `delta` (new origin minus old): each d becomes
-    /// d − δ, so d × a loses δ × a.
+    /// Moves the origin by `delta` (new origin minus old), as the
+    /// elimination moves H ([`shift_spatial_inertia`]).
     #[inline(always)]
     pub fn shift(&mut self, delta: V3<T>) {
-        let skew = M3::skew(delta);
-        // (d − δ) × a = (d × a) − [δ]× a.
-        // Σ t′t′ᵀ = Σ ttᵀ − S Σ a tᵀ − (S Σ a tᵀ)ᵀ + S Σ a aᵀ Sᵀ, S = [δ]×.
-        let s_ab = skew.mul_mat(&self.ab);
-        self.bb = self.bb - s_ab - s_ab.transpose() + skew.mul_mat(&self.aa).mul_mat_t(&skew);
-        self.ab = self.ab - self.aa.mul_mat_t(&skew);
+        shift_spatial_inertia(&mut self.blocks, delta);
     }
 
-    /// φᵀ-weighted block of a 3-column map (A, B) from rates to the
-    /// twist: [A; B]ᵀ (Σ φ φᵀ) [A; B], kg·m⁴ (the Block-diagonal mass
-    /// block's share of the points beyond an element).
+    /// [A; B]ᵀ (Σ φ φᵀ) [A; B] for a 3-column map (A, B) from rates to the
+    /// twist, kg·m⁴ (the Block-diagonal mass block's share of the points
+    /// beyond an element).
     #[inline(always)]
     pub fn project(&self, a: &M3<T>, b: &M3<T>) -> M3<T> {
-        let top = self.aa.mul_mat_add(a, &self.ab.mul_mat(b));
-        let bottom = self.ab.t_mul_mat(a) + self.bb.mul_mat(b);
+        let [aa, ab, ba, bb] = &self.blocks;
+        let top = aa.mul_mat_add(a, &ab.mul_mat(b));
+        let bottom = ba.mul_mat_add(a, &bb.mul_mat(b));
         a.t_mul_mat_add(&top, &b.t_mul_mat(&bottom))
     }
+}
+
+/// A 6×6 twist-to-wrench matrix H (as four 3×3 blocks) moved to an origin
+/// `delta` from the current one: with S = [δ]×, a twist about the new
+/// origin is (a − Sb, b) and a wrench (f, τ − δ × f), so H′ = XᵀHX with
+/// X = [[𝟙, S], [0, 𝟙]]. The Exact elimination's articulated inertia and
+/// the contact's point inertias ([`ContactInertia`]) move by it.
+#[inline(always)]
+pub fn shift_spatial_inertia<T: Real>(h: &mut [M3<T>; 4], delta: V3<T>) {
+    let [h_aa, h_ab, h_ba, h_bb] = *h;
+    let skew = M3::skew(delta);
+    let h_aa_s = h_aa.mul_mat(&skew);
+    *h = [
+        h_aa,
+        h_aa_s + h_ab,
+        h_ba - skew.mul_mat(&h_aa),
+        h_bb + h_ba.mul_mat(&skew) - skew.mul_mat(&h_ab) - skew.mul_mat(&h_aa_s),
+    ];
 }
 
 impl<T: Real> ElementData<T> {

@@ -76,7 +76,7 @@
 //!   to the head). The step takes the friction as it takes air drag: the
 //!   force k − μρS (ṙ − c) at each sample (c the root's rigid velocity there)
 //!   and hμ in the mass scale, through the step hook
-//!   ([`contact::EndPointForce::sample_force`]); without the model the
+//!   ([`contact::SampleHook::sample_force`]); without the model the
 //!   sample loop compiles as before. The guard counts the pull's work
 //!   ([`volume_read`]).
 //! - **Guard** ([`guard`], on by default): after each frame, each strand is

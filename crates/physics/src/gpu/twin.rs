@@ -298,7 +298,7 @@ pub fn stage_exact(
             &mut vs,
             &mut scratch,
             &mut elimination,
-            &mut NoContact,
+            &NoContact,
         );
         for (k, i) in range.enumerate() {
             q[i] = v4(qs[k]);

@@ -13,7 +13,7 @@
 //! [`ContactSettings::implicit_stiffness_ratio`](crate::collision::ContactSettings)
 //! sets k = α ρS / h² and c = 2 √α ρS / h.
 //!
-//! [`LaneContact`] is the forward sweep's hook ([`super::forward::EndPointForce`]):
+//! [`LaneContact`] is the forward sweep's hook ([`super::forward::SampleHook`]):
 //! [`super::forward::own_sums_into`] asks it at each sample (position
 //! relative to the lane's root, world velocity) and adds the push to the
 //! sample's force per unit length, like gravity's, so the suffix sums carry
@@ -55,51 +55,92 @@ pub mod near_cells;
 
 use glam::{DVec3, Vec3};
 
-use super::forward::{EndPointForce, FrameState};
-use super::lane_model::LaneModel;
-use super::lanes::{LANES, Real};
-use super::layout::ElementData;
+use super::forward::SampleHook;
+use super::lanes::{LANES, Lanes, Real};
 use super::vec::V3;
 use crate::batch::contact::lane_screen::LaneScreen;
 pub use crate::batch::contact::near_cells::{NearCells, SkinTest};
+use crate::collision::contact::ImplicitContact;
 
-/// The head collider for one batch during one step: the contact inputs and
-/// each lane's root position.
+/// The head collider for one batch during one step: the contact inputs,
+/// each lane's root position and mass per length.
 #[derive(Clone, Copy, Debug)]
 pub struct LaneContact<'a> {
     test: SkinTest<'a>,
     /// The batch's screen ahead of `test` ([`crate::batch::contact::lane_screen`]).
     screen: LaneScreen,
     root_positions_m: [DVec3; LANES],
-    model: &'a LaneModel,
+    /// ρS of each lane's strand, kg/m.
+    mass_per_length: Lanes,
 }
 
 impl<'a> LaneContact<'a> {
-    /// Contact for a batch of strands (lane i's constants: lane i of
-    /// `model`) whose lane i is rooted at `root_positions_m[i]` (world,
-    /// metres, at the step's start); `test` screens the points
-    /// ([`SkinTest`]).
-    pub fn new(test: SkinTest<'a>, model: &'a LaneModel, root_positions_m: [DVec3; LANES]) -> Self {
+    /// Contact for a batch of strands whose lane i has mass per length
+    /// lane i of `mass_per_length` (kg/m) and is rooted at
+    /// `root_positions_m[i]` (world, metres, at the step's start); `test`
+    /// screens the points ([`SkinTest`]).
+    pub fn new(
+        test: SkinTest<'a>,
+        mass_per_length: Lanes,
+        root_positions_m: [DVec3; LANES],
+    ) -> Self {
         Self {
             test,
             screen: LaneScreen::new(&test, &root_positions_m),
             root_positions_m,
-            model,
+            mass_per_length,
         }
+    }
+
+    /// The lanes among `lanes` (a bit mask) on whose point `r` (relative
+    /// to the lane's root, metres) moving at `velocity` (world, m/s) the
+    /// implicit contact acts, as a bit mask; `touch(i, contact)` gets each
+    /// one's contact. Screened in lanes first, then lane by lane as exactly
+    /// as the lookup ([`SkinTest::may_feel`]), so a skipped point has no
+    /// contact at all. The step's hook and the guard's test of a frame's
+    /// end both ask this.
+    #[inline(always)]
+    pub fn touching<T: Real>(
+        &self,
+        r: V3<T>,
+        velocity: V3<T>,
+        lanes: u32,
+        mut touch: impl FnMut(usize, ImplicitContact),
+    ) -> u32 {
+        let screened = self.screen.may_feel(self.test.near, r, velocity, true) & lanes;
+        if screened == 0 {
+            return 0;
+        }
+        let lane_vec = |x: &V3<T>, i: usize| {
+            DVec3::new(
+                f64::from(x.x.lane(i)),
+                f64::from(x.y.lane(i)),
+                f64::from(x.z.lane(i)),
+            )
+        };
+        let mut found = 0;
+        for i in (0..T::WIDTH).filter(|i| screened & (1 << i) != 0) {
+            let point_m = self.root_positions_m[i] + lane_vec(&r, i);
+            let point_velocity = lane_vec(&velocity, i);
+            if !self.test.may_feel(point_m, point_velocity, true) {
+                continue;
+            }
+            let rho_s = f64::from(self.mass_per_length.lane(i));
+            if let Some(contact) = self
+                .test
+                .inputs
+                .implicit_force(point_m, point_velocity, rho_s)
+            {
+                touch(i, contact);
+                found |= 1 << i;
+            }
+        }
+        found
     }
 }
 
-impl<T: Real> EndPointForce<T> for LaneContact<'_> {
+impl<T: Real> SampleHook<T> for LaneContact<'_> {
     const SAMPLE_CONTACT: bool = true;
-
-    #[inline(always)]
-    fn at_end<const LOCAL: bool>(
-        &mut self,
-        _e: usize,
-        _end: &FrameState<T>,
-        _el: &mut ElementData<T>,
-    ) {
-    }
 
     #[inline(always)]
     fn sample_contact(
@@ -109,33 +150,14 @@ impl<T: Real> EndPointForce<T> for LaneContact<'_> {
         r: V3<T>,
         velocity: V3<T>,
     ) -> Option<(V3<T>, V3<T>)> {
-        let screened = self.screen.may_feel(self.test.near, r, velocity, true);
-        if screened == 0 {
-            return None;
-        }
-        let lane_vec = |x: &V3<T>, i: usize| Vec3::new(x.x.lane(i), x.y.lane(i), x.z.lane(i));
         let mut pushes = [Vec3::ZERO; LANES];
         let mut axes = [Vec3::ZERO; LANES];
-        let mut touching = false;
-        let inputs = &self.test.inputs;
-        let h = inputs.h_secs;
-        for (i, (push, axis)) in pushes.iter_mut().zip(&mut axes).enumerate().take(T::WIDTH) {
-            if screened & (1 << i) == 0 {
-                continue;
-            }
-            let point_m = self.root_positions_m[i] + lane_vec(&r, i).as_dvec3();
-            let point_velocity = lane_vec(&velocity, i).as_dvec3();
-            if !self.test.may_feel(point_m, point_velocity, true) {
-                continue;
-            }
-            let rho_s = f64::from(self.model.mass_per_length.lane(i));
-            if let Some(contact) = inputs.implicit_force(point_m, point_velocity, rho_s) {
-                *push = contact.force_n_per_m.as_vec3();
-                *axis = (contact.normal * (h * contact.gain).sqrt()).as_vec3();
-                touching = true;
-            }
-        }
-        touching.then(|| {
+        let h = self.test.inputs.h_secs;
+        let found = self.touching(r, velocity, u32::MAX, |i, contact| {
+            pushes[i] = contact.force_n_per_m.as_vec3();
+            axes[i] = (contact.normal * (h * contact.gain).sqrt()).as_vec3();
+        });
+        (found != 0).then(|| {
             let lanes = |v: &[Vec3; LANES]| {
                 V3::new(
                     T::from_fn(|i| v[i].x),

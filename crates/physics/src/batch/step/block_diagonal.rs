@@ -8,7 +8,7 @@
 //! the reference's does (crate::batch::contact): Block-diagonal keeps the
 //! diagonal blocks of the whole step matrix, contact included.
 
-use crate::batch::forward::EndPointForce;
+use crate::batch::forward::SampleHook;
 use crate::batch::forward::forward_with;
 use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
@@ -22,17 +22,17 @@ use crate::batch::vec::V3;
 /// about each element's own points ([`crate::batch::forward::forward_with`]; the
 /// suffix sums then move by −span from each element to the next).
 #[inline(always)]
-pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
+pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
     q: &mut [V3<T>],
     v: &mut [V3<T>],
     scratch: &mut [ElementData<T>],
-    end_force: &mut H,
+    hook: &H,
 ) {
-    forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, end_force, None);
-    let s = mass_scale(model, env) + T::splat(env.h_secs * end_force.drag_rate_per_s());
+    forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, hook, None);
+    let s = mass_scale(model, env) + T::splat(env.h_secs * hook.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     // The implicit contact of the samples past the element, about the
     // same origin as `beyond` (crate::batch::contact); `None` until a

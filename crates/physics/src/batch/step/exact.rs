@@ -19,11 +19,11 @@
 //! then back-substituted): two light sweeps, no 3×3 inverse, no H.
 
 use crate::batch::forward::forward_with;
-use crate::batch::forward::{EndPointForce, NoContact};
+use crate::batch::forward::{NoContact, SampleHook};
 use crate::batch::geometry::Coefficients;
 use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
-use crate::batch::layout::{ElementData, RootMotion, StepEnv};
+use crate::batch::layout::{ElementData, RootMotion, StepEnv, shift_spatial_inertia};
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use crate::batch::vec::{M3, V3};
 
@@ -64,24 +64,15 @@ pub fn step_exact<T: Real>(
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
 ) {
-    step_exact_with::<T, false, _>(model, env, root, q, v, scratch, elimination, &mut NoContact);
+    step_exact_with::<T, false, _>(model, env, root, q, v, scratch, elimination, &NoContact);
 }
 
 /// The articulated inertia H (twists to wrenches, as four 3×3 blocks) and
-/// the carried wrench, moved to an origin `delta` from the current one:
-/// with S = [δ]×, a twist about the new origin is (a − Sb, b) and a wrench
-/// (f, τ − δ × f), so H′ = XᵀHX with X = [[𝟙, S], [0, 𝟙]].
+/// the carried wrench, moved to an origin `delta` from the current one
+/// ([`shift_spatial_inertia`]; a wrench (f, τ) becomes (f, τ − δ × f)).
 #[inline(always)]
 fn shift_articulated<T: Real>(h: &mut [M3<T>; 4], carried: &mut [V3<T>; 2], delta: V3<T>) {
-    let [h_aa, h_ab, h_ba, h_bb] = *h;
-    let skew = M3::skew(delta);
-    let h_aa_s = h_aa.mul_mat(&skew);
-    *h = [
-        h_aa,
-        h_aa_s + h_ab,
-        h_ba - skew.mul_mat(&h_aa),
-        h_bb + h_ba.mul_mat(&skew) - skew.mul_mat(&h_ab) - skew.mul_mat(&h_aa_s),
-    ];
+    shift_spatial_inertia(h, delta);
     carried[1] = carried[1] - delta.cross(carried[0]);
 }
 
@@ -96,7 +87,7 @@ fn shift_articulated<T: Real>(h: &mut [M3<T>; 4], carried: &mut [V3<T>; 2], delt
     reason = "the step's buffers, as in `step_exact`, plus the hook"
 )]
 #[inline(always)]
-pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
+pub fn step_exact_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
@@ -104,19 +95,9 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     v: &mut [V3<T>],
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
-    end_force: &mut H,
+    hook: &H,
 ) {
-    eliminate::<T, LOCAL, H>(
-        model,
-        env,
-        root,
-        q,
-        v,
-        scratch,
-        elimination,
-        end_force,
-        None,
-    );
+    eliminate::<T, LOCAL, H>(model, env, root, q, v, scratch, elimination, hook, None);
     back_substitute::<T, LOCAL>(scratch, elimination, |e, delta_v| {
         integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
     });
@@ -132,7 +113,7 @@ pub fn step_exact_with<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     reason = "the step's buffers, as in `step_exact_with`"
 )]
 #[inline(always)]
-pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
+pub fn eliminate<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
@@ -140,11 +121,11 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
     v: &[V3<T>],
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
-    end_force: &mut H,
+    hook: &H,
     coefficients: Option<&[Coefficients<T>]>,
 ) -> T {
-    forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, end_force, coefficients);
-    let s = mass_scale(model, env) + T::splat(env.h_secs * end_force.drag_rate_per_s());
+    forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, hook, coefficients);
+    let s = mass_scale(model, env) + T::splat(env.h_secs * hook.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     let mut h = [M3::zero(); 4];
     let mut carried = [V3::zero(); 2];
@@ -198,11 +179,9 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: EndPointForce<T>>(
             // origin H has now (its start, or the root): point inertias
             // that move with the parent's frame as the rest of the subtree
             // does, which H holds with a minus sign (crate::batch::contact).
-            let c = &el.contact;
-            h[0] = h[0] - c.aa;
-            h[1] = h[1] - c.ab;
-            h[2] = h[2] - c.ab.transpose();
-            h[3] = h[3] - c.bb;
+            for (block, contact) in h.iter_mut().zip(&el.contact.blocks) {
+                *block = *block - *contact;
+            }
         }
         beyond.add(el);
     }

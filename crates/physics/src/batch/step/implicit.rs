@@ -27,7 +27,7 @@
 //! for bit (the GPU kernels' CPU twins run it).
 
 use super::exact::{Elimination, back_substitute, eliminate, solve_again};
-use crate::batch::forward::EndPointForce;
+use crate::batch::forward::SampleHook;
 use crate::batch::geometry::Coefficients;
 use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
@@ -76,7 +76,7 @@ impl<T: Real> Krylov<T> {
     reason = "the step's buffers, as in `step_exact_with`"
 )]
 #[inline(always)]
-pub fn step_exact_implicit<T: Real, H: EndPointForce<T>>(
+pub fn step_exact_implicit<T: Real, H: SampleHook<T>>(
     model: &impl Constants<T>,
     env: &StepEnv,
     root: &RootMotion<T>,
@@ -85,23 +85,14 @@ pub fn step_exact_implicit<T: Real, H: EndPointForce<T>>(
     scratch: &mut [ElementData<T>],
     elimination: &mut [Elimination<T>],
     krylov: &mut Krylov<T>,
-    end_force: &mut H,
+    hook: &H,
 ) -> usize {
     // The coefficients depend on q alone: evaluated once, they serve
     // sweep 1 and both sweeps of every product GMRES takes.
     coefficients_of(model, q, &mut krylov.coefficients);
     let known = Some(krylov.coefficients.as_slice());
-    let rhs_squared = eliminate::<T, true, H>(
-        model,
-        env,
-        root,
-        q,
-        v,
-        scratch,
-        elimination,
-        end_force,
-        known,
-    );
+    let rhs_squared =
+        eliminate::<T, true, H>(model, env, root, q, v, scratch, elimination, hook, known);
     let Krylov {
         gmres,
         delta_v,

@@ -13,7 +13,7 @@ pub mod implicit;
 
 use std::cell::RefCell;
 
-use super::forward::EndPointForce;
+use super::forward::SampleHook;
 use super::lane_model::LaneModel;
 use super::lanes::Lanes;
 use super::layout::{ElementData, RootMotion, StepEnv};
@@ -125,13 +125,13 @@ pub(super) fn krylov_bytes_per_element(iterations: usize) -> usize {
         + std::mem::size_of::<super::velocity_terms::OwnProduct<Lanes>>()
 }
 
-/// One step of one batch with `end_force` at the element end points.
+/// One step of one batch with `hook` at the quadrature samples.
 #[expect(
     clippy::too_many_arguments,
     reason = "the step's inputs and buffers, passed through"
 )]
 #[inline(always)]
-fn step_batch_with<H: EndPointForce<Lanes>>(
+fn step_batch_with<H: SampleHook<Lanes>>(
     model: &LaneModel,
     env: &StepEnv,
     root: &RootMotion<Lanes>,
@@ -139,7 +139,7 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     scratch: &mut Scratch,
-    end_force: &mut H,
+    hook: &H,
 ) {
     let Scratch {
         elements,
@@ -149,35 +149,25 @@ fn step_batch_with<H: EndPointForce<Lanes>>(
     } = scratch;
     match step {
         BatchStep::Exact => {
-            step_exact_with::<_, true, _>(model, env, root, q, v, elements, elimination, end_force);
+            step_exact_with::<_, true, _>(model, env, root, q, v, elements, elimination, hook);
         }
         BatchStep::ExactImplicit(_) => {
-            step_exact_implicit(
-                model,
-                env,
-                root,
-                q,
-                v,
-                elements,
-                elimination,
-                krylov,
-                end_force,
-            );
+            step_exact_implicit(model, env, root, q, v, elements, elimination, krylov, hook);
         }
         BatchStep::BlockDiagonal => {
-            step_block_diagonal_with::<_, true, _>(model, env, root, q, v, elements, end_force);
+            step_block_diagonal_with::<_, true, _>(model, env, root, q, v, elements, hook);
         }
     }
 }
 
 /// [`step_batch_with`] with the hair–hair model's `pull` added to
-/// `end_force` when it is on ([`crate::batch::volume::pull`]).
+/// `hook` when it is on ([`crate::batch::volume::pull`]).
 #[expect(
     clippy::too_many_arguments,
     reason = "the step's inputs and buffers, passed through"
 )]
 #[inline(always)]
-pub(super) fn step_pulled<H: EndPointForce<Lanes>>(
+pub(super) fn step_pulled<H: SampleHook<Lanes>>(
     model: &LaneModel,
     env: &StepEnv,
     root: &RootMotion<Lanes>,
@@ -185,18 +175,18 @@ pub(super) fn step_pulled<H: EndPointForce<Lanes>>(
     q: &mut [V3<Lanes>],
     v: &mut [V3<Lanes>],
     scratch: &mut Scratch,
-    mut end_force: H,
+    hook: H,
     pull: Option<SamplePull<'_>>,
 ) {
     match pull {
         Some(pull) => {
-            let mut hook = WithPull {
-                inner: end_force,
+            let pulled = WithPull {
+                inner: hook,
                 pull,
                 root: RootVelocity::of(root),
             };
-            step_batch_with(model, env, root, step, q, v, scratch, &mut hook);
+            step_batch_with(model, env, root, step, q, v, scratch, &pulled);
         }
-        None => step_batch_with(model, env, root, step, q, v, scratch, &mut end_force),
+        None => step_batch_with(model, env, root, step, q, v, scratch, &hook),
     }
 }

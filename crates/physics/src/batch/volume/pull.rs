@@ -13,8 +13,8 @@
 //! velocity, −ν(ṙ − v_air), with its implicit part (ν/ρS) M in the mass
 //! scale s = 1 + hν/ρS ([`crate::batch::forward`], [`crate::batch::suffix::mass_scale`]);
 //! the friction goes the same way: s gains hμ
-//! ([`EndPointForce::drag_rate_per_s`]) and each sample's force gains
-//! μρS (u_rel − (ṙ − c)) + ρS a ([`EndPointForce::sample_force`]). The f64
+//! ([`SampleHook::drag_rate_per_s`]) and each sample's force gains
+//! μρS (u_rel − (ṙ − c)) + ρS a ([`SampleHook::sample_force`]). The f64
 //! reference splits the same force into its known part and (μ) M q̇ on
 //! the right-hand side ([`crate::step`]); since J q̇ = ṙ − c at every
 //! sample, the two are one arithmetic up to round-off, as for air drag.
@@ -27,20 +27,19 @@
 //!
 //! # The hook
 //!
-//! The step's per-element hook ([`EndPointForce`], threaded through every
+//! The step's sample hook ([`SampleHook`], threaded through every
 //! batch step for the head's contact) carries it: [`WithPull`] wraps the
-//! contact (or [`crate::batch::contact::NoContact`]) and adds the pull's drag rate
+//! contact (or [`crate::batch::forward::NoContact`]) and adds the pull's drag rate
 //! and sample forces. Without the model the hook's
-//! [`EndPointForce::SAMPLE_FORCES`] is false and the sample loop compiles
+//! [`SampleHook::SAMPLE_FORCES`] is false and the sample loop compiles
 //! exactly as before (bit-identical steps).
 
-use crate::batch::forward::EndPointForce;
-use crate::batch::forward::FrameState;
+use crate::batch::forward::SampleHook;
 use crate::batch::lane_model::{Constants, LaneModel};
 use crate::batch::lanes::{LANES, Lanes, Real};
 use glam::DVec3;
 
-use crate::batch::layout::{ElementData, RootMotion};
+use crate::batch::layout::RootMotion;
 use crate::batch::vec::V3;
 use crate::motion::{RigidMotion, RootPose};
 use crate::volume::pair_points::point_of;
@@ -82,18 +81,8 @@ pub struct WithPull<'a, H> {
     pub root: RootVelocity,
 }
 
-impl<H: EndPointForce<Lanes>> EndPointForce<Lanes> for WithPull<'_, H> {
+impl<H: SampleHook<Lanes>> SampleHook<Lanes> for WithPull<'_, H> {
     const SAMPLE_FORCES: bool = true;
-
-    #[inline(always)]
-    fn at_end<const LOCAL: bool>(
-        &mut self,
-        e: usize,
-        end: &FrameState<Lanes>,
-        el: &mut ElementData<Lanes>,
-    ) {
-        self.inner.at_end::<LOCAL>(e, end, el);
-    }
 
     const SAMPLE_CONTACT: bool = H::SAMPLE_CONTACT;
 
