@@ -3,9 +3,7 @@
 //! sequences, motion files, and clear errors (exit status 1, nothing left
 //! under the asked name) for bad paths, formats and motion files.
 
-mod support {
-    pub mod inside;
-}
+use crate::support;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

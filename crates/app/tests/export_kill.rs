@@ -25,9 +25,7 @@
 //! Reproduce the figures of `docs/reliability.md` with
 //! `cargo test --release -p helixhair-app --test export_kill -- --nocapture`.
 
-mod support {
-    pub mod kill;
-}
+use crate::support;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -36,7 +34,7 @@ use helixhair_app::export::{ExportRecorder, ExportSpec, FrameChoice, StrandChoic
 use helixhair_app::sim::grown::grown_sim;
 use helixhair_app::{Groom, HeadlessSim, SimOverrides};
 use helixhair_formats::{Format, ReadOptions, read};
-use support::kill::{Rng, clear_leftovers, run_and_kill};
+use support::kill::{Rng, child_test_name, clear_leftovers, run_and_kill};
 
 /// The environment variable that makes [`exporter_child_process`] the
 /// exporter; its value is the target file, whose extension picks the format.
@@ -117,7 +115,13 @@ fn kill_exports(format: Format, rng: &mut Rng, seed: u64) -> usize {
     let mut seen = [0usize; 2];
     for round in 0..ROUNDS_PER_FORMAT {
         let delay = Duration::from_secs_f64(3.0 * export_secs * rng.next_unit());
-        run_and_kill("exporter_child_process", CHILD_VAR, &target, STARTED, delay);
+        run_and_kill(
+            &child_test_name(module_path!(), "exporter_child_process"),
+            CHILD_VAR,
+            &target,
+            STARTED,
+            delay,
+        );
 
         let on_disk = std::fs::read(&target).expect("the target exists");
         let which = expected

@@ -2,9 +2,7 @@
 //! "Measured on Sintel"). Reads `../shared/data/sintel` (or
 //! `HELIXHAIR_SINTEL`); skips, saying so, where it is absent.
 
-mod support {
-    pub mod sintel;
-}
+use crate::support;
 
 use std::process::Command;
 

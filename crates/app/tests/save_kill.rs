@@ -21,9 +21,7 @@
 //! Reproduce the figures of `docs/reliability.md` with
 //! `cargo test --release -p helixhair-app --test save_kill -- --nocapture`.
 
-mod support {
-    pub mod kill;
-}
+use crate::support;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -32,7 +30,7 @@ use glam::DVec3;
 use helixhair_app::Style;
 use helixhair_app::atomic_write::write_atomically;
 use helixhair_app::style::Root;
-use support::kill::{Rng, clear_leftovers, run_and_kill};
+use support::kill::{Rng, child_test_name, clear_leftovers, run_and_kill};
 
 /// The environment variable that makes [`saver_child_process`] the saver.
 const CHILD_VAR: &str = "HELIXHAIR_SAVE_KILL_TARGET";
@@ -107,7 +105,13 @@ fn a_save_killed_at_any_point_leaves_the_old_or_the_new_style_whole() {
     for round in 0..ROUNDS {
         // Up to three writes.
         let delay = Duration::from_secs_f64(3.0 * save_secs * rng.next_unit());
-        run_and_kill("saver_child_process", CHILD_VAR, &target, STARTED, delay);
+        run_and_kill(
+            &child_test_name(module_path!(), "saver_child_process"),
+            CHILD_VAR,
+            &target,
+            STARTED,
+            delay,
+        );
 
         let on_disk = std::fs::read_to_string(&target).expect("the target exists");
         let which = texts.iter().position(|t| *t == on_disk).unwrap_or_else(|| {

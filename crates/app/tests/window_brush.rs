@@ -9,10 +9,7 @@
 //! user's machine, but fails where `HELIXHAIR_REQUIRE_GPU=1` (CI sets it
 //! and installs Xvfb, xdotool and lavapipe).
 
-mod support {
-    pub mod display;
-    pub mod xdo;
-}
+use crate::support;
 
 use std::path::Path;
 use std::process::Command;

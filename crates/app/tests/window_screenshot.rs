@@ -9,9 +9,7 @@
 //! A second test hides the adapter (`helixhair_gpu::HIDDEN_ADAPTER_ENV`)
 //! and checks that the window then fails with a message, not a panic.
 
-mod support {
-    pub mod display;
-}
+use crate::support;
 
 use std::path::Path;
 use std::process::Command;

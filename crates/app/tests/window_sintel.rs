@@ -13,12 +13,7 @@
 //! on a user's machine, without an X server, xdotool or an adapter (CI
 //! sets `HELIXHAIR_REQUIRE_GPU=1`, which makes those fail).
 
-mod support {
-    pub mod display;
-    pub mod inside;
-    pub mod sintel;
-    pub mod xdo;
-}
+use crate::support;
 
 use std::path::Path;
 use std::thread::sleep;

@@ -135,7 +135,7 @@ pub enum StepScheme {
     /// own symmetric matrix P = s M̃ + D and run at most `corrections`
     /// GMRES iterations preconditioned by it, matrix-free (each one product
     /// G x, a jet sweep, and one solve with the factors they already have),
-    /// stopping once the residual is below 1e-3 of the right-hand side
+    /// stopping once the residual is below 1e-5 of the right-hand side
     /// (`gmres::GMRES_TOLERANCE`).
     /// Block-diagonal keeps the velocity terms explicit (its P is too far
     /// from the whole matrix for the iteration to converge).

@@ -3,7 +3,7 @@
 //! over a sphere against the sphere and against the f64 reference, and the
 //! collider changing nothing when it is absent or out of reach.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

@@ -5,7 +5,7 @@
 //! healthy run is bit-identical with and without the guard: the f64
 //! guard's policy (`guards.rs`).
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

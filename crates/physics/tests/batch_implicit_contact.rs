@@ -7,7 +7,7 @@
 //! spring holds a point at most g h²/α = 0.17 mm (60 Hz, α = 4) below the
 //! skin's outer edge, so above the mesh.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

@@ -4,7 +4,7 @@
 //! guard's reset of one lane puts back only that strand, in its own
 //! natural shape.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

@@ -1,7 +1,7 @@
 //! The f32 batch path against the f64 reference (same parameters, settings,
 //! quadrature and head motion), and serial against parallel.
 
-mod common;
+use crate::common;
 
 use common::{Rng, shake};
 use glam::DVec3;

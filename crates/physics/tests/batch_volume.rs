@@ -5,7 +5,7 @@
 //! guard counts the model's work), then its agreement with the f64
 //! reference running the same model.
 
-mod common;
+use crate::common;
 
 use common::shake_scene::ShakeThenStill;
 use common::volume_scene::{assert_calms_down, kinetic_after_shake, small_head};

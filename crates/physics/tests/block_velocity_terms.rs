@@ -3,7 +3,7 @@
 //! T_bd = ½ Σ q̇_Qᵀ M_QQ(q) q̇_Q, both derivatives by central differences of
 //! the mass stage's diagonal blocks.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

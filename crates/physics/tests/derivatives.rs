@@ -2,7 +2,7 @@
 //! matrix and gravity force against the energies they come from
 //! (docs/physics.md sections 4 and 7).
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

@@ -3,7 +3,7 @@
 //! solvers raw (a `HairSystem`'s guard switched off); `guards.rs` pins how
 //! the guard catches each of these failures.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

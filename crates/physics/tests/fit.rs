@@ -6,7 +6,7 @@
 //! strains and stays put; Greenhill's self-weight column decides which
 //! upright strands the stability check flags.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

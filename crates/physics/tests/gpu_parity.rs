@@ -5,7 +5,7 @@
 //! `HELIXHAIR_REQUIRE_GPU=1` (set by `.ci/run`), where they fail.
 #![cfg(feature = "gpu")]
 
-mod common;
+use crate::common;
 
 use common::gpu::context;
 use common::{Rng, curl, outward_roots as roots, shake};

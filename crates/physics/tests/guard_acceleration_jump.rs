@@ -11,7 +11,7 @@
 //!
 //! [`root_sampling_uncertainty_j`]: helixhair_physics::frame_balance::root_sampling_uncertainty_j
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

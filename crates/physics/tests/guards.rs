@@ -2,7 +2,7 @@
 //! `failure_modes.rs`: each failure is caught, recovered from and
 //! reported, and a healthy run is left alone.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

@@ -2,7 +2,7 @@
 //! at rest; rotating the root frame and gravity together leaves q
 //! unchanged; serial and parallel stepping agree bit for bit.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

@@ -5,7 +5,7 @@
 //! far, at the grid's edges, with huge and non-finite values, and on both
 //! the implicit and the explicit contact.
 
-mod common;
+use crate::common;
 
 use common::Rng;
 use common::sphere::{RADIUS_M, sphere_field};

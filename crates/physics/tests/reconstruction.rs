@@ -2,7 +2,7 @@
 //! section 2, an independent ODE integration of the frame equations, and
 //! the helix radius and pitch of a constant-strain strand.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

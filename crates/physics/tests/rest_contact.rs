@@ -7,7 +7,7 @@
 //! arithmetic's precision) on either engine (they step one contact law), while the same shape solved
 //! without the head's push moves by more than the import's 1 mm.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

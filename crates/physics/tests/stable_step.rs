@@ -2,7 +2,7 @@
 //! measures): one test per symptom the step had, each opening with what
 //! went wrong.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

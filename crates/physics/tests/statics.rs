@@ -2,7 +2,7 @@
 //! elastica table, the small-deflection law of element-averaged curvature,
 //! and Dense and Block-diagonal agreeing at rest.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

@@ -5,7 +5,7 @@
 //! match: the Jacobians' rates (what the step uses) and the polarisation of
 //! two jet sweeps.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

@@ -3,7 +3,7 @@
 //! same frequency recovered by time stepping, and how much faster the
 //! Block-diagonal approximation swings.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DMat3, DVec3};

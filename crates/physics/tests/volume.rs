@@ -5,7 +5,7 @@
 //! pose feels no pressure; a shaken head with the model calms down without
 //! guard events.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

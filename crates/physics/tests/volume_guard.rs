@@ -11,7 +11,7 @@
 //! (the small head, 48 curls, shaken for 4 s) before the fix: friction
 //! 200/s flagged 44 strand-frames in the first 120; pressure 10 m²/s², 7.
 
-mod common;
+use crate::common;
 
 use common::shake;
 use common::volume_scene::small_head;

@@ -67,10 +67,12 @@ impl Groom {
 /// mesh that carries the scalp, with [`COLLIDER_CELL_M`] spacing, so
 /// simulated hair rests on the head instead of falling through it. The
 /// default head is one closed surface with its neck and shoulders, so all
-/// of it collides. Other parts of an OBJ (a separate body) are left out:
-/// the field finds its inside by flooding the outside, and where two
-/// closed surfaces meet, the band around one leaks that flood into the
-/// other. A head with no scalp faces collides as a whole.
+/// of it collides. Other parts of an OBJ (a separate body, a floor) are
+/// left out: the field's grid spans what collides, and a floor or a whole
+/// figure would spread a 4 mm grid past its size limit. The part may be
+/// open (a bust cut below the chest, holes for eyes and mouth): the field
+/// takes its inside from the winding number. A head with no scalp faces
+/// collides as a whole.
 pub fn head_collider(head: &HeadMesh) -> Result<SignedDistanceField, CollisionError> {
     let mesh = &head.mesh;
     let positions: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();

@@ -30,6 +30,14 @@ pub fn scratch_dir(name: &str) -> PathBuf {
     dir
 }
 
+/// The full name of test `name` of this module's sibling, as the test
+/// binary lists it (`save_kill::saver_child_process`): the kill tests are
+/// modules of one suite binary, and `--exact` needs the module path.
+pub fn child_test_name(module: &str, name: &str) -> String {
+    let path = module.split_once("::").map_or(module, |(_, rest)| rest);
+    format!("{path}::{name}")
+}
+
 /// Starts this test executable filtered to `child_test`, with `var` set
 /// to `target`; waits until it prints a line ending in `started`, sleeps
 /// `delay`, and kills it (SIGKILL).

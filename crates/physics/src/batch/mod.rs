@@ -46,7 +46,7 @@
 //!   derivative G = −∂Q/∂q̇ of the centrifugal, Coriolis and root-rotation
 //!   forces joins the step matrix. Sweep 3 gives Δv₀ = P⁻¹ rhs without
 //!   integrating; GMRES (at most `corrections` iterations, stopping at a
-//!   residual of 1e-3 of |rhs|) then corrects it, lane by lane: every dot
+//!   residual of 1e-5 of |rhs|) then corrects it, lane by lane: every dot
 //!   product, Givens rotation and stopping test is a [`Lanes`] value, so
 //!   each strand runs its own GMRES inside the batch's SIMD arithmetic.
 //!   Each iteration re-solves with the elimination sweep 2 stored

@@ -3,7 +3,9 @@
 //! The head is given as triangles (positions in head coordinates; this
 //! crate knows no mesh file format). [`SignedDistanceField::from_triangles`]
 //! samples the distance to the surface on a regular grid, negative inside,
-//! once; a query is then a trilinear lookup, O(1), so contact costs the same
+//! once; inside is where the mesh's winding number is above 1/2
+//! ([`winding`]), so a bust cut open below the chest, with holes for the
+//! eyes, still has one; a query is then a trilinear lookup, O(1), so contact costs the same
 //! for a 500-triangle head as for a 50,000-triangle one.
 //!
 //! Contact is a penalty force per unit length at every quadrature sample,
@@ -21,8 +23,10 @@ pub mod contact;
 pub mod error;
 pub mod sdf;
 mod sdf_build;
+pub mod winding;
 
 pub use contact::{ContactInputs, ContactSettings};
 pub use error::CollisionError;
 pub use sdf::SignedDistanceField;
 pub use sdf_build::closest_point_on_triangle;
+pub use winding::WindingNumber;

@@ -11,7 +11,8 @@ pub const MAX_CELLS: usize = 128 * 128 * 128;
 /// contact skin and for samples approaching from outside.
 pub const MARGIN_CELLS: usize = 3;
 
-/// Distance to a closed surface, negative inside, on a grid in the
+/// Distance to a surface, negative inside (where its winding number is
+/// above 1/2: the surface need not be closed), on a grid in the
 /// surface's own (head) coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SignedDistanceField {
@@ -26,11 +27,12 @@ pub struct SignedDistanceField {
 }
 
 impl SignedDistanceField {
-    /// Samples the signed distance to the closed triangle mesh
-    /// (`positions_m`, `triangles`) on a grid of spacing `cell_m`. Exact
-    /// within a band of a few cells around the surface; beyond it the
-    /// distance is clamped to the band (contact only needs the near field)
-    /// and the sign comes from a flood fill from the grid's boundary.
+    /// Samples the signed distance to the triangle mesh (`positions_m`,
+    /// `triangles`) on a grid of spacing `cell_m`. Exact within a band of a
+    /// few cells around the surface; beyond it the distance is clamped to
+    /// the band (contact only needs the near field). The sign is the
+    /// mesh's winding number's ([`crate::collision::winding`]): the mesh may
+    /// be open, with holes, or carry flipped or doubled triangles.
     pub fn from_triangles(
         positions_m: &[DVec3],
         triangles: &[[u32; 3]],

@@ -1,23 +1,32 @@
 //! Building a signed distance field: exact distances in a narrow band
-//! around the triangles, then signs by flood fill.
+//! around the triangles, signs from the winding number.
 //!
 //! 1. Every grid point within [`BAND_CELLS`] of a triangle's bounding box
 //!    gets the exact distance to the nearest such triangle (closest point
-//!    on a triangle, Ericson's region test), and the sign of
-//!    (p − closest) · face normal of that triangle.
-//! 2. Points outside the band get ±the band width; which sign is found by a
-//!    flood fill of the non-band points from the grid's boundary (outside
-//!    by construction): unreached points are inside.
+//!    on a triangle, Ericson's region test). Points outside every such box
+//!    get the band width: contact needs only the near field.
+//! 2. Every point is inside where the mesh's generalized winding number
+//!    there is above 1/2 ([`WindingNumber`]), and its distance is then
+//!    negated.
 //!
-//! O(T · band³ + grid) instead of O(T · grid): a 5,000-triangle head on a
-//! 5 mm grid builds in tens of milliseconds.
-
-use std::collections::VecDeque;
+//! Why the winding number: the sign used to come from the nearest
+//! triangle's normal in the band and a flood fill of the outside beyond
+//! it. An artist's bust is open (cut below the chest, holes for the eyes
+//! and mouth), and the flood ran in through the cut: the whole inside read
+//! as outside, and hair that sank deeper than the band was never pushed
+//! back. The winding number needs no closed surface and no consistent
+//! nearest normal.
+//!
+//! O(T · band³) for the distances and O(grid · log T) for the signs, over
+//! grid slices in parallel: Sintel's 5,952-triangle bust on a 4 mm grid
+//! builds in about a second on two cores.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::error::CollisionError;
 use super::sdf::{MARGIN_CELLS, MAX_CELLS, SignedDistanceField};
+use super::winding::WindingNumber;
 
 /// Half-width of the exact band, in cells.
 pub const BAND_CELLS: usize = 3;
@@ -67,7 +76,6 @@ pub(super) fn build(
     let mut distance = vec![f64::INFINITY; dims[0] * dims[1] * dims[2]];
     for t in triangles {
         let [a, b, c] = t.map(|v| positions[v as usize]);
-        let normal = (b - a).cross(c - a);
         let cell_of = |p: DVec3, round_up: bool| {
             let g = (p - origin) / cell_m;
             let g = if round_up { g.ceil() } else { g.floor() };
@@ -82,72 +90,37 @@ pub(super) fn build(
                     let q = closest_point_on_triangle(p, a, b, c);
                     let d = p.distance(q);
                     let slot = &mut distance[index(x, y, z)];
-                    if d < slot.abs() {
-                        let outside = (p - q).dot(normal) >= 0.0;
-                        *slot = if outside { d } else { -d };
-                    }
+                    *slot = slot.min(d);
                 }
             }
         }
     }
-    flood_fill_signs(&mut distance, dims, band);
+    let winding = WindingNumber::new(positions, triangles);
+    distance
+        .par_chunks_mut(dims[0] * dims[1])
+        .enumerate()
+        .for_each(|(z, slice)| {
+            for (i, d) in slice.iter_mut().enumerate() {
+                let (x, y) = (i % dims[0], i / dims[0]);
+                let p = origin + DVec3::new(x as f64, y as f64, z as f64) * cell_m;
+                // Beyond the band's boxes, the band's width; within them
+                // the exact distance, even past the band (a plateau at
+                // the band's width next to exact values would leave cells
+                // with no gradient where hair moves).
+                let magnitude = if d.is_finite() { *d } else { band };
+                *d = if winding.inside(p) {
+                    -magnitude
+                } else {
+                    magnitude
+                };
+            }
+        });
     Ok(SignedDistanceField {
         origin_m: origin,
         cell_m,
         dims,
         distance_m: distance,
     })
-}
-
-/// Gives every point outside the band ±`band`: + if reachable from the
-/// boundary through non-band points, − otherwise. Band points keep theirs.
-fn flood_fill_signs(distance: &mut [f64], dims: [usize; 3], band: f64) {
-    let index = |x: usize, y: usize, z: usize| x + dims[0] * (y + dims[1] * z);
-    let mut outside = vec![false; distance.len()];
-    let mut queue = VecDeque::new();
-    for z in 0..dims[2] {
-        for y in 0..dims[1] {
-            for x in 0..dims[0] {
-                let on_boundary = x == 0
-                    || y == 0
-                    || z == 0
-                    || x == dims[0] - 1
-                    || y == dims[1] - 1
-                    || z == dims[2] - 1;
-                let i = index(x, y, z);
-                if on_boundary && (distance[i].is_infinite() || distance[i] > 0.0) {
-                    outside[i] = true;
-                    queue.push_back((x, y, z));
-                }
-            }
-        }
-    }
-    while let Some((x, y, z)) = queue.pop_front() {
-        let neighbours = [
-            (x.wrapping_sub(1), y, z),
-            (x + 1, y, z),
-            (x, y.wrapping_sub(1), z),
-            (x, y + 1, z),
-            (x, y, z.wrapping_sub(1)),
-            (x, y, z + 1),
-        ];
-        for (nx, ny, nz) in neighbours {
-            if nx >= dims[0] || ny >= dims[1] || nz >= dims[2] {
-                continue;
-            }
-            let i = index(nx, ny, nz);
-            // Spread through unset points and through band points outside.
-            if !outside[i] && (distance[i].is_infinite() || distance[i] > 0.0) {
-                outside[i] = true;
-                queue.push_back((nx, ny, nz));
-            }
-        }
-    }
-    for (d, out) in distance.iter_mut().zip(outside) {
-        if d.is_infinite() {
-            *d = if out { band } else { -band };
-        }
-    }
 }
 
 /// The point of triangle (a, b, c) closest to `p` (Ericson, Real-Time

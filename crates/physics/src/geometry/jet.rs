@@ -105,30 +105,3 @@ where
         )
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn product_rule_matches_a_known_polynomial() {
-        // x(t) = t², y(t) = t³ at t = 2: (xy)(t) = t⁵ → 32, 80, 160.
-        let t = 2.0;
-        let x = Jet::new(t * t, 2.0 * t, 2.0);
-        let y = Jet::new(t * t * t, 3.0 * t * t, 6.0 * t);
-        let p = x * y;
-        assert_eq!((p.v, p.d, p.dd), (32.0, 80.0, 160.0));
-    }
-
-    #[test]
-    fn chain_rule_matches_sin_of_square() {
-        // sin(t²) at t = 0.7.
-        let t: f64 = 0.7;
-        let u = Jet::new(t * t, 2.0 * t, 2.0);
-        let s = u.chain([u.v.sin(), u.v.cos(), -u.v.sin()]);
-        let exact_d = 2.0 * t * (t * t).cos();
-        let exact_dd = 2.0 * (t * t).cos() - 4.0 * t * t * (t * t).sin();
-        assert!((s.d - exact_d).abs() < 1e-15);
-        assert!((s.dd - exact_dd).abs() < 1e-15);
-    }
-}

@@ -66,33 +66,3 @@ fn legendre(n: usize, x: f64) -> (f64, f64) {
     let dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
     (p1, dp)
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Tolerance of a quadrature against a closed-form integral.
-    const QUADRATURE_TOL: f64 = 1e-14;
-
-    #[test]
-    fn integrates_polynomials_of_degree_2n_minus_1_exactly() {
-        for n in 1..=8 {
-            let q = Quadrature::gauss_legendre(n);
-            assert!((q.weights.iter().sum::<f64>() - 1.0).abs() < QUADRATURE_TOL);
-            for degree in 0..(2 * n) {
-                let integral: f64 = q
-                    .nodes
-                    .iter()
-                    .zip(&q.weights)
-                    .map(|(x, w)| w * x.powi(degree as i32))
-                    .sum();
-                let exact = 1.0 / (degree as f64 + 1.0);
-                assert!(
-                    (integral - exact).abs() < QUADRATURE_TOL,
-                    "n = {n}, degree {degree}: {integral} vs {exact}"
-                );
-            }
-            assert!(q.nodes.windows(2).all(|w| w[0] < w[1]));
-        }
-    }
-}
