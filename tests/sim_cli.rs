@@ -697,7 +697,7 @@ fn bench_quick_writes_every_study_as_csv_and_svg() {
 }
 
 /// Block-diagonal on the curly example at 60 Hz blows up (its largest
-/// stable step there is 1/120 s: docs/RESULTS.md, section 3). On the batch
+/// stable step there is 1/120 s: the stability study, docs/solvers.md). On the batch
 /// engine the guard resets the failing strands to rest, the run stays
 /// finite, and the report and summary say so; the run exits 1 (it is not
 /// the simulation asked for) unless `--accept-resets` accepts it.

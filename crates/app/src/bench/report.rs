@@ -294,7 +294,7 @@ pub fn format_cell(cell: &str) -> String {
                 format!("{x:.3e}")
             }
         }
-        Ok(x) if x == 0.0 => "0".to_owned(),
+        Ok(0.0) => "0".to_owned(),
         _ => trimmed.replace('|', "\\|"),
     }
 }

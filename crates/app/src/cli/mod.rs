@@ -140,7 +140,7 @@ pub struct SimArgs {
     /// Accuracy target, instead of the style's `accuracy_target`: the
     /// tip-position RMS error allowed as a fraction of strand length (1e-4
     /// to 1); each group's solver and element count are then chosen from
-    /// the measured error model (docs/RESULTS.md).
+    /// the measured error model (docs/solvers.md).
     #[arg(long, value_name = "FRACTION")]
     pub accuracy: Option<f64>,
     /// Number of frames to simulate.

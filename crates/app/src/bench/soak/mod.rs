@@ -8,7 +8,7 @@
 //! [`SoakMotion`]: the window's clips (nod, shake, turn, jerk) in a seeded
 //! random order with pauses of up to a second. The batch engine is the
 //! style's own; the f64 reference steps the same hair (about ten times
-//! slower per frame, see docs/RESULTS.md), so `--soak-steps` sets how far
+//! slower per frame: the throughput study), so `--soak-steps` sets how far
 //! each engine goes.
 //!
 //! Every [`sample_every`] frames it records the process's resident memory
