@@ -22,7 +22,8 @@
 //!
 //! Each study has a fixed list of output files ([`STUDY_FILES`]). A file
 //! enters the report only if it was written during this run (its
-//! modification time is not older than the run's start), so a stale CSV
+//! modification time is not older than the run's start, give or take the
+//! file system's resolution), so a stale CSV
 //! left in the folder by an earlier run of another study never appears
 //! under this run's header. Numbers are printed to four significant
 //! digits ([`format_cell`]); long tables are cut at [`MAX_ROWS`] rows with
@@ -200,8 +201,15 @@ pub fn write_report(
         .with_context(|| format!("cannot write the report {}", report_path.display()))
 }
 
-/// Whether `path` exists and was modified at or after `start`.
+/// Slack for file systems that keep modification times to the second or
+/// two (FAT keeps two): a file the run wrote just after it started may read
+/// as a little older than the start.
+const MTIME_SLACK: std::time::Duration = std::time::Duration::from_secs(2);
+
+/// Whether `path` exists and was modified at or after `start` (less
+/// [`MTIME_SLACK`]).
 fn written_since(path: &Path, start: SystemTime) -> bool {
+    let start = start.checked_sub(MTIME_SLACK).unwrap_or(start);
     std::fs::metadata(path)
         .and_then(|m| m.modified())
         .is_ok_and(|modified| modified >= start)
