@@ -723,6 +723,25 @@ fn bench_quick_writes_every_study_as_csv_and_svg() {
             assert!(text.contains("<svg") && text.contains("</svg>"), "{file}");
         }
     }
+    // The run rebuilt its report from the CSV files it wrote: one header
+    // line naming the machine and the date and saying the run was quick,
+    // then a section per study with its charts linked and its tables.
+    let report = std::fs::read_to_string(out.join("benchmarks.md")).expect("benchmarks.md");
+    let header = report.lines().nth(2).expect("a header line");
+    assert!(
+        header.contains("quick run") && header.contains(" threads") && header.contains(" · 20"),
+        "{header}"
+    );
+    for section in ["## cost", "## accuracy", "## stability", "## modes"] {
+        assert!(
+            report.contains(section),
+            "{section} missing from the report"
+        );
+    }
+    assert!(
+        report.contains("![cost.svg](cost.svg)") && report.contains("| method | elements |"),
+        "the cost section links its chart and shows its table"
+    );
     // The quick modes study still measures Dense against the analytic
     // first mode: at N = 10, the Ritz ratio 1.0019. Tolerance 3e-3: the
     // step's own damping, about ωh/2 = π/1000 at 1000 steps per period,
@@ -743,7 +762,7 @@ fn bench_quick_writes_every_study_as_csv_and_svg() {
 }
 
 /// Block-diagonal on the curly example at 60 Hz blows up (its largest
-/// stable step there is 1/120 s: docs/RESULTS.md, section 3). On the batch
+/// stable step there is 1/120 s: the stability study, docs/solvers.md). On the batch
 /// engine the guard resets the failing strands to rest, the run stays
 /// finite, and the report and summary say so; the run exits 1 (it is not
 /// the simulation asked for) unless `--accept-resets` accepts it.

@@ -1,5 +1,5 @@
 //! `helixhair sim --export` and `helixhair export` from the command line:
-//! the README's command into folders that do not exist yet, numbered
+//! docs/export.md's commands into folders that do not exist yet, numbered
 //! sequences, motion files, and clear errors (exit status 1, nothing left
 //! under the asked name) for bad paths, formats and motion files.
 

@@ -17,9 +17,8 @@
 //! root, the mass block of an element 30 cm out is the small difference of
 //! terms of size m|p|², and a straight strand's twist entries are the
 //! smallest of all, so f32 (but not f64) parts from the reference on roots
-//! out of the vertical plane through the head's centre. The measured
-//! table and what the local moments changed are in `docs/RESULTS.md`
-//! ("f32 round-off on straight strands").
+//! out of the vertical plane through the head's centre. What the local
+//! moments change: `docs/solvers.md`, "f32 on long straight strands".
 
 use glam::DVec3;
 use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};

@@ -16,7 +16,7 @@ const ELASTICA_N40_TOL: f64 = 1.5e-3;
 /// Settled when strain rates fall below this, m⁻¹/s.
 const REST_RATE: f64 = 1e-10;
 /// h for settling: Block-diagonal settles for h ≤ 0.01 s on all four rows
-/// (at h = 0.02 s it keeps thrashing at α = 100, N = 40; see RESULTS).
+/// (at h = 0.02 s it keeps thrashing at α = 100, N = 40; docs/solvers.md).
 const SETTLE_H: f64 = 0.01;
 
 /// (α, y_tip/L, (L − x_tip)/L, tip angle) from docs/physics.md section 7.

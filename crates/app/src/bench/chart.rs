@@ -2,7 +2,7 @@
 //! linear or logarithmic axes, and the stability grids.
 //!
 //! SVG keeps text as text (no font files are needed to draw it, and the
-//! charts stay sharp when RESULTS.md is zoomed); plotters' SVG backend lays
+//! charts stay sharp when docs/benchmarks.md is zoomed); plotters' SVG backend lays
 //! text out with an estimate of glyph widths, which is enough for labels.
 
 use std::ops::Range;

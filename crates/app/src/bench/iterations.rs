@@ -5,7 +5,7 @@
 //! Iterative with k iterations is compared with Dense at the same N and
 //! step (not with the fine reference: the question is how far the solve
 //! is from the exact one, not how far the model is from the continuum).
-//! Block-diagonal is k = 0. The answer quoted in `docs/RESULTS.md` is the
+//! Block-diagonal is k = 0. The answer `docs/solvers.md` quotes is the
 //! first k whose difference is at most 1% of Block-diagonal's.
 
 use helixhair_physics::Method;

@@ -2,9 +2,13 @@
 //!
 //! Each study runs the physics crate on scenes with known answers or a fine
 //! reference, writes its raw numbers as CSV and its chart as SVG into the
-//! output folder, and prints the figures `docs/RESULTS.md` quotes. The
+//! output folder, and prints its headline figures. At the end [`report`]
+//! rebuilds the benchmark report, one markdown page of the run's tables
+//! and charts under one header line naming the machine and the date
+//! (`--report`, default `OUT/benchmarks.md`). The published report is
+//! `helixhair bench --out docs/results --report docs/benchmarks.md`. The
 //! quick mode runs every study on small sizes (seconds, for CI) so that the
-//! command cannot rot; the full mode makes the published charts.
+//! command cannot rot; its report says it is quick.
 //!
 //! | study | question | files |
 //! | --- | --- | --- |
@@ -25,6 +29,7 @@ pub mod groom;
 pub mod iterations;
 pub mod modes;
 pub mod pareto;
+pub mod report;
 pub mod scenes;
 pub mod soak;
 pub mod stability;
@@ -91,6 +96,11 @@ pub struct BenchArgs {
     /// Folder for the CSV files and charts (created if needed).
     #[arg(long, value_name = "DIR", default_value = "out/bench")]
     pub out: PathBuf,
+    /// The markdown report of this run's tables and charts, rebuilt from
+    /// the CSV files it wrote (default: `OUT/benchmarks.md`; the published
+    /// one is `--out docs/results --report docs/benchmarks.md`).
+    #[arg(long, value_name = "FILE")]
+    pub report: Option<PathBuf>,
     /// Small sizes and short runs (seconds): checks that every study still
     /// runs and draws, as CI does; the numbers are not the published ones.
     #[arg(long)]
@@ -144,6 +154,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
     } else {
         &args.studies
     };
+    let run_start = std::time::SystemTime::now();
     let mut ctx = BenchContext {
         out_dir: &args.out,
         quick: args.quick,
@@ -185,6 +196,30 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
         .with_context(|| format!("study {study:?}"))?;
         writeln!(ctx.log, "   ({:.1} s)", start.elapsed().as_secs_f64())?;
     }
-    writeln!(ctx.log, "wrote {}", args.out.display())?;
+    let report_path = args
+        .report
+        .clone()
+        .unwrap_or_else(|| args.out.join("benchmarks.md"));
+    let header = report::ReportHeader {
+        machine: report::machine(),
+        date: report::today(),
+        quick: args.quick,
+        command: bench_command_line(),
+    };
+    report::write_report(&report_path, &args.out, studies, run_start, &header)?;
+    writeln!(
+        ctx.log,
+        "wrote {} and {}",
+        args.out.display(),
+        report_path.display()
+    )?;
     Ok(())
+}
+
+/// The command line that ran the bench, as `helixhair bench …` (the
+/// program's own path replaced by its name, so the report names no local
+/// folder).
+fn bench_command_line() -> String {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    format!("helixhair {}", args.join(" "))
 }

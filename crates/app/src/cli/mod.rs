@@ -75,7 +75,8 @@ pub enum Command {
     /// and report timings, energies and final strand shapes.
     Sim(SimArgs),
     /// Measure speed against accuracy: cost per step, error against cost,
-    /// stability maps and vibration modes, as CSV files and SVG charts.
+    /// stability maps, vibration modes and throughput, as CSV files, SVG
+    /// charts and a markdown report of both.
     #[cfg(feature = "bench")]
     Bench(BenchArgs),
     /// Simulate a style, then draw it offscreen into a PNG (or one PNG per
@@ -87,7 +88,7 @@ pub enum Command {
     /// simulated on a head as
     /// `render` does.
     Export(crate::export::command::ExportArgs),
-    /// Import a groom (TressFX, .hair, USD, OBJ curves): fit Super-Helices,
+    /// Import a groom (TressFX, .hair, USD, Alembic, OBJ curves): fit Super-Helices,
     /// solve a sag-free rest shape, and write a style (docs/import.md).
     Import(crate::import::command::ImportArgs),
     /// Style by hand, headless: apply a stroke file (comb, cut, curl,
@@ -139,7 +140,7 @@ pub struct SimArgs {
     /// Accuracy target, instead of the style's `accuracy_target`: the
     /// tip-position RMS error allowed as a fraction of strand length (1e-4
     /// to 1); each group's solver and element count are then chosen from
-    /// the measured error model (docs/RESULTS.md).
+    /// the measured error model (docs/solvers.md).
     #[arg(long, value_name = "FRACTION")]
     pub accuracy: Option<f64>,
     /// Number of frames to simulate.

@@ -2,7 +2,7 @@
 //! count whose measured error meets an accuracy target.
 //!
 //! The target is a tip-position RMS error as a fraction of the strand's
-//! length (the accuracy study's measure, `docs/RESULTS.md`). For a group of
+//! length (the accuracy study's measure, `docs/solvers.md`). For a group of
 //! strands the choice:
 //!
 //! 1. takes the curl class of the [`ErrorModel`] whose curvature is the

@@ -5,7 +5,7 @@
 //! This module holds the data type and reads it; it knows nothing of the
 //! bench. The bench (`bench::error_model_build`, feature `bench`) writes
 //! `error_model.ron`; the copy in `assets/` (from a full bench run,
-//! regenerated with the command in `docs/RESULTS.md`) is built into the
+//! regenerated with the command in `docs/solvers.md`) is built into the
 //! binary and read by [`crate::sim::auto_choice`]. Nothing in it is guessed:
 //! every entry is one measured run.
 

@@ -84,7 +84,7 @@ pub struct WindowArgs {
     /// Play a head motion at start: nod, shake, turn or jerk.
     #[arg(long, value_name = "MOTION", value_parser = parse_clip)]
     pub play: Option<Clip>,
-    /// Start in the compare view (Dense against Block-diagonal).
+    /// Start in the compare view (Dense against Exact).
     #[arg(long)]
     pub compare: bool,
     /// Quit after K frames and print frame and physics times.

@@ -341,7 +341,7 @@ impl Real for Lanes {
 /// frame took 942 ms on one thread (`fmaf` 70% of it) against 33.6 ms
 /// unfused (`bench --study groom --quick`; 15 ms natively). So results
 /// agree between builds with and without FMA to round-off, not bit for
-/// bit (docs/RESULTS.md, "Cutting the frame, third pass").
+/// bit.
 pub const FUSED: bool = cfg!(target_feature = "fma");
 
 /// self · a + b per lane: one FMA instruction where the build has FMA,

@@ -1,6 +1,6 @@
-//! The fast path: many strands stepped in f32, [`LANES`] at a time in SIMD
-//! lanes (4 on baseline x86-64, 8 where AVX is enabled at compile time), in
-//! parallel over batches.
+//! The fast path: many strands stepped in f32, [`LANES`] = 8 at a time in
+//! SIMD lanes on every build (one AVX register where the build enables AVX,
+//! two SSE registers on baseline x86-64), in parallel over batches.
 //!
 //! # How it works
 //!
@@ -25,10 +25,9 @@
 //!   [`BatchSystem::add_group`]). Lanes stay independent: a strand's
 //!   results are bit for bit the same alone or packed with seven others
 //!   (`tests/batch_lanes.rs`). The imported Sintel groom (11,241 strands
-//!   of 1 to 9 elements) fills 1,410 batches with 39 lanes of padding
-//!   where it had 78,687, and a frame is 12× faster; it is still 26 ms of
-//!   CPU per frame on one thread, over the 8 ms target (docs/RESULTS.md,
-//!   "A whole imported groom").
+//!   of 1 to 9 elements) fills 1,410 batches with 39 lanes of padding,
+//!   where one strand per batch would pad 78,687 lanes (the groom study,
+//!   `helixhair bench --study groom`, times its frame).
 //! - **Structure of arrays** ([`layout`]): a batch's state is N strain and
 //!   N rate triples of lanes, contiguous; a step allocates nothing.
 //! - **Fused stages**: one root-to-tip sweep ([`forward`]: reconstruct,
@@ -81,13 +80,15 @@
 //!   ([`volume_read`]).
 //! - **Guard** ([`guard`], on by default): after each frame, each strand is
 //!   measured and checked as [`crate::guard`] checks (finite, true speed,
-//!   energy against the root's work), and one that fails is reset to its
-//!   rest pose (its natural shape unless told, [`BatchSystem::set_rest_pose`])
-//!   at rest and reported with what failed and by how much
-//!   ([`BatchSystem::last_guard_events`]); one that keeps failing is
-//!   pinned ([`crate::guard::ResetMemory`]). No retry with another solver:
-//!   this is the interactive path, and the f64 [`crate::HairSystem`] is the
-//!   careful one.
+//!   energy against the root's work); one that fails is stepped again from
+//!   the frame's start with the reference's policy (`retry.rs`: Exact if it
+//!   was Block-diagonal, then twice the substeps, and twice again; the whole
+//!   batch re-stepped, the result kept for the failing lanes), and if no
+//!   retry holds it is reset to its rest pose (its natural shape unless
+//!   told, [`BatchSystem::set_rest_pose`]) at rest; each event is reported
+//!   with what failed and by how much ([`BatchSystem::last_guard_events`]),
+//!   and a strand that keeps failing is pinned
+//!   ([`crate::guard::ResetMemory`]).
 //!
 //! The quadrature is the settings' (`SimSettings::quadrature_points`), so a
 //! comparison with the f64 reference is like with like. External forces

@@ -8,8 +8,7 @@
 //! and one instruction instead of two), and the `*_add` forms start the
 //! chain from an accumulator, so `acc + M v` costs no separate add. On an
 //! imported groom's frame (Sintel, one thread) fusing the step's products
-//! took 17% of its instructions and about 12% of its time (docs/RESULTS.md,
-//! "Cutting the frame, third pass").
+//! took 17% of its instructions and about 12% of its time.
 
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 

@@ -9,8 +9,8 @@
 //! | --- | --- | --- |
 //! | arithmetic | f64, one strand at a time, rayon over strands | f32, [`crate::batch::LANES`] strands per SIMD batch, rayon over batches |
 //! | solvers | every [`Method`], per strand | Exact and Block-diagonal, one for all strands |
-//! | extras | stability guard with retries, head collider, hair–hair model, stage timings, energies every frame | guard that resets a failing strand to rest (no retries), head collider at element end points (implicit on Exact), hair–hair model (same grid arithmetic, [`crate::batch::volume`]) |
-//! | speed | the baseline | an order of magnitude more element-steps per second per core (measured in `docs/RESULTS.md`, section 8) |
+//! | extras | stability guard with retries, head collider, hair–hair model, stage timings, energies every frame | the same guard policy, retrying a failing strand's whole SIMD batch (`batch/retry.rs`), the same implicit head contact at every quadrature sample, hair–hair model (same grid arithmetic, [`crate::batch::volume`]) |
+//! | speed | the baseline | many times the element-steps per second per core, by the CPU's SIMD width (the throughput study, `docs/benchmarks.md`) |
 //!
 //! The reference is what every solver study and the guard were built on,
 //! and stays the default; the batch engine is what makes a full head of
@@ -71,7 +71,7 @@ pub enum EngineKind {
     #[default]
     Reference,
     /// The f32 SIMD [`BatchSystem`] on all cores: Exact or Block-diagonal
-    /// only, many times the reference's throughput (`docs/RESULTS.md`).
+    /// only, many times the reference's throughput (`docs/benchmarks.md`).
     Batch,
 }
 

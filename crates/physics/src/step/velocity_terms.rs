@@ -44,9 +44,8 @@
 //! r̈_free is quadratic in q̇, so [r̈_free(q̇ + x) − r̈_free(q̇ − x)] / 2 is
 //! its derivative along x exactly, from two jet sweeps of the
 //! reconstruction ([`free_accelerations`]), each re-evaluating the helix
-//! functions: about 0.7 of a whole explicit step per product (measured,
-//! docs/RESULTS.md section 9), which is what made the velocity-implicit
-//! step cost 2.9 times the explicit one.
+//! functions: about 0.7 of a whole explicit step per product, which would
+//! make the velocity-implicit step cost about three explicit ones.
 
 use glam::DVec3;
 

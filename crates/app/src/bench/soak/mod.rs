@@ -7,9 +7,9 @@
 //! style's settings (Exact, 1/60 s, one substep), moved by
 //! [`SoakMotion`]: the window's clips (nod, shake, turn, jerk) in a seeded
 //! random order with pauses of up to a second. The batch engine is the
-//! style's own; the f64 reference steps the same hair (about ten times
-//! slower per frame, see docs/RESULTS.md), so `--soak-steps` sets how far
-//! each engine goes.
+//! style's own; the f64 reference steps the same hair (many times slower
+//! per frame: the throughput study), so `--soak-steps` sets how far each
+//! engine goes.
 //!
 //! Every [`sample_every`] frames it records the process's resident memory
 //! (`VmRSS` of `/proc/self/status`; Linux), the hair's kinetic energy and

@@ -38,8 +38,8 @@ impl HeadCollider {
     }
 
     /// Makes `engine` collide its strands with this collider (through
-    /// [`Engine::set_collider`]; both engines collide: the reference at
-    /// every quadrature sample, the batch engine at element end points).
+    /// [`Engine::set_collider`]; both engines push with the same implicit
+    /// contact at every quadrature sample).
     pub fn attach(&self, engine: &mut Engine) {
         engine.set_collider(Some(self.field.clone()));
     }

@@ -57,11 +57,7 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
     ui.label(format!(
         "engine: {} ({})",
         app.sim.kind().label(),
-        if batch {
-            "f32 SIMD, all cores; collides with the head at element ends"
-        } else {
-            "f64"
-        }
+        if batch { "f32 SIMD, all cores" } else { "f64" }
     ));
     ui.separator();
     let history: Vec<&PhysicsSample> = r.history().collect();

@@ -7,7 +7,7 @@
 //! Why: on a CPU rasteriser (lavapipe) painting the panels is as dear as
 //! drawing the hair: each frame shades every panel pixel again, about a
 //! million of them, although between two frames only a slider's handle or
-//! a readout's digits change (README, "Window numbers"). So the window
+//! a readout's digits change (docs/window.md). So the window
 //! keeps the panels in a texture, repaints only the rectangles where their
 //! triangles differ from the last frame's, copies the texture to the
 //! screen and paints the overlay on top ([`super::egui_paint`]).

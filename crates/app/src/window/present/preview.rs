@@ -5,9 +5,9 @@
 //!
 //! Why: on a CPU rasteriser the picture's cost grows with the pixels the
 //! strands cover, with the samples per pixel, with the shadow passes and
-//! with the strand count (README, "Window numbers"), and a drag is only
-//! usable at interactive rates; the picture the artist judges is the idle
-//! one, always at full quality. On a real GPU the preview is never used
+//! with the strand count (docs/window.md, "What a frame costs on a
+//! software adapter"), and a drag is only usable at interactive rates; the
+//! picture the artist judges is the idle one, always at full quality. On a real GPU the preview is never used
 //! (unless `--preview` forces it, to measure it).
 //!
 //! Also on a software adapter, whether previewing or not, the panels are
@@ -23,7 +23,7 @@ pub const PREVIEW_STRANDS: usize = 300;
 /// picture saved as much drawing as scaling it up cost (egui samples a
 /// texture per window pixel, the dearest thing a CPU rasteriser does),
 /// while a full-size one is copied onto the window without shading
-/// ([`super::panel_layer::picture_copy`]); README, "Window numbers".
+/// ([`super::panel_layer::picture_copy`]); docs/window.md.
 pub const PREVIEW_SCALE: f32 = 1.0;
 
 /// Samples per pixel of the preview's picture: no MSAA.

@@ -83,7 +83,7 @@ pub fn default_style(guides: usize) -> Style {
         version: STYLE_VERSION,
         name: "default".into(),
         // One substep: the velocity-implicit step takes these curls through
-        // the head clips at 1/60 s (docs/RESULTS.md, section 9).
+        // the head clips at 1/60 s (docs/solvers.md, "Stability").
         sim: SimSettings::default(),
         engine: EngineKind::Reference,
         accuracy_target: None,

@@ -158,7 +158,7 @@ mod tests {
             }
         );
         // The 30 cm examples take one substep since the velocity-implicit
-        // step (docs/RESULTS.md, section 9).
+        // step (docs/solvers.md, "Stability").
         assert_eq!(presets[1].min_substeps, 1);
     }
 

@@ -34,8 +34,8 @@
 //! group's measures are stale then too), and not when the head is not
 //! where the last frame ended. The same sweep on the same state, so the
 //! same bits; at 3,000 strands it halved the gather's instructions (12.6
-//! to 5.3 M a frame) and took about 7% off the model's pass in paired runs
-//! (docs/RESULTS.md, section 10, "Fifth pass"). With the guard off nothing
+//! to 5.3 M a frame) and took about 7% off the model's pass in paired runs.
+//! With the guard off nothing
 //! is kept and every frame sweeps.
 //!
 //! # Rest density
