@@ -23,7 +23,7 @@
 //! writes rather than only the gaps between them.
 //!
 //! Reproduce the figures of `docs/reliability.md` with
-//! `cargo test --release -p helixhair-app --test export_kill -- --nocapture`.
+//! `cargo test --release -p helixhair-app --test suite export_kill:: -- --nocapture`.
 
 use crate::support;
 

@@ -19,7 +19,7 @@
 //! only the gaps between them.
 //!
 //! Reproduce the figures of `docs/reliability.md` with
-//! `cargo test --release -p helixhair-app --test save_kill -- --nocapture`.
+//! `cargo test --release -p helixhair-app --test suite save_kill:: -- --nocapture`.
 
 use crate::support;
 

@@ -60,8 +60,9 @@ pub struct ImportArgs {
     #[arg(long, value_name = "MESH")]
     pub head: Option<PathBuf>,
     /// The mesh (OBJ) the hair collides with and rests on, when it is not
-    /// `--head`: a coarse closed stand-in for a detailed bust, whose eye
-    /// holes and ears would catch the hair. Needs `--head`.
+    /// `--head`: a coarse stand-in for a detailed bust, whose ears and lips
+    /// would catch the hair (an open head mesh collides too: its inside
+    /// comes from its winding number). Needs `--head`.
     #[arg(long, value_name = "MESH", requires = "head")]
     pub collider: Option<PathBuf>,
     /// Largest distance of a groom point from its fitted strand, as a

@@ -42,8 +42,8 @@ pub struct ImportedStrands {
     pub head: Option<String>,
     /// The mesh the hair collides with and rests on, relative to the
     /// style's folder, when it is not `head`: a coarse closed stand-in (an
-    /// offset hull) for a detailed bust whose eye holes, lips and ears
-    /// would catch the hair. `head` stays the mesh drawn and exported.
+    /// offset hull) for a detailed bust whose lips and ears would catch
+    /// the hair. `head` stays the mesh drawn and exported.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub collider: Option<String>,
     /// One entry per strand, in the groom's order.
