@@ -38,6 +38,7 @@ pub mod throughput;
 pub mod timing;
 pub mod volume;
 
+use std::cell::RefCell;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -136,12 +137,23 @@ pub struct BenchContext<'a> {
     pub quick: bool,
     /// Progress and the headline numbers.
     pub log: &'a mut dyn Write,
+    /// Every output file handed out by [`Self::file`], in order: what the
+    /// report shows ([`report`]).
+    written: RefCell<Vec<PathBuf>>,
 }
 
 impl BenchContext<'_> {
-    /// The path of output file `name`.
+    /// The path of output file `name`, which the study is about to write:
+    /// the run keeps it for the report.
     pub fn file(&self, name: &str) -> PathBuf {
-        self.out_dir.join(name)
+        let path = self.out_dir.join(name);
+        self.written.borrow_mut().push(path.clone());
+        path
+    }
+
+    /// The files handed out since the last call, in order.
+    fn take_written(&self) -> Vec<PathBuf> {
+        self.written.take()
     }
 }
 
@@ -154,12 +166,13 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
     } else {
         &args.studies
     };
-    let run_start = std::time::SystemTime::now();
     let mut ctx = BenchContext {
         out_dir: &args.out,
         quick: args.quick,
         log,
+        written: RefCell::new(Vec::new()),
     };
+    let mut written = Vec::new();
     for &study in studies {
         writeln!(ctx.log, "== study {study:?} ==")?;
         let start = std::time::Instant::now();
@@ -194,6 +207,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             }
         }
         .with_context(|| format!("study {study:?}"))?;
+        written.push((study, ctx.take_written()));
         writeln!(ctx.log, "   ({:.1} s)", start.elapsed().as_secs_f64())?;
     }
     let report_path = args
@@ -206,7 +220,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
         quick: args.quick,
         command: bench_command_line(),
     };
-    report::write_report(&report_path, &args.out, studies, run_start, &header)?;
+    report::write_report(&report_path, &written, &header)?;
     writeln!(
         ctx.log,
         "wrote {} and {}",

@@ -20,12 +20,11 @@
 //!
 //! # How it reads the run
 //!
-//! Each study has a fixed list of output files ([`STUDY_FILES`]). A file
-//! enters the report only if it was written during this run (its
-//! modification time is not older than the run's start, give or take the
-//! file system's resolution), so a stale CSV
-//! left in the folder by an earlier run of another study never appears
-//! under this run's header. Numbers are printed to four significant
+//! The run hands each study its output paths ([`super::BenchContext::file`])
+//! and keeps them, study by study; the report shows exactly those: each
+//! SVG as a chart and each CSV as a table, in the order the study wrote
+//! them. A stale file left in the folder by an earlier run of another
+//! study never appears under this run's header. Numbers are printed to four significant
 //! digits ([`format_cell`]); long tables are cut at [`MAX_ROWS`] rows with
 //! a link to the whole CSV. Links are relative to the report's folder
 //! ([`relative_link`]), so `--out docs/results --report docs/benchmarks.md`
@@ -46,87 +45,29 @@ use super::Study;
 /// Rows of a CSV shown in the report; the rest is linked.
 pub const MAX_ROWS: usize = 40;
 
-/// What a study is for and which files it writes.
-#[derive(Clone, Copy, Debug)]
-pub struct StudyFiles {
-    /// The study.
-    pub study: Study,
-    /// The section title: the study's name and its question.
-    pub title: &'static str,
-    /// Its CSV tables, in the order shown.
-    pub tables: &'static [&'static str],
-    /// Its SVG charts, in the order shown.
-    pub charts: &'static [&'static str],
+/// A study's section title: its name and its question.
+pub fn title(study: Study) -> &'static str {
+    match study {
+        Study::Cost => "cost: microseconds per step against element count, one strand, one thread",
+        Study::Accuracy => {
+            "accuracy: error against cost on three scenes; CG iterations against Block-diagonal's error"
+        }
+        Study::Stability => {
+            "stability: stable, damped-out or blown-up over time step, stiffness and head motion"
+        }
+        Study::Modes => "modes: first-mode frequency and damping against element count",
+        Study::Throughput => {
+            "throughput: element-steps per second of each engine against strand count"
+        }
+        Study::Volume => "volume: the hair–hair model on a full head settled 5 s",
+        Study::VolumeShake => "volume-shake: interpenetration and energy during a head shake",
+        Study::VolumeCost => "volume-cost: the hair–hair model's share of a frame",
+        Study::Soak => "soak: a full head under random head motion, per engine",
+        Study::Groom => {
+            "groom: physics milliseconds per 60 Hz frame of a whole groom, and where it goes"
+        }
+    }
 }
-
-/// Every study's files (the table in the `bench` module's docs).
-pub const STUDY_FILES: [StudyFiles; 10] = [
-    StudyFiles {
-        study: Study::Cost,
-        title: "cost: microseconds per step against element count, one strand, one thread",
-        tables: &["cost.csv"],
-        charts: &["cost.svg"],
-    },
-    StudyFiles {
-        study: Study::Accuracy,
-        title: "accuracy: error against cost on three scenes; CG iterations against Block-diagonal's error",
-        tables: &["accuracy.csv", "iterations.csv"],
-        charts: &[
-            "accuracy_swing.svg",
-            "accuracy_bounce-curly.svg",
-            "accuracy_shake.svg",
-            "iterations.svg",
-        ],
-    },
-    StudyFiles {
-        study: Study::Stability,
-        title: "stability: stable, damped-out or blown-up over time step, stiffness and head motion",
-        tables: &["stability.csv", "curly_dt.csv"],
-        charts: &["stability.svg"],
-    },
-    StudyFiles {
-        study: Study::Modes,
-        title: "modes: first-mode frequency and damping against element count",
-        tables: &["modes.csv"],
-        charts: &["modes_frequency.svg", "modes_damping.svg"],
-    },
-    StudyFiles {
-        study: Study::Throughput,
-        title: "throughput: element-steps per second of each engine against strand count",
-        tables: &["throughput.csv"],
-        charts: &["throughput.svg"],
-    },
-    StudyFiles {
-        study: Study::Volume,
-        title: "volume: the hair–hair model on a full head settled 5 s",
-        tables: &["volume.csv"],
-        charts: &[],
-    },
-    StudyFiles {
-        study: Study::VolumeShake,
-        title: "volume-shake: interpenetration and energy during a head shake",
-        tables: &["volume_shake.csv"],
-        charts: &["volume_shake.svg", "volume_energy.svg"],
-    },
-    StudyFiles {
-        study: Study::VolumeCost,
-        title: "volume-cost: the hair–hair model's share of a frame",
-        tables: &["volume_cost.csv"],
-        charts: &["volume_cost.svg"],
-    },
-    StudyFiles {
-        study: Study::Soak,
-        title: "soak: a full head under random head motion, per engine",
-        tables: &["soak.csv"],
-        charts: &["soak_memory.svg", "soak_guard.svg"],
-    },
-    StudyFiles {
-        study: Study::Groom,
-        title: "groom: physics milliseconds per 60 Hz frame of a whole groom, and where it goes",
-        tables: &["groom.csv"],
-        charts: &["groom.svg"],
-    },
-];
 
 /// The one header line's parts.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -152,40 +93,31 @@ pub struct Section {
     pub tables: Vec<(String, String)>,
 }
 
-/// Writes the report of the studies `studies` run into `out_dir` since
-/// `run_start` to `report_path`.
+/// Writes to `report_path` the report of the files each study of the run
+/// wrote (`written`: each study with its files, in order).
 pub fn write_report(
     report_path: &Path,
-    out_dir: &Path,
-    studies: &[Study],
-    run_start: SystemTime,
+    written: &[(Study, Vec<PathBuf>)],
     header: &ReportHeader,
 ) -> anyhow::Result<()> {
     let report_dir = report_path.parent().unwrap_or(Path::new(""));
     let mut sections = Vec::new();
-    for study in studies {
-        let Some(files) = STUDY_FILES.iter().find(|f| f.study == *study) else {
-            continue;
-        };
+    for (study, files) in written {
         let mut section = Section {
-            title: files.title.to_owned(),
+            title: title(*study).to_owned(),
             charts: Vec::new(),
             tables: Vec::new(),
         };
-        for chart in files.charts {
-            let path = out_dir.join(chart);
-            if written_since(&path, run_start) {
-                section.charts.push(relative_link(report_dir, &path)?);
-            }
-        }
-        for table in files.tables {
-            let path = out_dir.join(table);
-            if written_since(&path, run_start) {
-                let text = std::fs::read_to_string(&path)
+        let has_extension = |path: &Path, ext: &str| path.extension().is_some_and(|e| e == ext);
+        for path in files {
+            if has_extension(path, "svg") {
+                section.charts.push(relative_link(report_dir, path)?);
+            } else if has_extension(path, "csv") {
+                let text = std::fs::read_to_string(path)
                     .with_context(|| format!("cannot read {}", path.display()))?;
                 section
                     .tables
-                    .push((relative_link(report_dir, &path)?, text));
+                    .push((relative_link(report_dir, path)?, text));
             }
         }
         if !section.charts.is_empty() || !section.tables.is_empty() {
@@ -199,20 +131,6 @@ pub fn write_report(
     }
     crate::atomic_write::write_atomically(report_path, text.as_bytes())
         .with_context(|| format!("cannot write the report {}", report_path.display()))
-}
-
-/// Slack for file systems that keep modification times to the second or
-/// two (FAT keeps two): a file the run wrote just after it started may read
-/// as a little older than the start.
-const MTIME_SLACK: std::time::Duration = std::time::Duration::from_secs(2);
-
-/// Whether `path` exists and was modified at or after `start` (less
-/// [`MTIME_SLACK`]).
-fn written_since(path: &Path, start: SystemTime) -> bool {
-    let start = start.checked_sub(MTIME_SLACK).unwrap_or(start);
-    std::fs::metadata(path)
-        .and_then(|m| m.modified())
-        .is_ok_and(|modified| modified >= start)
 }
 
 /// The report's markdown.
@@ -518,7 +436,6 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("helixhair-report-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::write(dir.join("cost.csv"), "method,median_us\nexact,9.58\n").unwrap();
-        let start = SystemTime::now() + std::time::Duration::from_secs(3600);
         let header = ReportHeader {
             machine: "m".to_owned(),
             date: "d".to_owned(),
@@ -526,13 +443,18 @@ mod tests {
             command: "c".to_owned(),
         };
         let report = dir.join("report.md");
-        // A start an hour from now: cost.csv is older, so no section.
-        write_report(&report, &dir, &[Study::Cost], start, &header).unwrap();
+        // The study ran but this run wrote nothing: cost.csv is an earlier
+        // run's, so no section.
+        write_report(&report, &[(Study::Cost, Vec::new())], &header).unwrap();
         let text = std::fs::read_to_string(&report).unwrap();
         assert!(!text.contains("## cost"), "{text}");
-        // A start before the file: its section and its table.
-        let start = SystemTime::UNIX_EPOCH;
-        write_report(&report, &dir, &[Study::Cost], start, &header).unwrap();
+        // The run wrote it: its section and its table.
+        write_report(
+            &report,
+            &[(Study::Cost, vec![dir.join("cost.csv")])],
+            &header,
+        )
+        .unwrap();
         let text = std::fs::read_to_string(&report).unwrap();
         assert!(
             text.contains("## cost") && text.contains("| exact | 9.580 |"),
