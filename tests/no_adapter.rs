@@ -67,12 +67,12 @@ fn the_gpu_engine_falls_back_to_the_cpu() {
     }
     // The adapter is hidden through the environment, which the process
     // reads when wgpu starts: run this test again in a child process.
+    // The test binary lists this test under its module path, less the
+    // crate's own name (`no_adapter::the_gpu_engine_falls_back_to_the_cpu`).
+    let module = module_path!().split_once("::").map_or("", |(_, rest)| rest);
+    let name = format!("{module}::the_gpu_engine_falls_back_to_the_cpu");
     let output = Command::new(std::env::current_exe().expect("the test executable"))
-        .args([
-            "the_gpu_engine_falls_back_to_the_cpu",
-            "--exact",
-            "--nocapture",
-        ])
+        .args([name.as_str(), "--exact", "--nocapture"])
         .env(CHILD_VAR, "1")
         .envs(HIDDEN_ADAPTER_ENV)
         .output()

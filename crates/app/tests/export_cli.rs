@@ -196,6 +196,15 @@ fn bad_paths_and_formats_fail_before_simulating_and_leave_nothing() {
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
+/// The share of exported hair points (roots and tips left out) issue 32
+/// allows inside the head.
+const ISSUE_INSIDE_SHARE: f64 = 0.01;
+
+/// The share the curly and coily examples are held to until they meet
+/// [`ISSUE_INSIDE_SHARE`]: the worst measured (2.6%, coily) and a margin
+/// for the other engines' and machines' round-off.
+const CURL_INSIDE_SHARE: f64 = 0.03;
+
 #[test]
 fn groomed_examples_simulated_by_sim_start_and_stay_out_of_the_head_they_grow_on() {
     // Issue 32, item 3: `sim` did not collide hair grown on the scalp with
@@ -207,14 +216,22 @@ fn groomed_examples_simulated_by_sim_start_and_stay_out_of_the_head_they_grow_on
     // is a coin toss) and the tip (the reference engine's contact acts at
     // quadrature samples, which the tip is not).
     //
-    // Only the straight and wavy examples meet the issue's 1% so far: the
-    // curls rest deeper in the contact's spring (measured settled and
-    // after the same shake: curly 7 to 8%, coily 8 to 9%, full_head 7 to
-    // 10% of points inside, up to about 5 mm deep). Issue 32 item 3 stays
-    // open for them; the contact law is issue 33's.
+    // The straight and wavy examples meet the issue's 1%. The curly and
+    // coily ones had 7 to 8% and 8 to 9% inside while their helices turned
+    // about axes along the scalp and their loops pressed into it; grown
+    // with `curl_axis: Growth` (their helix axes follow the growth
+    // direction) they measure 1.0 to 1.3% and 2.0 to 2.6%, their first
+    // loops and the hair hanging down the back resting in the contact's
+    // skin. They are held to that here, a margin above; issue 32 item 3
+    // stays open for them.
     let head = helixhair_render::head_generate::default_head();
     let dir = scratch("inside");
-    for name in ["straight", "wavy"] {
+    for (name, most_inside) in [
+        ("straight", ISSUE_INSIDE_SHARE),
+        ("wavy", ISSUE_INSIDE_SHARE),
+        ("curly", CURL_INSIDE_SHARE),
+        ("coily", CURL_INSIDE_SHARE),
+    ] {
         let style = format!("assets/styles/groomed/{name}.ron");
         for (when, args) in [
             ("at the start", "--steps 1 --export-frames all"),
@@ -241,7 +258,7 @@ fn groomed_examples_simulated_by_sim_start_and_stay_out_of_the_head_they_grow_on
                 .collect();
             let (inside, share) = inside_share(&points, &head);
             assert!(
-                share < 0.01,
+                share < most_inside,
                 "{name} {when}: {inside} of {} points ({:.2}%) inside the head",
                 points.len(),
                 100.0 * share

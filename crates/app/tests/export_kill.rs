@@ -1,8 +1,8 @@
 //! Kill tests for exporting: a child process exporting the curly example's
 //! simulated strands (the export path `helixhair export` and `sim --export`
 //! take: `ExportRecorder::write_single`, the format's writer, then
-//! `atomic_write`) is killed (SIGKILL) at random points, 300 times over the
-//! four formats; the file on disk must always be the old export or the new
+//! `atomic_write`) is killed (SIGKILL) at random points, 30 times for each
+//! of the seven formats; the file on disk must always be the old export or the new
 //! one, whole, and read back with our reader.
 //!
 //! # How it works
@@ -43,8 +43,10 @@ const CHILD_VAR: &str = "HELIXHAIR_EXPORT_KILL_TARGET";
 /// What the child prints once it starts exporting.
 const STARTED: &str = "exporting";
 
-/// Kills per format; four formats, 300 kills in all.
-const ROUNDS_PER_FORMAT: usize = 75;
+/// Kills per format; seven formats, 210 kills in all. Each kill costs a
+/// child's start (growing the curly example, about 0.3 s), so this is most
+/// of the test's time.
+const ROUNDS_PER_FORMAT: usize = 30;
 
 /// The two point counts the child alternates between: two different files
 /// (TressFX needs powers of two).

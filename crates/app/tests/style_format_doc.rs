@@ -139,7 +139,7 @@ fn every_field_and_variant_is_documented() {
 #[test]
 fn every_groom_field_and_method_is_documented() {
     use helixhair_app::style::groom::{
-        RenderStrands, ScalpPlacement, ScalpRegion, StrandInterpolation,
+        CurlAxis, RenderStrands, ScalpPlacement, ScalpRegion, StrandInterpolation,
     };
     let doc = doc();
     let region = ScalpRegion {
@@ -153,6 +153,8 @@ fn every_groom_field_and_method_is_documented() {
         lift_deg: 0.0,
         seed: 1,
         region: Some(region.clone()),
+        // Not the default, so that the field is written and looked up.
+        curl_axis: CurlAxis::Growth,
     };
     let mut names = field_names(&scalp);
     names.extend(field_names(&region));
@@ -164,8 +166,13 @@ fn every_groom_field_and_method_is_documented() {
             "`{name}` has no row in docs/style-format.md"
         );
     }
-    for method in [StrandInterpolation::Nearest, StrandInterpolation::Blend3] {
-        let name = ron_text(&method);
+    let variants = [
+        ron_text(&StrandInterpolation::Nearest),
+        ron_text(&StrandInterpolation::Blend3),
+        ron_text(&CurlAxis::Hug),
+        ron_text(&CurlAxis::Growth),
+    ];
+    for name in variants {
         assert!(
             doc.contains(&format!("| `{name}` |")),
             "{name} is not documented"

@@ -9,11 +9,9 @@
 //! `python3 -c "import alembic3d"` fails, unless
 //! `HELIXHAIR_REQUIRE_ALEMBIC=1` (as CI sets).
 
-#[path = "support/alembic.rs"]
-mod alembic;
-mod common;
-#[path = "support/python.rs"]
-mod python;
+use crate::alembic;
+use crate::common;
+use crate::python;
 
 use std::path::{Path, PathBuf};
 

@@ -4,7 +4,7 @@
 //! archive the Alembic library wrote (transforms, indexed widths), beside
 //! `mutation.rs`'s run over the archives this crate writes.
 
-mod common;
+use crate::common;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 

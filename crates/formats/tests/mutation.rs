@@ -7,7 +7,7 @@
 //! Deterministic (fixed seeds); a failure prints the seed and case and
 //! writes the input to `target/mutation-failure.<format>` to replay.
 
-mod common;
+use crate::common;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 

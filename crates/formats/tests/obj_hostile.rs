@@ -1,7 +1,7 @@
 //! Malformed OBJ files give located errors; OBJ-specific reading rules
 //! (negative indices, texture indices, chaining Blender's edges).
 
-mod common;
+use crate::common;
 
 use common::expect_error;
 use helixhair_formats::{Format, Location, ReadErrorKind, ReadOptions, RepairReason, read};

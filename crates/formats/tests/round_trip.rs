@@ -2,7 +2,7 @@
 //! (the writers print shortest round-trip `f32` decimals, the binary formats
 //! store `f32`), and so do the widths and colours each format carries.
 
-mod common;
+use crate::common;
 
 use common::{assert_points_equal, groom};
 use helixhair_formats::{

@@ -2,7 +2,7 @@
 //! whole, inside the bounds its README gives. Skips with a message where
 //! `../shared/data/sintel` is absent.
 
-mod common;
+use crate::common;
 
 use std::time::Instant;
 

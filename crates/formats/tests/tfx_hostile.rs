@@ -1,7 +1,7 @@
 //! Malformed TressFX files: each gives its own error, located, and nothing
 //! is allocated for counts the file cannot hold.
 
-mod common;
+use crate::common;
 
 use common::{expect_error, put_u32, valid_file};
 use helixhair_formats::{Format, Location, ReadErrorKind, ReadOptions, RepairReason, read};

@@ -6,9 +6,8 @@
 //! Skips with a message where `python3 -c "import pxr"` fails, unless
 //! `HELIXHAIR_REQUIRE_USD=1` (as CI sets), which makes it fail instead.
 
-mod common;
-#[path = "support/pxr.rs"]
-mod pxr;
+use crate::common;
+use crate::pxr;
 
 use pxr::pxr_available;
 

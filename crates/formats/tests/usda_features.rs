@@ -2,8 +2,6 @@
 //! interpolation, transforms, several prims, skipped prims, and warnings
 //! for what it reads approximately.
 
-mod common;
-
 use glam::Vec3;
 use helixhair_formats::{Format, ReadOptions, StrandValue, UpAxis, read};
 

@@ -1,7 +1,7 @@
 //! Malformed `.usda` layers give located errors; no nesting, count or
 //! repetition in the text can exhaust the stack or memory.
 
-mod common;
+use crate::common;
 
 use common::{expect_error, valid_file};
 use helixhair_formats::{Format, Location, ReadErrorKind, ReadOptions, RepairReason, read};

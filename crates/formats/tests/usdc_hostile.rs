@@ -5,7 +5,7 @@
 //! arrays, lookup tables, time samples), beside `mutation.rs`'s runs over
 //! the files this crate writes.
 
-mod common;
+use crate::common;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 

@@ -8,11 +8,9 @@
 //! runs without Python; the rest skips where `python3 -c "import pxr"`
 //! fails, unless `HELIXHAIR_REQUIRE_USD=1` (as CI sets).
 
-mod common;
-#[path = "support/pxr.rs"]
-mod pxr;
-#[path = "support/python.rs"]
-mod python;
+use crate::common;
+use crate::pxr;
+use crate::python;
 
 use std::path::{Path, PathBuf};
 

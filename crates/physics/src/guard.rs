@@ -1,8 +1,8 @@
 //! Failing safe: detect a strand whose step has gone wrong, recover it, and
 //! say so.
 //!
-//! A step can fail in settings a user reaches (`docs/RESULTS.md`, stability
-//! maps): it blows up (energy doubling frame after frame), or, with a
+//! A step can fail in settings a user reaches (the stability maps of
+//! `docs/benchmarks.md`): it blows up (energy doubling frame after frame), or, with a
 //! solver that is not passive (Block-diagonal's truncated inertia), it keeps
 //! a strand moving with a still head. Both show as energy that no force put
 //! in, so the guard **measures** each frame at its end, from a

@@ -9,7 +9,9 @@ use helixhair_render::head_shell::HeadShell;
 use crate::hair::curl_variation::clump_onto;
 use crate::hair::drawn::{drape_over, drawn_hair_full, root_width_m};
 use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
-use crate::head::groom::{Groom, combed_direction, grow_scalp_roots, scalp_roots};
+use crate::head::groom::{
+    Groom, coil_along, combed_direction, grow_scalp_roots, root_strains, scalp_roots,
+};
 use crate::sim::headless::{HeadlessSim, SimOverrides};
 use crate::style::Style;
 
@@ -42,12 +44,68 @@ fn a_combed_root_leans_along_the_comb_at_its_lift() {
     assert!((d.dot(DVec3::Y) - 0.5).abs() < 1e-12, "{d}");
 }
 
+/// The centreline of a strand with uniform strains `k` rooted at the
+/// origin with `direction` and `reference`, at arc length `s_m`: one
+/// helix, in closed form (`helixhair_physics::geometry::helix`).
+fn helix_point(direction: DVec3, reference: DVec3, k: DVec3, s_m: f64) -> DVec3 {
+    let frame = helixhair_physics::RootPose::from_direction(DVec3::ZERO, direction, reference);
+    frame.head_from_root * helixhair_physics::geometry::helix::centreline_and_jacobian(s_m, k).0
+}
+
+#[test]
+fn a_coil_grown_along_its_growth_advances_along_it_and_stays_off_the_scalp() {
+    use helixhair_physics::natural_shape::helix_strains;
+    // The groomed coily (5 mm, 8 mm per turn) and curly (12 mm, 30 mm)
+    // examples' helices, and a wave (25 mm, 120 mm), at steep and shallow
+    // lifts, on a scalp whose normal is +y, combed back.
+    for (radius_m, step_m) in [(0.005, 0.008), (0.012, 0.03), (0.025, 0.12)] {
+        let k = helix_strains(radius_m, step_m);
+        let turn_m = std::f64::consts::TAU / k.length();
+        for lift_deg in [88.0, 50.0, 5.0] {
+            let growth = combed_direction(DVec3::Y, DVec3::NEG_Z, lift_deg);
+            let (direction, reference) =
+                coil_along(growth, DVec3::Y, k).expect("a helix has an axis");
+            let case = format!("r {radius_m} m, step {step_m} m, lift {lift_deg}°");
+            // Known answers of a helix: after whole turns the centreline has
+            // moved along its axis by whole steps, and the tangent makes the
+            // pitch angle with the axis, cos α = τ/|k|.
+            for turns in [1.0, 3.0] {
+                let moved = helix_point(direction, reference, k, turns * turn_m);
+                let expected = growth * turns * step_m;
+                assert!(
+                    moved.distance(expected) < 1e-9,
+                    "{case}: after {turns} turns at {moved}, not {expected}"
+                );
+            }
+            assert!(
+                (direction.dot(growth) - k.x / k.length()).abs() < 1e-12,
+                "{case}"
+            );
+            // No point of the first three turns below the root's tangent
+            // plane: the loops stand off the scalp.
+            let lowest = (0..=600)
+                .map(|i| helix_point(direction, reference, k, 3.0 * turn_m * i as f64 / 600.0).y)
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                lowest > -1e-12,
+                "{case}: a loop dips {lowest} m below the root"
+            );
+        }
+    }
+    // Straight or untwisted hair has no axis to follow.
+    assert_eq!(coil_along(DVec3::Y, DVec3::Y, DVec3::ZERO), None);
+    assert_eq!(
+        coil_along(DVec3::Y, DVec3::Y, DVec3::new(0.0, 50.0, 0.0)),
+        None
+    );
+}
+
 #[test]
 fn scalp_roots_lie_in_their_region_and_grow_outwards() {
     let head = default_head();
     let style = style();
     let placement = style.groups[0].scalp.as_ref().expect("scalp");
-    let roots = scalp_roots(placement, &head);
+    let roots = scalp_roots(placement, &head, root_strains(&style.groups[0]));
     assert_eq!(roots.len(), 30);
     for root in &roots {
         assert!(

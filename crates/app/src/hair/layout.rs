@@ -33,7 +33,7 @@ use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
 use crate::hair::colours::strand_colours;
 use crate::hair::strain_blend::{DrawnStrand, blend_sources};
-use crate::head::groom::{Groom, placement_scalp, scalp_root};
+use crate::head::groom::{Groom, placement_scalp, root_strains, scalp_root};
 use crate::style::groom::{RenderStrands, StrandInterpolation};
 use crate::style::imported::ImportedStrands;
 
@@ -165,7 +165,7 @@ impl DrawnLayout {
                         placement.seed ^ RENDER_SEED,
                     )
                     .iter()
-                    .map(|s| scalp_root(s, placement).pose())
+                    .map(|s| scalp_root(s, placement, root_strains(group)).pose())
                     .collect(),
                     None => {
                         let points = root_guides.root_points();

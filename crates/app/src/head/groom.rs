@@ -17,7 +17,7 @@ use helixhair_render::HeadMesh;
 use helixhair_render::head_shell::HeadShell;
 use helixhair_render::scalp_sampling::{SurfaceSample, poisson_disk_on_scalp};
 
-use crate::style::groom::ScalpPlacement;
+use crate::style::groom::{CurlAxis, ScalpPlacement};
 use crate::style::{Root, StrandGroup, Style};
 
 /// Grid spacing of the head's collision field, metres: 4 mm resolves a
@@ -160,26 +160,89 @@ pub fn placement_scalp(placement: &ScalpPlacement, head: &HeadMesh) -> HeadMesh 
     cut
 }
 
-/// The root `placement` grows at `sample` of the scalp: combed at its
-/// lift, the inward normal as frame reference.
-pub fn scalp_root(sample: &SurfaceSample, placement: &ScalpPlacement) -> Root {
+/// The root `placement` grows at `sample` of the scalp, for hair whose
+/// natural strains at the root are `root_strains` (τ, κ₁, κ₂), m⁻¹: combed
+/// at its lift with the inward normal as frame reference
+/// ([`CurlAxis::Hug`]), or turned so that its helix advances along that
+/// direction ([`CurlAxis::Growth`], [`coil_along`]).
+pub fn scalp_root(sample: &SurfaceSample, placement: &ScalpPlacement, root_strains: DVec3) -> Root {
     let normal = sample.normal.as_dvec3();
+    let growth = combed_direction(normal, placement.comb, placement.lift_deg);
+    let hug = (growth, -normal);
+    let (direction, reference) = match placement.curl_axis {
+        CurlAxis::Hug => hug,
+        CurlAxis::Growth => coil_along(growth, normal, root_strains).unwrap_or(hug),
+    };
     Root {
         position_m: sample.position_m.as_dvec3(),
-        direction: combed_direction(normal, placement.comb, placement.lift_deg),
-        reference: -normal,
+        direction,
+        reference,
     }
 }
 
-/// The roots `placement` puts on `head`'s scalp.
-pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh) -> Vec<Root> {
+/// The root tangent and frame reference (n₁) that make a helix of strains
+/// `strains` = (τ, κ₁, κ₂) advance along `growth`, its axis on the side of
+/// the root away from a scalp of outward normal `normal`; `None` for a
+/// strand without twist or without curvature, whose axis is not a
+/// direction of growth.
+///
+/// Inside an element the frame turns about the Darboux vector k, fixed in
+/// the material frame, so the centreline advances along k signed by the
+/// twist, at the pitch angle α to the tangent (cos α = |τ|/|k|). The
+/// tangent is tilted from `growth` by α sideways (along the scalp, so it
+/// never points into it), to whichever side puts the centre of curvature,
+/// R₀ (k × e₀), away from the scalp; the rotation taking the material
+/// frame's (e₀, k⊥) to the world's (tangent, growth⊥) then gives n₁. The
+/// coil's loops then lie at or above the root's tangent plane.
+pub fn coil_along(growth: DVec3, normal: DVec3, strains: DVec3) -> Option<(DVec3, DVec3)> {
+    let k = strains.length();
+    let curvature = strains.y.hypot(strains.z);
+    if strains.x == 0.0 || curvature == 0.0 || !k.is_finite() {
+        return None;
+    }
+    let axis = strains * (strains.x.signum() / k);
+    let (cos_a, sin_a) = (axis.x, curvature / k);
+    let up = (normal - normal.dot(growth) * growth)
+        .try_normalize()
+        .unwrap_or_else(|| growth.any_orthonormal_vector());
+    let side = growth.cross(up);
+    // The material frame's basis (e₀, axis⊥, e₀ × axis⊥), taken to the
+    // world's (tangent, growth⊥, tangent × growth⊥).
+    let axis_across = (axis - cos_a * DVec3::X) / sin_a;
+    let third = DVec3::X.cross(axis_across);
+    [side, -side].into_iter().find_map(|side| {
+        let tangent = cos_a * growth + sin_a * side;
+        let growth_across = (growth - cos_a * tangent) / sin_a;
+        let world_third = tangent.cross(growth_across);
+        let to_world = |m: DVec3| {
+            m.x * tangent + m.dot(axis_across) * growth_across + m.dot(third) * world_third
+        };
+        (to_world(strains.cross(DVec3::X)).dot(up) >= 0.0).then(|| (tangent, to_world(DVec3::Y)))
+    })
+}
+
+/// The natural strains at the root of `group`'s strands (the first
+/// element's), m⁻¹.
+pub fn root_strains(group: &StrandGroup) -> DVec3 {
+    let params = &group.params;
+    params
+        .natural_shape
+        .strains(params.elements)
+        .first()
+        .copied()
+        .unwrap_or(DVec3::ZERO)
+}
+
+/// The roots `placement` puts on `head`'s scalp, for hair whose natural
+/// strains at the root are `root_strains`.
+pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh, root_strains: DVec3) -> Vec<Root> {
     poisson_disk_on_scalp(
         &placement_scalp(placement, head),
         placement.count as usize,
         placement.seed,
     )
     .iter()
-    .map(|s| scalp_root(s, placement))
+    .map(|s| scalp_root(s, placement, root_strains))
     .collect()
 }
 
@@ -190,7 +253,8 @@ pub fn grow_scalp_roots(style: &Style, head: &HeadMesh) -> Style {
     let mut grown = style.clone();
     for group in &mut grown.groups {
         if let Some(placement) = group.scalp.take() {
-            group.roots.extend(scalp_roots(&placement, head));
+            let strains = root_strains(group);
+            group.roots.extend(scalp_roots(&placement, head, strains));
         }
     }
     grown

@@ -12,7 +12,7 @@ use glam::DVec3;
 use helixhair_physics::engine::RestContact;
 use helixhair_physics::fit::{
     FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, StrandFit, fit_polyline,
-    sag_free_stiffened,
+    sag_free_stiffened, stiffness_scale_for_margin,
 };
 use helixhair_physics::{RigidMotion, StrandParams};
 
@@ -47,9 +47,28 @@ pub enum FitOutcome {
         within_tolerance: bool,
         /// The sag-free outcome; `None` with sag-free off.
         sag_free: Option<SagFreeStatus>,
+        /// Why the rest shape could not be held, when `sag_free` is
+        /// [`SagFreeStatus::Unstable`].
+        unstable: Option<Unstable>,
     },
     /// Skipped, with the reason's snake_case name.
     Skipped(&'static str),
+}
+
+/// Why a strand's sag-free rest shape is unstable: the numbers behind the
+/// import report's sentence about it (`docs/import.md`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Unstable {
+    /// Stability μ of the equilibrium at the stiffness the strand got
+    /// (below 0: unstable; see `helixhair_physics::fit::stiffen`).
+    pub stability: f64,
+    /// The scale of the moduli the strand got (1: not stiffened).
+    pub stiffness_scale: f64,
+    /// The scale that would hold it with the stiffening margin, from μ at
+    /// the strand's own stiffness; `None` when μ is not a number.
+    pub needed_scale: Option<f64>,
+    /// The largest scale the import allows (1 with `--no-stiffen`).
+    pub max_scale: f64,
 }
 
 /// Settings shared by every strand's fit.
@@ -129,9 +148,21 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
         let q = &fit.chain.strains_per_m;
         let stiff =
             sag_free_stiffened(&params, SAMPLES_PER_ELEMENT, q, &inputs, &settings.stiffen).ok()?;
-        strand.natural = stiff.rest.natural_per_m;
+        strand.natural = stiff.rest.natural_per_m.clone();
         strand.stiffness_scale = stiff.stiffness_scale;
-        Some(stiff.rest.status)
+        Some(stiff)
+    });
+    let unstable = sag.as_ref().and_then(|stiff| {
+        (stiff.rest.status == SagFreeStatus::Unstable).then(|| Unstable {
+            stability: stiff.rest.stability,
+            stiffness_scale: stiff.stiffness_scale,
+            // μ scales as 1 − (1 − μ₁)/s, so μ at scale s gives μ₁.
+            needed_scale: stiffness_scale_for_margin(
+                1.0 - (1.0 - stiff.rest.stability) * stiff.stiffness_scale,
+                settings.stiffen.margin,
+            ),
+            max_scale: settings.stiffen.max_scale,
+        })
     });
     if strand
         .strains
@@ -144,7 +175,8 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
         strand,
         error_over_length: fit.error_over_length,
         within_tolerance: fit.within_tolerance,
-        sag_free: sag,
+        sag_free: sag.map(|stiff| stiff.rest.status),
+        unstable,
     }
 }
 

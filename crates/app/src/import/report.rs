@@ -8,7 +8,8 @@ use helixhair_formats::{Format, RepairSummary};
 use helixhair_physics::fit::SagFreeStatus;
 use serde::Serialize;
 
-use crate::import::fit::FitOutcome;
+use crate::import::fit::{FitOutcome, Unstable};
+use crate::style::imported::ImportedStrand;
 
 /// Median, 95th percentile and maximum of a list of values.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -53,6 +54,63 @@ pub struct ImportTimings {
     pub total_secs: f64,
 }
 
+/// A strand whose rest shape the import could not hold, and why.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct UnstableStrand {
+    /// Its index among the style's strands: the number `sim`, the guard and
+    /// the window give it.
+    pub strand: usize,
+    /// Its length, metres.
+    pub length_m: f64,
+    /// Its root, head coordinates, metres.
+    pub root_m: [f64; 3],
+    /// Stability μ of its rest shape at the stiffness it got (below 0:
+    /// unstable).
+    pub stability: f64,
+    /// The scale of the moduli it got (1: not stiffened).
+    pub stiffness_scale: f64,
+    /// The scale that would hold it; absent when μ is not a number.
+    pub needed_scale: Option<f64>,
+    /// Why, in words.
+    pub why: String,
+}
+
+impl UnstableStrand {
+    fn new(strand: usize, imported: &ImportedStrand, unstable: &Unstable) -> Self {
+        let why = match unstable.needed_scale {
+            None => "its stability could not be computed (not a number)".to_owned(),
+            Some(_) if unstable.stiffness_scale > 1.0 => format!(
+                "stiffened x{:.0}, its rest shape is still unstable (stability {:.2}); \
+                 it will fall from its shape",
+                unstable.stiffness_scale, unstable.stability
+            ),
+            Some(needed) if unstable.max_scale <= 1.0 => format!(
+                "it would need its moduli x{needed:.1} to hold its shape, and --no-stiffen \
+                 leaves it as it is; it will fall from its shape"
+            ),
+            Some(needed) => format!(
+                "it stands out too far for its stiffness: it would need its moduli x{needed:.0} \
+                 to hold its shape, beyond the cap of x{:.0}; it will fall from its shape",
+                unstable.max_scale
+            ),
+        };
+        let root = imported.root.position_m;
+        UnstableStrand {
+            strand,
+            length_m: imported.element_length_m * imported.strains.len() as f64,
+            root_m: [root.x, root.y, root.z],
+            stability: unstable.stability,
+            stiffness_scale: unstable.stiffness_scale,
+            needed_scale: unstable.needed_scale,
+            why,
+        }
+    }
+}
+
+/// Unstable strands the summary names one by one; the JSON report has them
+/// all.
+const UNSTABLE_NAMED: usize = 10;
+
 /// The JSON report.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct ImportReport {
@@ -81,6 +139,8 @@ pub struct ImportReport {
     /// Sag-free outcomes (`held`, `stiffened`, `clamped`, `unstable`);
     /// absent with `--no-sag-free`.
     pub sag_free: Option<BTreeMap<String, usize>>,
+    /// Every strand whose rest shape could not be held, and why.
+    pub unstable_strands: Vec<UnstableStrand>,
     /// Distance from each root to the head's surface, metres (with `--head`).
     pub root_distance_to_head_m: Option<Spread>,
     /// What the reader read approximately or not at all (units assumed,
@@ -124,7 +184,15 @@ impl ImportReport {
                     error_over_length,
                     within_tolerance,
                     sag_free,
+                    unstable,
                 } => {
+                    if let Some(unstable) = unstable {
+                        report.unstable_strands.push(UnstableStrand::new(
+                            report.strands_imported,
+                            strand,
+                            unstable,
+                        ));
+                    }
                     report.strands_imported += 1;
                     errors.push(*error_over_length);
                     report.outside_tolerance += usize::from(!within_tolerance);
@@ -188,6 +256,25 @@ impl ImportReport {
                 let _ = writeln!(s, "  sag-free: {}", list(m));
             }
             None => s.push_str("  sag-free: off (the fitted shape is the rest shape)\n"),
+        }
+        for u in self.unstable_strands.iter().take(UNSTABLE_NAMED) {
+            let _ = writeln!(
+                s,
+                "  unstable: strand {} ({:.0} mm long, root at ({:.3}, {:.3}, {:.3}) m): {}",
+                u.strand,
+                u.length_m * 1e3,
+                u.root_m[0],
+                u.root_m[1],
+                u.root_m[2],
+                u.why
+            );
+        }
+        if self.unstable_strands.len() > UNSTABLE_NAMED {
+            let _ = writeln!(
+                s,
+                "  unstable: {} more, listed in the JSON report (--json)",
+                self.unstable_strands.len() - UNSTABLE_NAMED
+            );
         }
         let t = &self.timings;
         let _ = writeln!(

@@ -42,6 +42,35 @@ pub struct ScalpPlacement {
         with = "inline_option"
     )]
     pub region: Option<ScalpRegion>,
+    /// Which way a curl turns at the root; default [`CurlAxis::Hug`].
+    #[serde(default, skip_serializing_if = "CurlAxis::is_hug")]
+    pub curl_axis: CurlAxis,
+}
+
+/// Which way a curled strand's helix turns at its root
+/// ([`crate::head::groom::scalp_root`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CurlAxis {
+    /// The strand leaves the scalp along the growth direction and its curl
+    /// bends towards the scalp, so the hair hugs the head: waves lying on
+    /// it. A tight coil grown this way has its helix axis far off the
+    /// growth direction (76° for a 5 mm coil of 8 mm per turn), along the
+    /// scalp, and its loops press into the head.
+    #[default]
+    Hug,
+    /// The helix's axis follows the growth direction, on the side of the
+    /// root away from the scalp: the strand leaves the root tilted by the
+    /// helix's pitch angle, and its coils stand off the scalp instead of
+    /// pressing into it. For tight curls and coils.
+    Growth,
+}
+
+impl CurlAxis {
+    /// Whether this is the default, [`CurlAxis::Hug`] (left out of saved
+    /// styles).
+    pub fn is_hug(&self) -> bool {
+        *self == CurlAxis::Hug
+    }
 }
 
 /// A band of the scalp: the points whose direction from the head's origin

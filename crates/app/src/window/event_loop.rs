@@ -31,7 +31,7 @@ use crate::style::Style;
 
 use super::{HEADLESS_HINT, WindowArgs};
 use crate::window::live::drawn::DrawnCache;
-use crate::window::panels::import_dialog::ImportDialog;
+use crate::window::panels::files::import_dialog::ImportDialog;
 use crate::window::panels::ui::draw;
 use crate::window::panels::view_state::ViewState;
 use crate::window::present::frame_profile::FrameProfile;

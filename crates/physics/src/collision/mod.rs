@@ -12,8 +12,11 @@
 //! in the step's "forces" stage ([`contact`]): a sample closer to the
 //! surface than a skin of [`ContactSettings::skin_m`] is pushed out along
 //! the field's gradient, with a spring-damper whose stiffness is tied to
-//! the step (k = α ρS / h²), so that it is as stiff as an explicit force
-//! can be and stay stable at whatever step the app runs. The collider moves
+//! the step (k = α ρS / h²). Both CPU engines take the spring and damper
+//! into the step matrix, as they take the strand's own stiffness, so the
+//! push stays stable at any α and at whatever step the app runs; the GPU
+//! kernels still apply it as an explicit force, at α below the explicit
+//! limit ([`contact`] has both forms). The collider moves
 //! rigidly with the head: samples are taken into head coordinates, and the
 //! damping acts on the velocity relative to the moving surface. The force
 //! is capped ([`ContactSettings::max_acceleration_m_per_s2`]), so a head
@@ -28,5 +31,5 @@ pub mod winding;
 pub use contact::{ContactInputs, ContactSettings};
 pub use error::CollisionError;
 pub use sdf::SignedDistanceField;
-pub use sdf_build::closest_point_on_triangle;
+pub use sdf_build::{SIGN_BLOCK_CELLS, closest_point_on_triangle};
 pub use winding::WindingNumber;

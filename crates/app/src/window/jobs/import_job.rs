@@ -1,5 +1,5 @@
 //! File → "Import groom…" and a groom dropped on the window, once the
-//! import dialog has its head ([`crate::window::panels::import_dialog`]):
+//! import dialog has its head ([`crate::window::panels::files::import_dialog`]):
 //! the same import as `helixhair import GROOM --head MESH --out STYLE` ([`import_groom`]: read,
 //! fit Super-Helices, sag-free rest shape, every strand simulated), run on
 //! a worker thread with a progress bar over the strands fitted (Sintel's
@@ -154,7 +154,7 @@ mod tests {
     fn a_groom_imported_on_the_head_beside_it_opens_on_that_head() {
         // Issue 32, item 1: imported in the window, the groom opened on the
         // bald default head with its hair 1.5 m above it.
-        use crate::window::panels::import_dialog::ImportDialog;
+        use crate::window::panels::files::import_dialog::ImportDialog;
         use crate::window::state::app_state::AppState;
         let dir =
             std::env::temp_dir().join(format!("helixhair-import-head-{}", std::process::id()));

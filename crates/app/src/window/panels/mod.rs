@@ -1,19 +1,16 @@
 //! The egui panels: what the artist reads and touches.
 //!
 //! [`ui`] lays out the window (a [`tool_bar`] on top with the
-//! [`file_menu`], the [`style_panel`] on the left with its
+//! [`files::file_menu`], the [`style_panel`] on the left with its
 //! [`interaction_panel`] and [`imported_summary`], the [`readout_panel`]
-//! and [`density_view`] on the right); [`file_picker`] and
-//! [`export_dialog`] are its dialogs, and [`value_slider`] the slider an
+//! and [`density_view`] on the right); [`files`] holds its
+//! dialogs, and [`value_slider`] the slider an
 //! artist can trust (showing a value never changes it).
 
 pub mod brush_input;
 pub mod brush_panel;
 pub mod density_view;
-pub mod export_dialog;
-pub mod file_menu;
-pub mod file_picker;
-pub mod import_dialog;
+pub mod files;
 pub mod imported_summary;
 pub mod interaction_panel;
 pub mod readout_panel;

@@ -1,4 +1,4 @@
-//! The tool bar: the File menu ([`super::file_menu`]), Save, history,
+//! The tool bar: the File menu ([`super::files::file_menu`]), Save, history,
 //! pause and the compare view's solvers; below it the brush tools
 //! ([`super::brush_panel`]).
 
@@ -6,8 +6,8 @@ use egui::Ui;
 use helixhair_physics::Method;
 
 use super::brush_panel::tool_row;
-use super::file_menu::{file_menu, open_picker, stop_recording};
-use super::file_picker::PickerMode;
+use super::files::file_menu::{file_menu, open_picker, stop_recording};
+use super::files::file_picker::PickerMode;
 use super::view_state::ViewState;
 use crate::window::state::app_state::{AppState, CompareMethods};
 

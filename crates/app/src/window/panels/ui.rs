@@ -14,10 +14,10 @@ use egui::{Key, Modifiers, PointerButton, Sense, Ui};
 
 use super::brush_input::brush_input;
 use super::brush_panel::brush_controls;
-use super::file_menu::{
+use super::files::file_menu::{
     dropped as dropped_file, export_dialog_for, file_windows, open_picker, picked,
 };
-use super::file_picker::PickerMode;
+use super::files::file_picker::PickerMode;
 use super::imported_summary::group_shapes_strands;
 use super::readout_panel::readouts;
 use super::style_panel::{count_field, group_params, sim_settings};

@@ -184,6 +184,7 @@ fn group_titles_count_listed_and_grown_strands() {
         lift_deg: 25.0,
         seed: 1,
         region: None,
+        curl_axis: Default::default(),
     });
     assert_eq!(
         strand_count_words(&group),

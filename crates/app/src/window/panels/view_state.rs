@@ -5,8 +5,8 @@
 use glam::DVec3;
 use helixhair_render::OrbitCamera;
 
-use super::file_menu::FileWindows;
-use super::file_picker::FilePicker;
+use super::files::file_menu::FileWindows;
+use super::files::file_picker::FilePicker;
 use crate::window::present::viewport::framed_camera;
 
 /// What the window keeps between frames besides the app state.

@@ -331,5 +331,5 @@ impl AppState {
 }
 
 #[cfg(test)]
-#[path = "app_state_tests.rs"]
+#[path = "tests/app_state_tests.rs"]
 mod tests;

@@ -217,5 +217,5 @@ impl AppState {
 }
 
 #[cfg(test)]
-#[path = "brushing_tests.rs"]
+#[path = "tests/brushing_tests.rs"]
 mod tests;

@@ -97,5 +97,5 @@ impl AppState {
 }
 
 #[cfg(test)]
-#[path = "head_of_style_tests.rs"]
+#[path = "tests/head_of_style_tests.rs"]
 mod tests;

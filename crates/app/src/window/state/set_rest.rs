@@ -84,5 +84,5 @@ impl AppState {
 }
 
 #[cfg(test)]
-#[path = "set_rest_tests.rs"]
+#[path = "tests/set_rest_tests.rs"]
 mod tests;

@@ -11,7 +11,7 @@
 //! behind), Enter confirms and Esc cancels, a typed folder is opened
 //! rather than picked, and writing over an existing file asks first
 //! ([`resolve`]). Where it starts is the caller's
-//! ([`crate::window::panels::file_menu::open_picker`]: the last folder
+//! ([`crate::window::panels::files::file_menu::open_picker`]: the last folder
 //! used).
 
 use std::path::{Path, PathBuf};
