@@ -402,11 +402,11 @@ fn bad_options_fail_with_a_clear_message() {
 /// head's collider) on a still head and under every clip. The engines step
 /// the same law (one contact law at the quadrature samples, the same GMRES
 /// and stopping rule) and differ by f32 against f64 arithmetic, which also
-/// moves where each GMRES stops inside its residual. Measured: 1.7e-5
-/// m on straight.ron (a straight strand's step matrix is the worst
-/// conditioned: twist moves no centreline point), 9e-7 m on wavy.ron,
-/// 3e-7 m on curly.ron, under 1e-7 m on coily.ron; 1e-4 m keeps a margin
-/// of five. A wrong root, element, solver or contact law is millimetres
+/// moves where each GMRES stops inside its residual (at 1e-5 of |rhs|).
+/// Measured, worst over the five head motions: 1.4e-5 m on straight.ron
+/// (a straight strand's step matrix is the worst conditioned: twist moves
+/// no centreline point), 1.1e-6 m on wavy.ron, 2.5e-7 m on curly.ron,
+/// 2.5e-8 m on coily.ron; 1e-4 m keeps a margin of seven. A wrong root, element, solver or contact law is millimetres
 /// off (contact at element end points instead of the samples: 1.5 mm on a
 /// drape, `crates/physics/tests/batch_contact.rs`).
 const ENGINE_POINT_TOL_M: f64 = 1e-4;
