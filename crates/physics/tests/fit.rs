@@ -345,6 +345,19 @@ fn an_unstable_column_is_stiffened_by_its_load_ratio_and_then_stands() {
         stiff.rest.stability,
         options.margin
     );
+    // What holding it takes, read back from the stability it got, and from
+    // the same column left as it is (no stiffening allowed): 2/(1 − m) both
+    // times.
+    let kept =
+        sag_free_stiffened(&p, 4, &q, &inputs, &StiffenOptions::none()).expect("valid parameters");
+    assert_eq!(kept.rest.status, SagFreeStatus::Unstable);
+    for rest in [&stiff, &kept] {
+        let needed = rest.needed_scale(options.margin).expect("a number");
+        assert!(
+            (needed / want - 1.0).abs() < STIFFENING_SCALE_TOL,
+            "needed scale {needed} against {want}"
+        );
+    }
     // A column standing past its load does not need stiffening to be at
     // rest, only to stay there: nudged by a slight bend (tip off by about
     // 0.1% of the length), the original falls over, the stiffened one

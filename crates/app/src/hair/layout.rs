@@ -159,14 +159,17 @@ impl DrawnLayout {
             if let Some(render) = render.filter(|_| !root_guides.index.is_empty()) {
                 let count = ((f64::from(render.count) * scale) as usize).max(1);
                 let roots: Vec<RootPose> = match &group.scalp {
-                    Some(placement) => poisson_disk_on_scalp(
-                        &placement_scalp(placement, &groom.head),
-                        count,
-                        placement.seed ^ RENDER_SEED,
-                    )
-                    .iter()
-                    .map(|s| scalp_root(s, placement, root_strains(group)).pose())
-                    .collect(),
+                    Some(placement) => {
+                        let strains = root_strains(group);
+                        poisson_disk_on_scalp(
+                            &placement_scalp(placement, &groom.head),
+                            count,
+                            placement.seed ^ RENDER_SEED,
+                        )
+                        .iter()
+                        .map(|s| scalp_root(s, placement, strains).pose())
+                        .collect()
+                    }
                     None => {
                         let points = root_guides.root_points();
                         scattered_roots(&points, count, seed)

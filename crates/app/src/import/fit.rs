@@ -12,7 +12,7 @@ use glam::DVec3;
 use helixhair_physics::engine::RestContact;
 use helixhair_physics::fit::{
     FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, StrandFit, fit_polyline,
-    sag_free_stiffened, stiffness_scale_for_margin,
+    sag_free_stiffened,
 };
 use helixhair_physics::{RigidMotion, StrandParams};
 
@@ -156,11 +156,7 @@ pub fn fit_one(job: &FitJob, settings: &FitSettings) -> FitOutcome {
         (stiff.rest.status == SagFreeStatus::Unstable).then(|| Unstable {
             stability: stiff.rest.stability,
             stiffness_scale: stiff.stiffness_scale,
-            // μ scales as 1 − (1 − μ₁)/s, so μ at scale s gives μ₁.
-            needed_scale: stiffness_scale_for_margin(
-                1.0 - (1.0 - stiff.rest.stability) * stiff.stiffness_scale,
-                settings.stiffen.margin,
-            ),
+            needed_scale: stiff.needed_scale(settings.stiffen.margin),
             max_scale: settings.stiffen.max_scale,
         })
     });

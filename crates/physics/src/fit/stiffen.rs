@@ -85,6 +85,18 @@ pub struct StiffenedRest {
     pub stiffness_scale: f64,
 }
 
+impl StiffenedRest {
+    /// The scale of the moduli that would make this rest shape stable with
+    /// margin `margin`, from its stability at the scale it got: μ at scale
+    /// s is 1 − (1 − μ₁)/s (module docs), so μ₁ = 1 − (1 − μ(s)) s. 1 if it
+    /// already is, `None` if μ is not a number. For a strand left
+    /// [`SagFreeStatus::Unstable`], what holding it would take.
+    pub fn needed_scale(&self, margin: f64) -> Option<f64> {
+        let unit_stability = 1.0 - (1.0 - self.rest.stability) * self.stiffness_scale;
+        stiffness_scale_for_margin(unit_stability, margin)
+    }
+}
+
 /// The scale of the moduli that makes an equilibrium of stability
 /// `stability` (μ at scale 1) stable with margin `margin`: 1 if it already
 /// is, `None` if μ is not a number.
