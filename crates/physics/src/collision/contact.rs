@@ -59,7 +59,7 @@ pub struct ContactSettings {
     pub max_acceleration_m_per_s2: f64,
     /// α of the implicit contact both CPU engines step (see the module
     /// docs). Default 4: a sample held by contact alone sinks g h²/α =
-    /// 2.7 mm at 60 Hz (16 times stiffer than the explicit penalty), and
+    /// 0.7 mm at 60 Hz (16 times stiffer than the explicit penalty), and
     /// the contact is critically damped per sample. Stiffer is not better
     /// yet: the contact set is frozen over a step, and with both engines
     /// at the samples, α = 16 drew real blow-ups as 30 cm straight hair
