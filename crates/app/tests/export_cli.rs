@@ -257,17 +257,13 @@ fn groomed_examples_simulated_by_sim_start_and_stay_out_of_the_head_they_grow_on
                 .map(|p| rotation.transpose() * (p.as_dvec3() - offset))
                 .collect();
             let (inside, share) = inside_share(&points, &head);
-            eprintln!(
+            let measured = format!(
                 "{name} {when}: {inside} of {} points ({:.2}%) inside the head",
                 points.len(),
                 100.0 * share
             );
-            assert!(
-                share < most_inside,
-                "{name} {when}: {inside} of {} points ({:.2}%) inside the head",
-                points.len(),
-                100.0 * share
-            );
+            eprintln!("{measured}");
+            assert!(share < most_inside, "{measured}");
         }
     }
 }

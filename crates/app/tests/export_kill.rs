@@ -10,9 +10,10 @@
 //! As `save_kill.rs`: the test re-runs its own executable as the child,
 //! filtered to [`exporter_child_process`], with the target file in an
 //! environment variable. The child grows the curly example on the default
-//! head once (without the head's collision field, which no export reads), then exports its simulated strands alternately at two point
-//! counts (two different files of tens of kilobytes) forever, and prints a
-//! line when it starts. Simulated, not drawn, strands: capturing the
+//! head once (without the head's collision field, which no export reads),
+//! then exports its simulated strands alternately at two point counts (two
+//! different files of tens of kilobytes) forever, and prints a line when it
+//! starts. Simulated, not drawn, strands: capturing the
 //! thousand drawn strands takes most of an export's time, so few kills
 //! would land inside the write, which is what the test is about. The parent writes both exports itself
 //! first (the exports are deterministic), waits for the child's line,
@@ -31,10 +32,9 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use helixhair_app::export::{ExportRecorder, ExportSpec, FrameChoice, StrandChoice};
-use helixhair_app::head::load_head;
-use helixhair_app::style::Style;
-use helixhair_app::{Groom, HeadlessSim, SimOverrides};
+use helixhair_app::{Groom, HeadlessSim, SimOverrides, Style};
 use helixhair_formats::{Format, ReadOptions, read};
+use helixhair_render::head_generate::default_head;
 use support::kill::{Rng, child_test_name, clear_leftovers, run_and_kill};
 
 /// The environment variable that makes [`exporter_child_process`] the
@@ -64,7 +64,7 @@ const MIN_INTERRUPTED_WRITES: usize = ROUNDS_PER_FORMAT / 10;
 fn curly() -> (Groom, HeadlessSim) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles/curly.ron");
     let style = Style::load(&path).expect("the curly example loads");
-    let groom = Groom::new(style, load_head(None).expect("the default head"));
+    let groom = Groom::new(style, default_head());
     let sim = HeadlessSim::new(&groom.grown, SimOverrides::default()).expect("it simulates");
     (groom, sim)
 }
