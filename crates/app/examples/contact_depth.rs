@@ -13,18 +13,15 @@
 //! distance below 0, −1 mm and −3 mm, the deepest one, and per element
 //! index how many samples are inside. Either engine (the style's `engine`).
 //!
-//! Measured with it, both engines stepping the one contact law at the
-//! quadrature samples (groomed examples under the shake, 300 frames): at
-//! α = 4, 7.1% and 9.6% of the groomed curly and coily examples' exported
-//! points lie inside the head mesh (`sim --export`, read with Pixar's
-//! USD), mostly where a curl's first loops press on
-//! the scalp by their own elasticity; of the samples, at α = 16, 0.9% and
-//! 2.4%; at α = 32,
-//! none and 1.3% (the deepest at −0.6 mm, where the push reaches its cap);
-//! at α = 32 with a 3 mm skin, none. But stiffer contact blows up as the
-//! 30 cm straight and wavy examples land on the head: at α = 16 two guard
-//! events on straight hair on a still head (a point at 73 m/s), at α = 32
-//! 3 to 12 per clip on both.
+//! Measured with it (groomed examples under the shake, 300 frames, α = 4;
+//! the coils grown with their lead-in bend, `head::coil`): with a 2 mm
+//! skin, 1.04% of the curly example's samples lie below the mesh (the
+//! deepest at −2.2 mm, its draped loops) and 0.47% of the coily one's
+//! (−1.2 mm); with a 3 mm skin, as both examples set, 0.40% (−1.25 mm)
+//! and none. Stiffer contact blows up as the 30 cm straight and wavy
+//! examples land on the head: at α = 16 two guard events on straight hair
+//! on a still head (a point at 73 m/s), at α = 32 3 to 12 per clip on
+//! both.
 
 use std::path::Path;
 

@@ -38,7 +38,6 @@ pub struct HairSystem {
     last_events: Vec<GuardEvent>,
     event_count: usize,
     collider: Option<Arc<SignedDistanceField>>,
-    contact: ContactSettings,
     volume: Option<ReferenceVolume>,
 }
 
@@ -56,7 +55,6 @@ impl HairSystem {
             last_events: Vec::new(),
             event_count: 0,
             collider: None,
-            contact: ContactSettings::default(),
             volume: settings
                 .interaction
                 .enabled
@@ -180,12 +178,13 @@ impl HairSystem {
 
     /// How hair meets the collider.
     pub fn contact_settings(&self) -> ContactSettings {
-        self.contact
+        self.settings.contact
     }
 
-    /// Sets how hair meets the collider.
+    /// Sets how hair meets the collider (the settings' `contact`; not
+    /// checked here: [`ContactSettings::validate`] says what is in range).
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
-        self.contact = settings;
+        self.settings.contact = settings;
     }
 
     /// Sets the guard (`None`: no checks, as the stability study runs).
@@ -225,7 +224,7 @@ impl HairSystem {
             gravity: self.settings.gravity_m_per_s2,
             air: self.settings.air_velocity_m_per_s,
             collider: self.collider.as_deref(),
-            contact: self.contact,
+            contact: self.settings.contact,
         };
         let guard = self.guard;
         let step_one = |(index, s): (usize, &mut Strand)| guarded_frame(s, index, &frame, guard);

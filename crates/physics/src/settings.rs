@@ -4,6 +4,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use crate::collision::ContactSettings;
 use crate::error::ParamError;
 use crate::error::check_range;
 use crate::volume::InteractionSettings;
@@ -119,6 +120,10 @@ pub struct SimSettings {
     /// Hair–hair interaction through a volume grid ([`crate::volume`]).
     /// Default off.
     pub interaction: InteractionSettings,
+    /// How hair meets the head's collider: the skin's thickness and the
+    /// contact's stiffness ([`ContactSettings`], whose fields say why their
+    /// defaults). Both CPU engines step with it.
+    pub contact: ContactSettings,
 }
 
 /// How a step treats the generalized forces that depend on the strain rates
@@ -168,6 +173,7 @@ impl Default for SimSettings {
             quadrature_points: 4,
             scheme: StepScheme::default(),
             interaction: InteractionSettings::default(),
+            contact: ContactSettings::default(),
         }
     }
 }
@@ -214,7 +220,8 @@ impl SimSettings {
                 format!("must lie in 0..={MAX_VELOCITY_CORRECTIONS}"),
             ));
         }
-        self.interaction.validate()
+        self.interaction.validate()?;
+        self.contact.validate()
     }
 
     /// Substep length h in seconds.

@@ -9,9 +9,8 @@ use helixhair_render::head_shell::HeadShell;
 use crate::hair::curl_variation::clump_onto;
 use crate::hair::drawn::{drape_over, drawn_hair_full, root_width_m};
 use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
-use crate::head::groom::{
-    Groom, coil_along, combed_direction, grow_scalp_roots, root_strains, scalp_roots,
-};
+use crate::head::coil::{CoilLeadIn, coil_along};
+use crate::head::groom::{Groom, combed_direction, grow_scalp_roots, root_strains, scalp_roots};
 use crate::sim::headless::{HeadlessSim, SimOverrides};
 use crate::style::Style;
 
@@ -101,11 +100,74 @@ fn a_coil_grown_along_its_growth_advances_along_it_and_stays_off_the_scalp() {
 }
 
 #[test]
+fn a_coil_with_its_lead_in_leaves_the_root_along_its_growth_then_coils_along_it() {
+    use helixhair_physics::geometry::helix::{centreline_and_jacobian, rotation};
+    use helixhair_physics::natural_shape::helix_strains;
+    // The groomed coily and curly examples' helices and elements.
+    for (radius_m, step_m, element_m) in [(0.005, 0.008, 0.25 / 30.0), (0.012, 0.03, 0.25 / 15.0)] {
+        let k = helix_strains(radius_m, step_m);
+        let lead_in = CoilLeadIn::new(k, element_m).expect("a helix has an axis");
+        // A bend: no twist, and it turns the frame by the pitch angle.
+        assert_eq!(lead_in.strains_per_m.x, 0.0);
+        let pitch_angle = (k.x / k.length()).acos();
+        assert!((lead_in.strains_per_m.length() * element_m - pitch_angle).abs() < 1e-12);
+        let turn_m = std::f64::consts::TAU / k.length();
+        for lift_deg in [88.0, 50.0, 5.0] {
+            let growth = combed_direction(DVec3::Y, DVec3::NEG_Z, lift_deg);
+            let case = format!("r {radius_m} m, step {step_m} m, lift {lift_deg}°");
+            let (direction, reference) = lead_in.root_frame(growth, DVec3::Y).expect("a frame");
+            assert!(
+                direction.distance(growth) < 1e-12,
+                "{case}: leaves along {direction}"
+            );
+            // The strand through its first element (closed form), then the
+            // helix from that element's end frame.
+            let root =
+                helixhair_physics::RootPose::from_direction(DVec3::ZERO, direction, reference);
+            let bend = lead_in.strains_per_m;
+            let start = root.head_from_root * centreline_and_jacobian(element_m, bend).0;
+            let frame = root.head_from_root * rotation(bend * element_m);
+            let point = |s_m: f64| start + frame * centreline_and_jacobian(s_m, k).0;
+            for turns in [1.0, 3.0] {
+                let moved = point(turns * turn_m) - start;
+                let expected = growth * turns * step_m;
+                assert!(
+                    moved.distance(expected) < 1e-9,
+                    "{case}: {moved}, not {expected}"
+                );
+            }
+            // Off the root's tangent plane from the lead-in's end on.
+            let lowest = (0..=600)
+                .map(|i| point(3.0 * turn_m * i as f64 / 600.0).y)
+                .fold(f64::INFINITY, f64::min);
+            assert!(lowest > 0.0, "{case}: a loop at {lowest} m");
+        }
+    }
+    // The grown style carries the bend as its first element's strains.
+    let style = Style::from_ron(
+        r#"(version: 1, name: "c", groups: [(name: "g",
+            params: (elements: 10, natural_shape: Helix(radius_m: 0.005, step_m: 0.008)),
+            scalp: (count: 5, lift_deg: 80.0, curl_axis: Growth))])"#,
+        Path::new("c.ron"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let lead_in = CoilLeadIn::for_group(&style.groups[0]).expect("a coil grown along its growth");
+    let grown = grow_scalp_roots(&style, &default_head());
+    let strains = grown.groups[0].params.natural_shape.strains(10);
+    assert_eq!(strains[0], lead_in.strains_per_m);
+    assert!(
+        strains[1..]
+            .iter()
+            .all(|s| *s == lead_in.helix_strains_per_m)
+    );
+}
+
+#[test]
 fn scalp_roots_lie_in_their_region_and_grow_outwards() {
     let head = default_head();
     let style = style();
     let placement = style.groups[0].scalp.as_ref().expect("scalp");
-    let roots = scalp_roots(placement, &head, root_strains(&style.groups[0]));
+    let roots = scalp_roots(placement, &head, root_strains(&style.groups[0]), None);
     assert_eq!(roots.len(), 30);
     for root in &roots {
         assert!(

@@ -33,6 +33,7 @@ use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
 use crate::hair::colours::strand_colours;
 use crate::hair::strain_blend::{DrawnStrand, blend_sources};
+use crate::head::coil::CoilLeadIn;
 use crate::head::groom::{Groom, placement_scalp, root_strains, scalp_root};
 use crate::style::groom::{RenderStrands, StrandInterpolation};
 use crate::style::imported::ImportedStrands;
@@ -161,13 +162,14 @@ impl DrawnLayout {
                 let roots: Vec<RootPose> = match &group.scalp {
                     Some(placement) => {
                         let strains = root_strains(group);
+                        let lead_in = CoilLeadIn::for_group(group);
                         poisson_disk_on_scalp(
                             &placement_scalp(placement, &groom.head),
                             count,
                             placement.seed ^ RENDER_SEED,
                         )
                         .iter()
-                        .map(|s| scalp_root(s, placement, strains).pose())
+                        .map(|s| scalp_root(s, placement, strains, lead_in.as_ref()).pose())
                         .collect()
                     }
                     None => {

@@ -20,6 +20,8 @@ use helixhair_render::scalp_sampling::{SurfaceSample, poisson_disk_on_scalp};
 use crate::style::groom::{CurlAxis, ScalpPlacement};
 use crate::style::{Root, StrandGroup, Style};
 
+use super::coil::{CoilLeadIn, coil_along};
+
 /// Grid spacing of the head's collision field, metres: 4 mm resolves a
 /// head's curvature (radii of several centimetres) and keeps the grid of
 /// a bust with shoulders near half a million points.
@@ -164,61 +166,30 @@ pub fn placement_scalp(placement: &ScalpPlacement, head: &HeadMesh) -> HeadMesh 
 /// natural strains at the root are `root_strains` (τ, κ₁, κ₂), m⁻¹: combed
 /// at its lift with the inward normal as frame reference
 /// ([`CurlAxis::Hug`]), or turned so that its helix advances along that
-/// direction ([`CurlAxis::Growth`], [`coil_along`]).
-pub fn scalp_root(sample: &SurfaceSample, placement: &ScalpPlacement, root_strains: DVec3) -> Root {
+/// direction ([`CurlAxis::Growth`], [`coil_along`]), after the group's
+/// `lead_in` where it has one (its root then points along the growth).
+pub fn scalp_root(
+    sample: &SurfaceSample,
+    placement: &ScalpPlacement,
+    root_strains: DVec3,
+    lead_in: Option<&CoilLeadIn>,
+) -> Root {
     let normal = sample.normal.as_dvec3();
     let growth = combed_direction(normal, placement.comb, placement.lift_deg);
     let hug = (growth, -normal);
+    let coil = match lead_in {
+        Some(lead_in) => lead_in.root_frame(growth, normal),
+        None => coil_along(growth, normal, root_strains),
+    };
     let (direction, reference) = match placement.curl_axis {
         CurlAxis::Hug => hug,
-        CurlAxis::Growth => coil_along(growth, normal, root_strains).unwrap_or(hug),
+        CurlAxis::Growth => coil.unwrap_or(hug),
     };
     Root {
         position_m: sample.position_m.as_dvec3(),
         direction,
         reference,
     }
-}
-
-/// The root tangent and frame reference (n₁) that make a helix of strains
-/// `strains` = (τ, κ₁, κ₂) advance along `growth`, its axis on the side of
-/// the root away from a scalp of outward normal `normal`; `None` for a
-/// strand without twist or without curvature, whose axis is not a
-/// direction of growth.
-///
-/// Inside an element the frame turns about the Darboux vector k, fixed in
-/// the material frame, so the centreline advances along k signed by the
-/// twist, at the pitch angle α to the tangent (cos α = |τ|/|k|). The
-/// tangent is tilted from `growth` by α sideways (along the scalp, so it
-/// never points into it), to whichever side puts the centre of curvature,
-/// R₀ (k × e₀), away from the scalp; the rotation taking the material
-/// frame's (e₀, k⊥) to the world's (tangent, growth⊥) then gives n₁. The
-/// coil's loops then lie at or above the root's tangent plane.
-pub fn coil_along(growth: DVec3, normal: DVec3, strains: DVec3) -> Option<(DVec3, DVec3)> {
-    let k = strains.length();
-    let curvature = strains.y.hypot(strains.z);
-    if strains.x == 0.0 || curvature == 0.0 || !k.is_finite() {
-        return None;
-    }
-    let axis = strains * (strains.x.signum() / k);
-    let (cos_a, sin_a) = (axis.x, curvature / k);
-    let up = (normal - normal.dot(growth) * growth)
-        .try_normalize()
-        .unwrap_or_else(|| growth.any_orthonormal_vector());
-    let side = growth.cross(up);
-    // The material frame's basis (e₀, axis⊥, e₀ × axis⊥), taken to the
-    // world's (tangent, growth⊥, tangent × growth⊥).
-    let axis_across = (axis - cos_a * DVec3::X) / sin_a;
-    let third = DVec3::X.cross(axis_across);
-    [side, -side].into_iter().find_map(|side| {
-        let tangent = cos_a * growth + sin_a * side;
-        let growth_across = (growth - cos_a * tangent) / sin_a;
-        let world_third = tangent.cross(growth_across);
-        let to_world = |m: DVec3| {
-            m.x * tangent + m.dot(axis_across) * growth_across + m.dot(third) * world_third
-        };
-        (to_world(strains.cross(DVec3::X)).dot(up) >= 0.0).then(|| (tangent, to_world(DVec3::Y)))
-    })
 }
 
 /// The natural strains at the root of `group`'s strands (the first
@@ -235,26 +206,37 @@ pub fn root_strains(group: &StrandGroup) -> DVec3 {
 
 /// The roots `placement` puts on `head`'s scalp, for hair whose natural
 /// strains at the root are `root_strains`.
-pub fn scalp_roots(placement: &ScalpPlacement, head: &HeadMesh, root_strains: DVec3) -> Vec<Root> {
+pub fn scalp_roots(
+    placement: &ScalpPlacement,
+    head: &HeadMesh,
+    root_strains: DVec3,
+    lead_in: Option<&CoilLeadIn>,
+) -> Vec<Root> {
     poisson_disk_on_scalp(
         &placement_scalp(placement, head),
         placement.count as usize,
         placement.seed,
     )
     .iter()
-    .map(|s| scalp_root(s, placement, root_strains))
+    .map(|s| scalp_root(s, placement, root_strains, lead_in))
     .collect()
 }
 
 /// `style` with every group's scalp placement turned into roots (after the
-/// group's listed roots, the placement itself removed). Groups without
-/// placement are unchanged.
+/// group's listed roots, the placement itself removed). A coil grown along
+/// its growth direction gets its lead-in as its first element's natural
+/// strains ([`CoilLeadIn`]). Groups without placement are unchanged.
 pub fn grow_scalp_roots(style: &Style, head: &HeadMesh) -> Style {
     let mut grown = style.clone();
     for group in &mut grown.groups {
+        let lead_in = CoilLeadIn::for_group(group);
         if let Some(placement) = group.scalp.take() {
             let strains = root_strains(group);
-            group.roots.extend(scalp_roots(&placement, head, strains));
+            if let Some(lead_in) = &lead_in {
+                group.params.natural_shape = lead_in.natural_shape(group.params.elements);
+            }
+            let roots = scalp_roots(&placement, head, strains, lead_in.as_ref());
+            group.roots.extend(roots);
         }
     }
     grown

@@ -2,10 +2,12 @@
 //! placements, the head a style names, and the collider made from it.
 //!
 //! [`groom`] grows a style's `scalp` groups into roots on the head mesh
-//! (and builds the head collider the physics steps against); [`of_style`]
+//! (and builds the head collider the physics steps against), a coil's
+//! roots framed by [`coil`]; [`of_style`]
 //! finds the head an imported groom belongs to and the pivot its clips
 //! turn about; [`load_head`] reads a head mesh or gives the default head.
 
+pub mod coil;
 pub mod groom;
 pub mod of_style;
 

@@ -59,9 +59,10 @@ pub enum CurlAxis {
     #[default]
     Hug,
     /// The helix's axis follows the growth direction, on the side of the
-    /// root away from the scalp: the strand leaves the root tilted by the
-    /// helix's pitch angle, and its coils stand off the scalp instead of
-    /// pressing into it. For tight curls and coils.
+    /// root away from the scalp: the strand leaves the root along the
+    /// growth direction, bends into the helix over its first element
+    /// ([`crate::head::coil`]), and its coils stand off the scalp
+    /// instead of pressing into it. For tight curls and coils.
     Growth,
 }
 

@@ -708,6 +708,28 @@ fn hostile_input_gives_errors_not_panics() {
 }
 
 #[test]
+fn contact_fields_read_and_their_errors_name_file_line_and_field() {
+    let src = edit(
+        "dt_secs: 0.01,",
+        "dt_secs: 0.01,\n        contact: (skin_m: 0.003),",
+    );
+    let style = load(&src).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(style.sim.contact.skin_m, 0.003);
+    // Left out: the default.
+    assert_eq!(style.sim.contact.implicit_stiffness_ratio, 4.0);
+    let src = edit(
+        "dt_secs: 0.01,",
+        "dt_secs: 0.01,\n        contact: (skin_m: 0.003, implicit_stiffness_ratio: -1.0), // <-",
+    );
+    assert_error(
+        &src,
+        StyleErrorKind::InvalidValue,
+        "sim.contact.implicit_stiffness_ratio",
+        "implicit_stiffness_ratio",
+    );
+}
+
+#[test]
 fn interaction_fields_read_and_their_errors_name_file_line_and_field() {
     let src = edit(
         "dt_secs: 0.01,",

@@ -43,16 +43,36 @@ fn inside_mesh(p: glam::DVec3, positions: &[glam::Vec3], indices: &[u32]) -> boo
 /// and translation taking head coordinates to the world's. `None` when the
 /// head has no transform (it stood still at rest).
 pub fn usda_last_head_pose(text: &str) -> Option<(glam::DMat3, glam::DVec3)> {
-    let samples = &text[text.find("xformOp:transform.timeSamples = {")?..];
-    let samples = &samples[..samples.find("\n        }")?];
-    let last = samples.lines().rev().find(|l| l.contains(": ("))?;
-    let numbers: Vec<f64> = last[last.find(": (")? + 2..]
-        .split(|c: char| "(), ".contains(c))
-        .filter(|s| !s.is_empty())
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .ok()?;
-    let [x, y, z, t] =
-        [0, 4, 8, 12].map(|k| glam::DVec3::new(numbers[k], numbers[k + 1], numbers[k + 2]));
-    (numbers.len() == 16).then(|| (glam::DMat3::from_cols(x, y, z), t))
+    usda_head_poses(text)
+        .pop()
+        .map(|(_, rotation, offset)| (rotation, offset))
+}
+
+/// Every time sample of the head's pose in a `.usda` HelixHair wrote, as
+/// (time code, rotation, translation); empty when the head has no
+/// transform.
+pub fn usda_head_poses(text: &str) -> Vec<(f64, glam::DMat3, glam::DVec3)> {
+    let Some(start) = text.find("xformOp:transform.timeSamples = {") else {
+        return Vec::new();
+    };
+    let samples = &text[start..];
+    let samples = &samples[..samples.find("\n        }").unwrap_or(samples.len())];
+    samples
+        .lines()
+        .filter_map(|line| {
+            let colon = line.find(": (")?;
+            let time: f64 = line[..colon].trim().parse().ok()?;
+            let numbers: Vec<f64> = line[colon + 2..]
+                .split(|c: char| "(), ".contains(c))
+                .filter(|s| !s.is_empty())
+                .map(str::parse)
+                .collect::<Result<_, _>>()
+                .ok()?;
+            (numbers.len() == 16).then(|| {
+                let [x, y, z, t] = [0, 4, 8, 12]
+                    .map(|k| glam::DVec3::new(numbers[k], numbers[k + 1], numbers[k + 2]));
+                (time, glam::DMat3::from_cols(x, y, z), t)
+            })
+        })
+        .collect()
 }

@@ -61,7 +61,6 @@ pub struct BatchSystem {
     head: RigidMotion,
     parallel: bool,
     collider: Option<(Arc<SignedDistanceField>, NearCells)>,
-    contact: ContactSettings,
     guard: Option<Guard>,
     last_resets: Vec<usize>,
     last_pins: Vec<usize>,
@@ -97,7 +96,6 @@ impl BatchSystem {
             head: RigidMotion::default(),
             parallel: true,
             collider: None,
-            contact: ContactSettings::default(),
             guard: Some(Guard::default()),
             last_resets: Vec::new(),
             last_pins: Vec::new(),
@@ -213,7 +211,7 @@ impl BatchSystem {
     /// as in the reference ([`super::contact`]).
     pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
         self.collider = collider.map(|field| {
-            let near = NearCells::new(&field, self.contact.skin_m);
+            let near = NearCells::new(&field, self.settings.contact.skin_m);
             (field, near)
         });
     }
@@ -225,12 +223,13 @@ impl BatchSystem {
 
     /// How hair meets the collider.
     pub fn contact_settings(&self) -> ContactSettings {
-        self.contact
+        self.settings.contact
     }
 
-    /// Sets how hair meets the collider.
+    /// Sets how hair meets the collider (the settings' `contact`; not
+    /// checked here: [`ContactSettings::validate`] says what is in range).
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
-        self.contact = settings;
+        self.settings.contact = settings;
         let field = self.collider.take().map(|(field, _)| field);
         self.set_collider(field);
     }
@@ -300,7 +299,7 @@ impl BatchSystem {
         let volume = self.volume.as_ref();
         if self.guard.is_some() {
             let motion = head.motion_at(start_secs);
-            let contact = SkinTest::of_head(&self.collider, self.contact, &motion, h);
+            let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
             for (i, group) in self.groups.iter_mut().enumerate() {
                 group.save_checkpoint();
                 if !group.measured {
@@ -316,7 +315,7 @@ impl BatchSystem {
         }
         for substep in 0..self.settings.substeps {
             let motion = head.motion_at(self.time_secs);
-            let contact = SkinTest::of_head(&self.collider, self.contact, &motion, h);
+            let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
             let end_secs = self.time_secs + h;
             // The guard judges the frame in its last substep's pass.
             let last = substep + 1 == self.settings.substeps;
@@ -325,7 +324,7 @@ impl BatchSystem {
             let check = check.map(|(guard, motion)| FrameCheck {
                 guard,
                 motion,
-                contact: SkinTest::of_head(&self.collider, self.contact, motion, h),
+                contact: SkinTest::of_head(&self.collider, self.settings.contact, motion, h),
                 frame: SteppedFrame {
                     dt_secs: self.settings.dt_secs,
                     substeps: self.settings.substeps,
@@ -358,7 +357,7 @@ impl BatchSystem {
                     kinds,
                     measured: kinetic,
                     collider: &self.collider,
-                    contact: self.contact,
+                    contact: self.settings.contact,
                     pulls: volume.map(|v| (v, i)),
                 });
                 group.record_check(start_secs, &mut self.last_events);

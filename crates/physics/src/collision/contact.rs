@@ -40,6 +40,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use super::sdf::SignedDistanceField;
+use crate::error::{ParamError, check_range};
 use crate::motion::RigidMotion;
 
 /// How hair meets the head.
@@ -65,11 +66,34 @@ pub struct ContactSettings {
     /// at the samples, α = 16 drew real blow-ups as 30 cm straight hair
     /// landed on the head (a point at 73 m/s on a still head), α = 32 4 to
     /// 12 guard events per clip on the straight and wavy examples; at
-    /// α = 4 none. Stiffer would hold the groomed curly and coily examples'
-    /// loops out of the head (at α = 32 and a 3 mm skin, no sample inside;
-    /// at α = 4, 7% and 9% of exported points), which their own elasticity
-    /// presses in (`examples/contact_depth.rs`).
+    /// α = 4 none. Where hair presses on the head harder than its weight
+    /// (the groomed curly example's draped loops, about 2 mm into a 2 mm
+    /// skin), a style sets a thicker skin (`examples/contact_depth.rs`
+    /// measures the depths).
     pub implicit_stiffness_ratio: f64,
+}
+
+impl ContactSettings {
+    /// Checks every field; the error names the offending one. A skin up to
+    /// 2 cm (thicker would hold hair visibly off the head); stiffness
+    /// ratios above zero, the explicit one to 1 (its stability edge) and
+    /// the implicit one to 64; the cap from 1 to 10,000 m/s².
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check_range("contact.skin_m", self.skin_m, 0.0, 0.02)?;
+        check_range("contact.stiffness_ratio", self.stiffness_ratio, 1e-6, 1.0)?;
+        check_range(
+            "contact.max_acceleration_m_per_s2",
+            self.max_acceleration_m_per_s2,
+            1.0,
+            1e4,
+        )?;
+        check_range(
+            "contact.implicit_stiffness_ratio",
+            self.implicit_stiffness_ratio,
+            1e-6,
+            64.0,
+        )
+    }
 }
 
 impl Default for ContactSettings {
