@@ -106,6 +106,69 @@ fn an_obj_groom_imports_reports_and_simulates() {
 }
 
 #[test]
+fn the_material_given_at_import_sets_the_style_and_the_sag_free_shape() {
+    // Issue 30: the sag-free solve balances weight against stiffness, so
+    // the material must be the hair's. The same arcs imported as the
+    // default fibre and as one twice as dense: the style records each
+    // material, and the denser hair's natural strains differ (it needs
+    // more curvature to hang in the same shape).
+    let dir = scratch("material");
+    let groom = write(&dir, "groom.tfx", &tfx(3, 16, 3));
+    let import = |name: &str, extra: &[&str]| {
+        let style = dir.join(name).display().to_string();
+        let mut args = vec!["import", groom.as_str(), "--out", style.as_str()];
+        args.extend_from_slice(extra);
+        let out = helixhair(&args);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        Style::load(Path::new(&style)).expect("the written style loads")
+    };
+    let plain = import("plain.ron", &[]);
+    let curly = format!(
+        "{}/../../assets/styles/curly.ron",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let dense = import(
+        "dense.ron",
+        &["--material", &curly, "--density-kg-per-m3", "2600"],
+    );
+    let curly = Style::load(Path::new(&curly)).expect("the example loads");
+    let (plain_params, dense_params) = (&plain.groups[0].params, &dense.groups[0].params);
+    assert_eq!(plain_params.density_kg_per_m3, 1300.0);
+    assert_eq!(dense_params.density_kg_per_m3, 2600.0);
+    assert_eq!(dense_params.radius_m, curly.groups[0].params.radius_m);
+    assert_eq!(dense_params.ellipticity, curly.groups[0].params.ellipticity);
+    let natural = |style: &Style| -> Vec<glam::DVec3> {
+        let imported = style.groups[0].imported.as_ref().expect("imported");
+        imported
+            .strands
+            .iter()
+            .flat_map(|s| s.natural.clone())
+            .collect()
+    };
+    let (a, b) = (natural(&plain), natural(&dense));
+    assert_eq!(a.len(), b.len());
+    let moved = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (*x - *y).length())
+        .fold(0.0, f64::max);
+    assert!(
+        moved > 1e-3,
+        "the denser hair's natural strains moved {moved} m⁻¹"
+    );
+    // An impossible value is refused, naming the flag and the field.
+    let style = dir.join("bad.ron").display().to_string();
+    let out = helixhair(&["import", &groom, "--out", &style, "--radius-m=-1"]);
+    assert_eq!(out.status.code(), Some(1));
+    let message = text(&out.stderr);
+    assert!(
+        message.contains("--radius-m") && message.contains("radius_m"),
+        "{message}"
+    );
+    assert!(!Path::new(&style).exists(), "nothing written");
+}
+
+#[test]
 fn guides_are_a_subset_and_the_rest_follow() {
     let dir = scratch("guides");
     let groom = write(&dir, "g.tfx", &tfx(6, 8, 6));

@@ -8,7 +8,8 @@
 //! 2. **Attach** each root to the head mesh (`--head`), if given
 //!    ([`crate::import::roots`]).
 //! 3. **Fit** every strand and solve its sag-free rest shape
-//!    ([`crate::import::fit`]).
+//!    ([`crate::import::fit`]) for the hair's material
+//!    ([`crate::import::material`]).
 //! 4. **Choose guides** (`--guides K`) and **write** the style (atomically)
 //!    and the JSON report ([`crate::import::report`]).
 
@@ -24,10 +25,11 @@ use helixhair_physics::collision::ContactSettings;
 use helixhair_physics::engine::EngineKind;
 use helixhair_physics::engine::RestContact;
 use helixhair_physics::fit::{FitOptions, StiffenOptions};
-use helixhair_physics::{RigidMotion, SimSettings, StrandParams};
+use helixhair_physics::{RigidMotion, SimSettings};
 
 use crate::head::groom::head_collider;
 use crate::import::fit::{FitJob, FitOutcome, FitSettings, fit_all};
+use crate::import::material::MaterialArgs;
 use crate::import::report::ImportReport;
 use crate::import::roots::{attach, farthest_point_guides};
 use crate::json_report::{summary_stream, write_json_report};
@@ -89,6 +91,10 @@ pub struct ImportArgs {
     /// declares (or its format's default: USD's is centimetres).
     #[arg(long, value_name = "M")]
     pub metres_per_unit: Option<f64>,
+    /// The hair's material: the sag-free rest shape balances its weight
+    /// against its stiffness ([`crate::import::material`]).
+    #[command(flatten)]
+    pub material: MaterialArgs,
     /// The style to write (RON).
     #[arg(long, value_name = "STYLE")]
     pub out: PathBuf,
@@ -192,7 +198,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     }
     let attach_secs = attach_start.elapsed().as_secs_f64();
 
-    let material = StrandParams::default();
+    let material = args.material.params()?;
     let fit_start = Instant::now();
     let settings = FitSettings {
         options,

@@ -15,6 +15,7 @@ use helixhair_physics::fit::FitOptions;
 
 use crate::export::check_writable;
 use crate::import::command::{ImportArgs, import_groom};
+use crate::import::material::MaterialArgs;
 
 use super::job::{Job, JobDone};
 
@@ -72,6 +73,7 @@ pub fn start_import(
         no_stiffen: false,
         guides: None,
         metres_per_unit: None,
+        material: MaterialArgs::default(),
         out: out.clone(),
         json: None,
     };
