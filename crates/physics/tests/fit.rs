@@ -14,8 +14,8 @@ use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::fit::stiffen::stiffened_params;
 use helixhair_physics::fit::{
-    FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, fit_polyline, sag_free,
-    sag_free_stiffened,
+    FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, UniformHelixChain,
+    fit_polyline, sag_free, sag_free_stiffened,
 };
 use helixhair_physics::{
     Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
@@ -401,4 +401,104 @@ fn stable_strands_are_not_stiffened() {
         .expect("valid parameters");
     assert_eq!(stiff.rest.status, SagFreeStatus::Held);
     assert_eq!(stiff.stiffness_scale, 1.0);
+}
+
+/// Issue 30's bar: an imported strand with gravity off relaxes to the
+/// natural shape of the hair that hung in the groom's shape within 1% of
+/// its length.
+const NATURAL_SHAPE_TOL_OVER_LENGTH: f64 = 0.01;
+
+#[test]
+#[ignore = "issue 30, open: today 3.2%, 7.6% and 7.0% of L (the fit tilts the root tangent \
+            by 0.07 to 0.11 rad and stops at 3 or 4 elements); run with --ignored"]
+fn imported_hair_relaxes_without_gravity_to_the_natural_shape_it_hung_from() {
+    // The groom: heavy strands (α = ρS g L³/EI = 20) of known natural
+    // shape, settled under gravity at 20 elements by the reference's
+    // Dense step, sampled at 32 points evenly by arc length (a groom's
+    // resolution). Imported as `import` does (default tolerance, sag-free
+    // for the same gravity and material), the strand at rest without
+    // gravity sits at its natural strains, from its fitted root frame:
+    // compared with the true natural shape from the true root.
+    let elements = 20;
+    let cases = [
+        ("straight", NaturalShape::Straight),
+        (
+            "planar curl",
+            NaturalShape::Uniform {
+                twist_per_m: 0.0,
+                curvature1_per_m: 20.0,
+                curvature2_per_m: 0.0,
+            },
+        ),
+        (
+            "helix",
+            NaturalShape::Helix {
+                radius_m: 0.02,
+                step_m: 0.03,
+            },
+        ),
+    ];
+    let mut failures = 0;
+    for (name, shape) in cases {
+        let (mut p, g) = elastica(20.0, elements);
+        p.natural_shape = shape;
+        let mut s = strand(&p, Method::Dense);
+        let root = at_rest(DMat3::IDENTITY);
+        settle(&mut s, &root, g, 0.01, 1e-10, 40_000);
+        let l = p.length_m;
+        let element_m = l / elements as f64;
+        let hung = UniformHelixChain {
+            root_frame: DMat3::IDENTITY,
+            element_length_m: element_m,
+            strains_per_m: s.q().to_vec(),
+        };
+        let samples: Vec<f64> = (0..32).map(|i| l * i as f64 / 31.0).collect();
+        let groom = hung.positions(&samples);
+        let fit = fit_polyline(&groom, DVec3::Y, &FitOptions::default()).expect("clean");
+        let fitted = &fit.chain;
+        let fitted_params = StrandParams {
+            length_m: fitted.length_m(),
+            elements: fitted.elements(),
+            ..p.clone()
+        };
+        let fitted_model = StrandModel::new(&fitted_params, 4).expect("valid");
+        let fitted_root = RigidMotion::at_rest(fit.root_m, fitted.root_frame);
+        let inputs = SagFreeInputs {
+            root: &fitted_root,
+            gravity_m_per_s2: g,
+            support: None,
+        };
+        let rest = sag_free(&fitted_model, &fitted.strains_per_m, &inputs);
+        let relaxed = UniformHelixChain {
+            root_frame: fitted.root_frame,
+            element_length_m: fitted.element_length_m,
+            strains_per_m: rest.natural_per_m.clone(),
+        };
+        let truth = UniformHelixChain {
+            root_frame: DMat3::IDENTITY,
+            element_length_m: element_m,
+            strains_per_m: p.natural_shape.strains(elements),
+        };
+        let compare: Vec<f64> = (0..=200)
+            .map(|i| fitted.length_m().min(l) * i as f64 / 200.0)
+            .collect();
+        let off = relaxed
+            .positions(&compare)
+            .iter()
+            .zip(truth.positions(&compare))
+            .map(|(a, b)| a.distance(b))
+            .fold(0.0, f64::max);
+        let measured = format!(
+            "{name}: {} elements fitted ({:?}, fit error {:.2e} of L, root tangent {:.2e} rad off), \
+             relaxed {:.3}% of L from its natural shape",
+            fitted.elements(),
+            rest.status,
+            fit.error_over_length,
+            fitted.root_frame.x_axis.angle_between(DVec3::X),
+            100.0 * off / l
+        );
+        eprintln!("{measured}");
+        failures += usize::from(off >= NATURAL_SHAPE_TOL_OVER_LENGTH * l);
+    }
+    assert_eq!(failures, 0, "see the measurements above");
 }
