@@ -2,13 +2,14 @@
 //!
 //! [`ui`] lays out the window (a [`tool_bar`] on top with the
 //! [`files::file_menu`], the [`style_panel`] on the left with its
-//! [`interaction_panel`] and [`imported_summary`], the [`readout_panel`]
+//! [`contact_panel`], [`interaction_panel`] and [`imported_summary`], the [`readout_panel`]
 //! and [`density_view`] on the right); [`files`] holds its
 //! dialogs, and [`value_slider`] the slider an
 //! artist can trust (showing a value never changes it).
 
 pub mod brush_input;
 pub mod brush_panel;
+pub mod contact_panel;
 pub mod density_view;
 pub mod files;
 pub mod imported_summary;

@@ -113,6 +113,7 @@ pub fn sim_settings(ui: &mut Ui, style: &mut Style, notes: &mut Vec<String>) {
     number(ui, notes, "gravity (y)", g, Look::unit(" m/s²"));
     let wind = &mut sim.air_velocity_m_per_s.x;
     number(ui, notes, "wind (x)", wind, Look::unit(" m/s"));
+    super::contact_panel::contact_settings(ui, style, notes);
     super::interaction_panel::interaction_settings(ui, style, notes);
 }
 
