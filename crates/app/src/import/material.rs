@@ -43,6 +43,10 @@ pub struct MaterialArgs {
     /// Shear modulus in pascals [default: 0.9e9]
     #[arg(long, value_name = "PA")]
     pub shear_modulus_pa: Option<f64>,
+    /// A material given in memory (the window's open style), in place of
+    /// `--material`'s file; the single values still go over it.
+    #[arg(skip)]
+    pub from_params: Option<Box<StrandParams>>,
 }
 
 impl MaterialArgs {
@@ -59,14 +63,10 @@ impl MaterialArgs {
                     path.display()
                 );
             };
-            let from = &group.params;
-            params.radius_m = from.radius_m;
-            params.ellipticity = from.ellipticity;
-            params.density_kg_per_m3 = from.density_kg_per_m3;
-            params.youngs_modulus_pa = from.youngs_modulus_pa;
-            params.shear_modulus_pa = from.shear_modulus_pa;
-            params.internal_friction = from.internal_friction;
-            params.air_drag = from.air_drag;
+            copy_material(&group.params, &mut params);
+        }
+        if let Some(from) = &self.from_params {
+            copy_material(from, &mut params);
         }
         let flags = [
             ("--radius-m", self.radius_m, &mut params.radius_m),
@@ -104,6 +104,18 @@ impl MaterialArgs {
     }
 }
 
+/// Copies what the fibre is made of (not its length, elements or shape)
+/// from `from` into `into`.
+fn copy_material(from: &StrandParams, into: &mut StrandParams) {
+    into.radius_m = from.radius_m;
+    into.ellipticity = from.ellipticity;
+    into.density_kg_per_m3 = from.density_kg_per_m3;
+    into.youngs_modulus_pa = from.youngs_modulus_pa;
+    into.shear_modulus_pa = from.shear_modulus_pa;
+    into.internal_friction = from.internal_friction;
+    into.air_drag = from.air_drag;
+}
+
 #[cfg(test)]
 mod tests {
     use std::path::Path;
@@ -130,6 +142,13 @@ mod tests {
         assert_eq!(params.density_kg_per_m3, 1100.0);
         // The shape is the fit's, not the style's.
         assert_eq!(params.natural_shape, StrandParams::default().natural_shape);
+        // A material in memory (the window's open style) copies the same.
+        let in_memory = MaterialArgs {
+            from_params: Some(Box::new(from.clone())),
+            density_kg_per_m3: Some(1100.0),
+            ..MaterialArgs::default()
+        };
+        assert_eq!(in_memory.params().expect("holds"), params);
     }
 
     #[test]

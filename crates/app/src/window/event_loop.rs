@@ -31,7 +31,7 @@ use crate::style::Style;
 
 use super::{HEADLESS_HINT, WindowArgs};
 use crate::window::live::drawn::DrawnCache;
-use crate::window::panels::files::import_dialog::ImportDialog;
+use crate::window::panels::files::import_dialog::{ImportDialog, open_material};
 use crate::window::panels::ui::draw;
 use crate::window::panels::view_state::ViewState;
 use crate::window::present::frame_profile::FrameProfile;
@@ -72,7 +72,8 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         profile: FrameProfile::default(),
     };
     if let Some(groom) = &args.import {
-        handler.view.files.import = Some(ImportDialog::new(groom));
+        let material = open_material(handler.app.doc.style());
+        handler.view.files.import = Some(ImportDialog::new(groom, material));
     }
     event_loop
         .run_app(&mut handler)

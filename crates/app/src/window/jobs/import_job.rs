@@ -60,6 +60,7 @@ pub fn start_import(
     groom: &Path,
     head: Option<PathBuf>,
     collider: Option<PathBuf>,
+    material: MaterialArgs,
 ) -> anyhow::Result<Job<JobDone>> {
     let out = style_path_for(groom)?;
     let defaults = FitOptions::default();
@@ -73,7 +74,7 @@ pub fn start_import(
         no_stiffen: false,
         guides: None,
         metres_per_unit: None,
-        material: MaterialArgs::default(),
+        material,
         out: out.clone(),
         json: None,
     };
@@ -93,6 +94,7 @@ mod tests {
     use super::*;
     use crate::style::Style;
     use helixhair_formats::{Curve, CurveSet};
+    use helixhair_physics::StrandParams;
 
     #[test]
     fn a_groom_imported_in_the_window_becomes_a_style_beside_it() {
@@ -116,7 +118,7 @@ mod tests {
         std::fs::write(&groom, bytes).unwrap();
         std::fs::write(dir.join("two.ron"), "taken").unwrap();
         assert!(import_extension(&groom) && !import_extension(&dir.join("two.ron")));
-        let job = start_import(&groom, None, None).unwrap();
+        let job = start_import(&groom, None, None, MaterialArgs::default()).unwrap();
         let JobDone::Imported(style, _) = job.wait().unwrap() else {
             panic!("an import")
         };
@@ -141,7 +143,10 @@ mod tests {
                      point3f[] points = [(0, 0, 0), (0, -7, 0), (0, -14, 0.1)]\n}\n";
         std::fs::write(&groom, layer).unwrap();
         let JobDone::Imported(_, warnings) =
-            start_import(&groom, None, None).unwrap().wait().unwrap()
+            start_import(&groom, None, None, MaterialArgs::default())
+                .unwrap()
+                .wait()
+                .unwrap()
         else {
             panic!("an import")
         };
@@ -191,18 +196,39 @@ mod tests {
         let mut bytes = Vec::new();
         helixhair_formats::write(&mut bytes, Format::Obj, &curves).unwrap();
         std::fs::write(&groom, bytes).unwrap();
-        // The dialog offers the bust; the import uses it.
-        let dialog = ImportDialog::new(&groom);
+        // The dialog offers the bust; the import uses it, and the open
+        // style's material when asked.
+        let mut open = StrandParams {
+            density_kg_per_m3: 1100.0,
+            radius_m: 40e-6,
+            ..StrandParams::default()
+        };
+        open.youngs_modulus_pa = 3.0e9;
+        let mut dialog = ImportDialog::new(&groom, Some(("open".into(), open.clone())));
+        dialog.use_open_material = true;
         assert_eq!(dialog.head_path(), Some(dir.join("bust.obj")));
-        let JobDone::Imported(style, _) =
-            start_import(&groom, dialog.head_path(), dialog.collider_path())
-                .unwrap()
-                .wait()
-                .unwrap()
-        else {
+        let JobDone::Imported(style, _) = start_import(
+            &groom,
+            dialog.head_path(),
+            dialog.collider_path(),
+            dialog.material(),
+        )
+        .unwrap()
+        .wait()
+        .unwrap() else {
             panic!("an import")
         };
-        let app = AppState::new(Style::load(&style).unwrap(), Some(&style)).unwrap();
+        let written = Style::load(&style).unwrap();
+        let material = &written.groups[0].params;
+        assert_eq!(
+            (
+                material.density_kg_per_m3,
+                material.radius_m,
+                material.youngs_modulus_pa
+            ),
+            (1100.0, 40e-6, 3.0e9)
+        );
+        let app = AppState::new(written, Some(&style)).unwrap();
         assert_eq!(
             app.head_files.as_ref().map(|f| f.drawn.as_path()),
             Some(dir.join("bust.obj").as_path())

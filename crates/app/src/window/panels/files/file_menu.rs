@@ -19,7 +19,7 @@ use crate::motion::playback::Playback;
 
 use super::export_dialog::{DEFAULT_RECORD_FRAMES, DialogAnswer, ExportDialog, export_dialog};
 use super::file_picker::{FilePicker, PickerMode};
-use super::import_dialog::{ImportAnswer, ImportDialog, import_dialog};
+use super::import_dialog::{ImportAnswer, ImportDialog, import_dialog, open_material};
 use crate::window::jobs::export_job::{ExportRequest, start_export};
 use crate::window::jobs::import_job::{import_extension, start_import};
 use crate::window::jobs::job::{Job, JobDone, progress_ui};
@@ -263,7 +263,8 @@ fn start_import_job(app: &mut AppState, files: &mut FileWindows, groom: PathBuf)
         app.message = Some("another file job is running; wait for it or cancel it".into());
         return;
     }
-    files.import = Some(ImportDialog::new(&groom));
+    let material = open_material(app.doc.style());
+    files.import = Some(ImportDialog::new(&groom, material));
 }
 
 /// The export dialog, the progress window, and a finished job's result.
@@ -295,7 +296,8 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
             ImportAnswer::Stay => {}
             ImportAnswer::Cancel => files.import = None,
             ImportAnswer::Go => {
-                match start_import(&dialog.groom, dialog.head_path(), dialog.collider_path()) {
+                let (head, collider) = (dialog.head_path(), dialog.collider_path());
+                match start_import(&dialog.groom, head, collider, dialog.material()) {
                     Ok(job) => files.job = Some(job),
                     Err(e) => app.message = Some(format!("{e:#}")),
                 }

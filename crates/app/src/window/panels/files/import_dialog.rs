@@ -10,8 +10,18 @@
 //! - the mesh the hair collides with and rests on (preselected: the first
 //!   "collider"; none: the drawn head). A detailed bust has eye holes,
 //!   lips and ears that catch hair; a coarse closed collider rests it.
+//!
+//! And, when a style is open, whether the hair is made of its material
+//! (its first group's radius, density and moduli): the sag-free rest shape
+//! balances the hair's weight against its stiffness
+//! ([`crate::import::material`]). Off, the default fibre.
 
 use std::path::{Path, PathBuf};
+
+use helixhair_physics::StrandParams;
+
+use crate::import::material::MaterialArgs;
+use crate::style::Style;
 
 /// The import dialog's fields.
 #[derive(Clone, Debug)]
@@ -25,13 +35,18 @@ pub struct ImportDialog {
     /// The mesh the hair collides with, as typed or picked (empty: the
     /// drawn head).
     pub collider: String,
+    /// The open style's name and first group's parameters, whose material
+    /// the hair may take.
+    pub open_material: Option<(String, StrandParams)>,
+    /// Whether the hair takes [`ImportDialog::open_material`].
+    pub use_open_material: bool,
 }
 
 impl ImportDialog {
     /// A dialog for `groom`, its meshes preselected from those beside it:
     /// the first that is not a collider drawn, the first collider (a name
     /// with "collider") collided with.
-    pub fn new(groom: &Path) -> Self {
+    pub fn new(groom: &Path, open_material: Option<(String, StrandParams)>) -> Self {
         let beside = head_meshes_beside(groom);
         let text = |p: Option<&PathBuf>| p.map(|p| p.display().to_string()).unwrap_or_default();
         let collider = beside.iter().find(|p| is_collider(p));
@@ -41,6 +56,20 @@ impl ImportDialog {
             head: text(drawn),
             collider: text(collider.filter(|&c| Some(c) != drawn)),
             beside,
+            open_material,
+            use_open_material: false,
+        }
+    }
+
+    /// The material chosen: the open style's, or the default fibre.
+    pub fn material(&self) -> MaterialArgs {
+        MaterialArgs {
+            from_params: self
+                .open_material
+                .as_ref()
+                .filter(|_| self.use_open_material)
+                .map(|(_, params)| Box::new(params.clone())),
+            ..MaterialArgs::default()
         }
     }
 
@@ -57,6 +86,13 @@ impl ImportDialog {
         let head = self.head_path()?;
         (!typed.is_empty() && Path::new(typed) != head).then(|| PathBuf::from(typed))
     }
+}
+
+/// The material an import may take from the open `style`: its name and
+/// its first group's parameters (`None` without groups).
+pub fn open_material(style: &Style) -> Option<(String, StrandParams)> {
+    let group = style.groups.first()?;
+    Some((style.name.clone(), group.params.clone()))
 }
 
 /// Whether `mesh`'s file name says it is a collider.
@@ -132,6 +168,17 @@ pub fn import_dialog(ctx: &egui::Context, dialog: &mut ImportDialog) -> ImportAn
                 "the head above",
             );
         });
+        if let Some((name, params)) = &dialog.open_material {
+            ui.separator();
+            let label = format!(
+                "hair made of the material of `{name}` ({:.0} µm, {:.0} kg/m³, E {:.2e} Pa); \
+                 off: the default fibre",
+                params.radius_m * 1e6,
+                params.density_kg_per_m3,
+                params.youngs_modulus_pa
+            );
+            ui.checkbox(&mut dialog.use_open_material, label);
+        }
         ui.horizontal(|ui| {
             let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
             if ui.button("Import").clicked() || enter {
@@ -183,14 +230,14 @@ mod tests {
         std::fs::write(dir.join("groom.obj"), "v 0 0 0\nv 0 1 0\nl 1 2\n").unwrap();
         std::fs::write(dir.join("other_groom.obj"), "v 0 0 0\nv 0 1 0\nl 1 2\n").unwrap();
         std::fs::write(dir.join("notes.txt"), face).unwrap();
-        let dialog = ImportDialog::new(&dir.join("groom.obj"));
+        let dialog = ImportDialog::new(&dir.join("groom.obj"), None);
         assert_eq!(
             dialog.beside,
             vec![dir.join("bust-collider.obj"), dir.join("bust.obj")]
         );
         assert_eq!(dialog.head_path(), Some(dir.join("bust.obj")));
         assert_eq!(dialog.collider_path(), Some(dir.join("bust-collider.obj")));
-        let alone = ImportDialog::new(&dir.join("missing").join("g.tfx"));
+        let alone = ImportDialog::new(&dir.join("missing").join("g.tfx"), None);
         assert!(alone.beside.is_empty() && alone.head_path().is_none());
         assert!(alone.collider_path().is_none());
         std::fs::remove_dir_all(&dir).unwrap();
