@@ -101,7 +101,7 @@ fn drift_on(kind: EngineKind, with_contact: bool) -> f64 {
     let settings = SimSettings::default();
     let field = Arc::new(sphere_field().0);
     let head = RigidMotion::default();
-    let support = RestContact::for_engine(&settings, ContactSettings::default(), &field, head);
+    let support = RestContact::for_engine(&settings, &field, head);
     let motion = RigidMotion::at_rest(root.position_m, root.head_from_root);
     let rest = sag_free(
         &m,

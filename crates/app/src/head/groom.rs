@@ -177,13 +177,10 @@ pub fn scalp_root(
     let normal = sample.normal.as_dvec3();
     let growth = combed_direction(normal, placement.comb, placement.lift_deg);
     let hug = (growth, -normal);
-    let coil = match lead_in {
-        Some(lead_in) => lead_in.root_frame(growth, normal),
-        None => coil_along(growth, normal, root_strains),
-    };
-    let (direction, reference) = match placement.curl_axis {
-        CurlAxis::Hug => hug,
-        CurlAxis::Growth => coil.unwrap_or(hug),
+    let (direction, reference) = match (placement.curl_axis, lead_in) {
+        (CurlAxis::Hug, _) => hug,
+        (CurlAxis::Growth, Some(lead_in)) => lead_in.root_frame(growth, normal).unwrap_or(hug),
+        (CurlAxis::Growth, None) => coil_along(growth, normal, root_strains).unwrap_or(hug),
     };
     Root {
         position_m: sample.position_m.as_dvec3(),

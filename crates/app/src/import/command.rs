@@ -21,7 +21,6 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use glam::DVec3;
 use helixhair_formats::{Format, ReadOptions};
-use helixhair_physics::collision::ContactSettings;
 use helixhair_physics::engine::EngineKind;
 use helixhair_physics::engine::RestContact;
 use helixhair_physics::fit::{FitOptions, StiffenOptions};
@@ -205,12 +204,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         material: &material,
         gravity_m_per_s2: (!args.no_sag_free).then_some(SimSettings::default().gravity_m_per_s2),
         support: collider.as_ref().map(|collider| {
-            RestContact::for_engine(
-                &SimSettings::default(),
-                ContactSettings::default(),
-                collider,
-                RigidMotion::default(),
-            )
+            RestContact::for_engine(&SimSettings::default(), collider, RigidMotion::default())
         }),
         stiffen: if args.no_stiffen {
             StiffenOptions::none()

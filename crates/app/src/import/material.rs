@@ -94,12 +94,13 @@ impl MaterialArgs {
                 given.push(flag);
             }
         }
-        params
-            .validate()
-            .with_context(|| match (&self.material, &given[..]) {
-                (_, []) => "the material the import starts from".to_owned(),
-                (_, flags) => format!("the material given by {}", flags.join(", ")),
-            })?;
+        params.validate().with_context(|| {
+            if given.is_empty() {
+                "the material the import starts from".to_owned()
+            } else {
+                format!("the material given by {}", given.join(", "))
+            }
+        })?;
         Ok(params)
     }
 }

@@ -235,14 +235,9 @@ impl Engine {
     /// contact law ([`RestContact`]): what "set current shape as rest"
     /// solves the rest shape against. `None` without a collider.
     pub fn rest_contact(&self) -> Option<RestContact<'_>> {
-        let contact = match self {
-            Self::Reference(system) => system.contact_settings(),
-            Self::Batch { system, .. } => system.contact_settings(),
-        };
         let collider = self.collider()?;
         Some(RestContact::for_engine(
             self.settings(),
-            contact,
             collider,
             *self.head(),
         ))

@@ -49,19 +49,18 @@ pub struct RestContact<'a> {
 }
 
 impl<'a> RestContact<'a> {
-    /// The contact of an engine stepping with `settings` and `contact`
-    /// against `collider` on a head at rest at `head_position_m` and
-    /// `world_from_head` (either engine: they step one law).
+    /// The contact of an engine stepping with `settings` (its `contact` and
+    /// step) against `collider` on a head at rest at `head`'s position and
+    /// orientation (either engine: they step one law).
     pub fn for_engine(
         settings: &SimSettings,
-        contact: ContactSettings,
         collider: &'a SignedDistanceField,
         head: RigidMotion,
     ) -> Self {
         Self {
             collider,
             head: RigidMotion::at_rest(head.position_m, head.world_from_body),
-            settings: contact,
+            settings: settings.contact,
             h_secs: settings.dt_secs / f64::from(settings.substeps.max(1)),
         }
     }
