@@ -26,9 +26,9 @@
 use std::path::Path;
 
 use anyhow::Context as _;
+use helixhair_app::SimOverrides;
 use helixhair_app::motion::clip::Clip;
 use helixhair_app::sim::grown::grown_sim;
-use helixhair_app::sim::headless::SimOverrides;
 use helixhair_app::sim::settle::settle_on_head;
 
 /// Guard events printed in full.

@@ -16,8 +16,8 @@ use std::sync::Arc;
 
 use anyhow::Context as _;
 use helixhair_app::head::groom::head_collider;
-use helixhair_app::sim::headless::{HeadlessSim, SimOverrides};
 use helixhair_app::style::Style;
+use helixhair_app::{HeadlessSim, SimOverrides};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();

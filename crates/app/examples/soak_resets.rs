@@ -8,8 +8,8 @@ use std::sync::Arc;
 use helixhair_app::bench::soak::SEED;
 use helixhair_app::bench::soak::motion::SoakMotion;
 use helixhair_app::head::groom::Groom;
-use helixhair_app::sim::headless::{HeadlessSim, SimOverrides};
 use helixhair_app::style::Style;
+use helixhair_app::{HeadlessSim, SimOverrides};
 use helixhair_physics::engine::EngineKind;
 use helixhair_render::head_generate::default_head;
 

@@ -82,7 +82,8 @@ pub mod window;
 pub mod work_progress;
 
 pub use head::groom::Groom;
-pub use sim::headless::{HeadlessSim, SimError, SimOverrides};
+pub use sim::build::{SimError, SimOverrides};
+pub use sim::headless::HeadlessSim;
 pub use sim::report::SimReport;
 pub use style::error::{StyleError, StyleErrorKind, StyleIssue};
 pub use style::field_path::FieldPath;

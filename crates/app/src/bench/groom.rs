@@ -54,7 +54,8 @@ use super::chart::{Axis, LineChart, Series, draw_line_chart};
 use super::table::write_csv;
 use crate::head::groom::Groom;
 use crate::head::load_head;
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::stats::median;
 use crate::style::Style;
 

@@ -39,7 +39,8 @@ use super::scenes::{
     CurlClass, RunSetting, Scene, SceneMotion, Trajectory, run_scene, tip_motion_rms,
 };
 use super::table::write_csv;
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::style::Style;
 
 /// Tip speed relative to the root above which a run counts as blown up,

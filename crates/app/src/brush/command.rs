@@ -14,8 +14,8 @@ use clap::Args;
 
 use crate::brush::session::GroomSession;
 use crate::brush::strokes::StrokeFile;
+use crate::sim::build::SimOverrides;
 use crate::sim::grown::grown_sim;
-use crate::sim::headless::SimOverrides;
 use crate::style::ron_file::RonFile as _;
 use helixhair_physics::engine::EngineKind;
 

@@ -40,8 +40,9 @@ use crate::brush::stroke_run::{StrokeOutcome, StrokeRun};
 use crate::brush::strokes::Stroke;
 use crate::brush::tools::settle;
 use crate::head::groom::Groom;
+use crate::sim::build::SimOverrides;
 use crate::sim::carry::{Carry, carry_state};
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::headless::HeadlessSim;
 use crate::sim::strands::{StyleStrand, style_strands};
 use crate::style::Style;
 

@@ -26,8 +26,9 @@ use crate::cli::camera_arg::CameraArg;
 use crate::hair::drawn::drawn_hair;
 use crate::hair::guide_curves::guide_curves;
 use crate::hair::layout::DrawnLayout;
+use crate::sim::build::SimOverrides;
 use crate::sim::grown::grown_sim;
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::headless::HeadlessSim;
 use crate::sim::report::refuse_lost_strands;
 
 /// Largest picture side, pixels.

@@ -25,9 +25,9 @@ use crate::export::{
 };
 use crate::head::groom::Groom;
 use crate::motion::playback::{Playback, parse_play};
+use crate::sim::build::SimOverrides;
 use crate::sim::frame_stepper::FrameStepper;
 use crate::sim::grown::grown_sim;
-use crate::sim::headless::SimOverrides;
 use crate::style::Style;
 
 /// How exported strands are made: which ones, how many points, which

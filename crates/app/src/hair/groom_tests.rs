@@ -11,7 +11,8 @@ use crate::hair::drawn::{drape_over, drawn_hair_full, root_width_m};
 use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
 use crate::head::coil::{CoilLeadIn, coil_along};
 use crate::head::groom::{Groom, combed_direction, grow_scalp_roots, root_strains, scalp_roots};
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::style::Style;
 
 const STYLE: &str = r#"(

@@ -45,7 +45,8 @@ mod tests {
     use std::path::Path;
 
     use super::*;
-    use crate::sim::headless::{HeadlessSim, SimOverrides};
+    use crate::sim::build::SimOverrides;
+    use crate::sim::headless::HeadlessSim;
     use crate::style::Style;
 
     #[test]

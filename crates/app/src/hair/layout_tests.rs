@@ -10,7 +10,8 @@ use crate::hair::drawn::drawn_hair;
 use crate::hair::layout::DrawnLayout;
 use crate::hair::strain_blend::strand_curve;
 use crate::head::groom::Groom;
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::style::Style;
 
 /// Three straight imported strands of 4 elements of 2 cm, growing along

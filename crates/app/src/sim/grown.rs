@@ -1,5 +1,6 @@
-//! The one builder from a style file to a running simulation: the style
-//! grown on its head, and the engine colliding with that head.
+//! A style file on its head: the style grown on the head it names (or
+//! `--head`), built into a simulation ([`crate::sim::build`], through
+//! [`HeadlessSim`]) that collides with that head.
 //!
 //! `render`, `export`, `sim` with a head, the bench and the window's drawn
 //! hair all start here, so a style means the same hair everywhere: the
@@ -16,7 +17,8 @@ use helixhair_render::obj::NO_SCALP_HINT;
 use crate::head::groom::Groom;
 use crate::head::load_head;
 use crate::head::of_style::{OwnHead, head_pivot_m};
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::sim::settle::settle_on_head;
 use crate::style::Style;
 use crate::style::error::{StyleError, StyleErrorKind};

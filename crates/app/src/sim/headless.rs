@@ -12,109 +12,26 @@
 //! Block-diagonal. Both guards re-step a failing strand with Exact and more
 //! substeps, then reset or pin it; what they did is kept
 //! ([`HeadlessSim::guard_events`]) for the report.
-//! A combination the engine cannot run is refused before anything is
-//! built, naming the option or field that asked for it
-//! ([`SimError::Conflict`]).
-//!
-//! With an accuracy target (style field or `--accuracy`), each group's
-//! element count and solver come from [`crate::sim::auto_choice`] (reference
-//! engine only: the choice may pick any solver per group).
+//! The engine is built by [`crate::sim::build`], the one builder every face
+//! shares: the overrides, the refusal of a combination the engine cannot
+//! run, the automatic choice of an accuracy target.
 
 use std::time::Instant;
 
 use glam::DVec3;
-use helixhair_physics::engine::{Engine, EngineKind};
-use helixhair_physics::{
-    GuardAction, GuardEvent, HairSystem, Method, ParamError, RigidMotion, StepScheme,
-};
+use helixhair_physics::engine::Engine;
+use helixhair_physics::{GuardAction, GuardEvent, HairSystem, Method, RigidMotion};
 use helixhair_render::head_generate::default_head;
-use thiserror::Error;
 
 use crate::head::groom::{grow_scalp_roots, needs_head};
 use crate::motion::clip::{Clip, ClipTrajectory};
 use crate::motion::playback::{HeadPlayback, PivotedPlayback};
-use crate::sim::auto_choice::{Choice, choose};
-use crate::sim::error_model::ErrorModel;
-use crate::sim::strands::{add_strands, group_strands};
+use crate::sim::auto_choice::Choice;
+use crate::sim::build::{BuiltSim, SimError, SimOverrides, build_sim};
 use crate::style::Style;
-use crate::style::error::StyleIssue;
-use crate::style::field_path::FieldPath;
-use crate::style::validate::{check_accuracy_target, param_issue};
-
-/// Command-line overrides of the style's settings.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SimOverrides {
-    /// Engine to use instead of the style's `engine`.
-    pub engine: Option<EngineKind>,
-    /// Solver to use instead of the style's `sim.method`.
-    pub method: Option<Method>,
-    /// Frame time step in seconds instead of the style's `sim.dt_secs`.
-    pub dt_secs: Option<f64>,
-    /// Accuracy target instead of the style's `accuracy_target`: choose
-    /// solver and element counts (see [`crate::sim::auto_choice`]).
-    pub accuracy_target: Option<f64>,
-    /// How the reference engine's step treats the velocity terms, instead
-    /// of the style's `sim.scheme` (`--velocity-terms`).
-    pub scheme: Option<StepScheme>,
-    /// Hair–hair interaction on or off instead of the style's
-    /// `sim.interaction.enabled` (`--interaction`).
-    pub interaction: Option<bool>,
-}
 
 /// Guard events kept for the report; later ones are only counted.
 pub const MAX_KEPT_GUARD_EVENTS: usize = 100;
-
-/// Why a headless simulation could not be set up or finished. Each message
-/// is complete on its own, so no variant reports a separate `source`.
-#[derive(Debug, Error)]
-pub enum SimError {
-    /// A command-line override is out of range.
-    #[error("{option} {value}: {error}")]
-    Override {
-        /// The option, e.g. `--dt`.
-        option: &'static str,
-        /// The value given.
-        value: String,
-        /// What the physics crate says about it.
-        error: ParamError,
-    },
-    /// The engine cannot run what the options and the style ask for
-    /// together (the batch engine with a solver other than Exact and
-    /// Block-diagonal, or with an accuracy target).
-    #[error("{options}: {message}")]
-    Conflict {
-        /// The command-line options involved, as written (`--engine batch
-        /// --method dense`).
-        options: String,
-        /// What cannot be done and how to fix it.
-        message: String,
-    },
-    /// The style does not describe a valid hair system (a loaded style has
-    /// been validated, so this concerns styles built in code).
-    #[error("style `{style}`: {issue}")]
-    Style {
-        /// The style's name.
-        style: String,
-        /// The offending field.
-        issue: StyleIssue,
-    },
-    /// The built-in error model could not be read (a build problem).
-    #[error("{0}")]
-    ErrorModel(String),
-    /// The state held NaN or infinities after a frame.
-    #[error(
-        "the simulation blew up: the strand state is not finite after step {step} of {steps} \
-         (t = {time_secs} s); try a smaller --dt or more substeps"
-    )]
-    NotFinite {
-        /// The frame after which it happened, counted from 1.
-        step: usize,
-        /// The number of frames asked for.
-        steps: usize,
-        /// Simulated time at that point, seconds.
-        time_secs: f64,
-    },
-}
 
 /// A hair system built from a style, with a still head.
 #[derive(Clone, Debug)]
@@ -182,102 +99,15 @@ impl HeadlessSim {
         } else {
             style
         };
-        let mut settings = style.sim.clone();
-        if let Some(method) = overrides.method {
-            settings.method = method;
-        }
-        if let Some(scheme) = overrides.scheme {
-            settings.scheme = scheme;
-        }
-        if let Some(on) = overrides.interaction {
-            settings.interaction.enabled = on;
-        }
-        if let Some(dt_secs) = overrides.dt_secs {
-            settings.dt_secs = dt_secs;
-            if let Err(error) = settings.validate()
-                && error.field == "dt_secs"
-            {
-                return Err(SimError::Override {
-                    option: "--dt",
-                    value: dt_secs.to_string(),
-                    error,
-                });
-            }
-        }
-        let accuracy_target = overrides.accuracy_target.or(style.accuracy_target);
-        if let Some(target) = overrides.accuracy_target
-            && let Err(error) = check_accuracy_target(target)
-        {
-            return Err(SimError::Override {
-                option: "--accuracy",
-                value: target.to_string(),
-                error,
-            });
-        }
-        let engine_kind = overrides.engine.unwrap_or(style.engine);
-        check_engine_options(engine_kind, &settings, accuracy_target, overrides)?;
-        let model = match accuracy_target {
-            Some(_) => {
-                Some(ErrorModel::built_in().map_err(|e| SimError::ErrorModel(format!("{e:#}")))?)
-            }
-            None => None,
-        };
-        let style_issue = |issue| SimError::Style {
-            style: style.name.clone(),
-            issue,
-        };
-        let sim_path = FieldPath::root().field("sim");
-        if let (Some(model), Some(target)) = (&model, accuracy_target) {
-            // One step for the whole system: the finest any group needs.
-            let needed = style
-                .groups
-                .iter()
-                .filter_map(|g| {
-                    choose(
-                        model,
-                        &g.params,
-                        settings.dt_secs,
-                        settings.substeps,
-                        target,
-                    )
-                })
-                .map(|c| c.substeps)
-                .max();
-            settings.substeps = settings.substeps.max(needed.unwrap_or(1));
-        }
-        let mut system = Engine::new(engine_kind, settings)
-            .map_err(|e| style_issue(param_issue(&sim_path, &e)))?;
-        let mut group_of_strand = Vec::with_capacity(style.strand_count());
-        let mut choices = Vec::new();
-        for (i, group) in style.groups.iter().enumerate() {
-            let mut params = group.params.clone();
-            let choice = match (&model, accuracy_target) {
-                (Some(model), Some(target)) => {
-                    let settings = system.settings();
-                    choose(model, &params, settings.dt_secs, settings.substeps, target)
-                }
-                _ => None,
-            };
-            if let Some(choice) = &choice {
-                params.elements = choice.elements;
-            }
-            let range = add_strands(&mut system, &group_strands(i, group, &params))
-                .map_err(|(at, e)| style_issue(param_issue(&at, &e)))?;
-            if let Some(choice) = choice {
-                // An accuracy target implies the reference engine (checked above).
-                if let Some(reference) = system.reference_mut() {
-                    for strand in &mut reference.strands_mut()[range.clone()] {
-                        strand.set_method(choice.method);
-                    }
-                }
-                choices.push(choice);
-            }
-            group_of_strand.extend(range.map(|_| i));
-        }
+        let BuiltSim {
+            engine,
+            strands,
+            choices,
+        } = build_sim(style, overrides)?;
         Ok(Self {
-            engine: system,
+            engine,
             group_names: style.groups.iter().map(|g| g.name.clone()).collect(),
-            group_of_strand,
+            group_of_strand: strands.iter().map(|s| s.group).collect(),
             head: RigidMotion::default(),
             clip: None,
             head_pivot_m: DVec3::ZERO,
@@ -382,76 +212,12 @@ impl HeadlessSim {
     }
 }
 
-/// Refuses what `kind` cannot run, naming the options (or the style
-/// field) that asked for it. A loaded style never asks for an impossible
-/// combination itself (its validation refuses one), so at least one
-/// option is always involved.
-fn check_engine_options(
-    kind: EngineKind,
-    settings: &helixhair_physics::SimSettings,
-    accuracy_target: Option<f64>,
-    overrides: SimOverrides,
-) -> Result<(), SimError> {
-    if kind == EngineKind::Reference {
-        return Ok(());
-    }
-    let allowed = EngineKind::BATCH_METHODS.map(|m| format!("`{}`", m.label()));
-    let allowed = allowed.join(" or ");
-    let method = settings.method.label();
-    let (options, message) = if !kind.runs(settings.method) {
-        match (overrides.engine, overrides.method) {
-            (Some(_), Some(_)) => (
-                format!("--engine batch --method {method}"),
-                format!(
-                    "the batch engine runs the {allowed} solver only; \
-                     use --method exact or block, or --engine reference"
-                ),
-            ),
-            (Some(_), None) => (
-                "--engine batch".to_owned(),
-                format!(
-                    "the style's `sim.method` is `{method}`, which the batch engine cannot run \
-                     (it runs {allowed}); add --method exact or --method block"
-                ),
-            ),
-            (None, Some(_)) => (
-                format!("--method {method}"),
-                format!(
-                    "the style's `engine` is `Batch`, which runs the {allowed} solver only; \
-                     add --engine reference to use `{method}`"
-                ),
-            ),
-            // A style built in code (a loaded one is validated).
-            (None, None) => (
-                "style field `engine: Batch`".to_owned(),
-                format!("the batch engine runs {allowed} only, not `sim.method` `{method}`"),
-            ),
-        }
-    } else if accuracy_target.is_some() {
-        let option = if overrides.engine.is_some() {
-            "--engine batch"
-        } else if overrides.accuracy_target.is_some() {
-            "--accuracy"
-        } else {
-            "style field `engine: Batch`"
-        };
-        (
-            option.to_owned(),
-            "an accuracy target chooses a solver per group, which only the reference engine \
-             runs; drop the target, or use --engine reference"
-                .to_owned(),
-        )
-    } else {
-        return Ok(());
-    };
-    Err(SimError::Conflict { options, message })
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::Path;
 
     use glam::DVec3;
+    use helixhair_physics::engine::EngineKind;
 
     use super::*;
 

@@ -62,7 +62,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     let mut handler = Handler {
         args: args.clone(),
         drawn: DrawnCache::default(),
-        view: ViewState::new(app.sim.engine().strand_count()),
+        view: ViewState::new(app.sim().engine().strand_count()),
         app,
         open: None,
         error: None,
@@ -72,7 +72,7 @@ pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
         profile: FrameProfile::default(),
     };
     if let Some(groom) = &args.import {
-        let material = open_material(handler.app.doc.style());
+        let material = open_material(handler.app.doc().style());
         handler.view.files.import = Some(ImportDialog::new(groom, material));
     }
     event_loop
@@ -126,7 +126,7 @@ struct Handler {
 impl Handler {
     fn open(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<Open> {
         let attributes = Window::default_attributes()
-            .with_title(self.app.doc.title())
+            .with_title(self.app.doc().title())
             .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 800.0));
         let window = Arc::new(
             event_loop
@@ -161,24 +161,23 @@ impl Handler {
         let now = Instant::now();
         if let Some(last) = self.last_frame.replace(now) {
             self.app
-                .readouts
-                .record_frame(now.duration_since(last).as_secs_f64());
+                .record_frame_time(now.duration_since(last).as_secs_f64());
         }
         self.profile.start();
         self.app.step_frame();
         self.profile.lap(1);
-        let head = self.app.sim.engine().head();
+        let head = self.app.sim().engine().head();
         let head_mesh = self
             .app
-            .head_mesh
+            .head_mesh()
             .posed(head.world_from_body.as_mat3(), head.position_m.as_vec3());
-        let runs = std::iter::once(&self.app.sim).chain(self.app.compare.as_ref().map(|c| &c.0));
+        let runs = std::iter::once(self.app.sim()).chain(self.app.compare().map(|c| &c.0));
         let preview = wants_preview(self.args.preview, open.gpu.is_software(), self.interacting);
         let quality = quality(self.args.render_strands, self.view.view_px, preview);
         for (slot, run) in runs.enumerate() {
             let Some(hair) = self.drawn.strands(
-                self.app.doc.style(),
-                &self.app.head_mesh,
+                self.app.doc().style(),
+                self.app.head_mesh(),
                 run.engine(),
                 quality.render_strands,
             ) else {
@@ -203,9 +202,9 @@ impl Handler {
         self.profile.lap(4);
         let platform = std::mem::take(&mut output.platform_output);
         open.egui.handle_platform_output(&open.gpu.window, platform);
-        self.app.doc.settle(ctx.egui_is_using_pointer());
+        self.app.settle_edits(ctx.egui_is_using_pointer());
         self.interacting = ctx.egui_is_using_pointer() || ctx.input(|i| i.pointer.any_down());
-        let title = self.app.doc.title();
+        let title = self.app.doc().title();
         if title != open.title {
             open.gpu.window.set_title(&title);
             open.title = title;
@@ -231,7 +230,7 @@ impl Handler {
             self.summary(&adapter);
             event_loop.exit();
         }
-        if self.app.quit {
+        if self.app.wants_to_quit() {
             event_loop.exit();
         }
         Ok(())
@@ -240,15 +239,15 @@ impl Handler {
     /// Prints frame and physics times over the second half of the run.
     fn summary(&self, adapter: &str) {
         let n = (self.frames / 2).max(1) as usize;
-        let r = &self.app.readouts;
+        let r = self.app.readouts();
         let ms = |s: Option<f64>| s.map_or(f64::NAN, |s| 1e3 * s);
         println!(
             "helixhair window: {} frames on {adapter}; {} engine, {} guide strands, at most {} drawn strands (--render-strands), {} elements",
             self.frames,
-            self.app.sim.kind().label(),
-            self.app.sim.engine().strand_count(),
+            self.app.sim().kind().label(),
+            self.app.sim().engine().strand_count(),
             self.args.render_strands,
-            self.app.sim.engine().element_count()
+            self.app.sim().engine().element_count()
         );
         println!(
             "last {n} frames: frame time {:.1} ms (median {:.1} ms), physics {:.1} ms per frame (median {:.1} ms), {:.3e} element-steps/s",
@@ -291,7 +290,7 @@ impl ApplicationHandler for Handler {
                 // Unsaved edits: ask first (the frame loop exits once the
                 // user has answered).
                 self.app.request_leave(Leave::Close);
-                if self.app.quit {
+                if self.app.wants_to_quit() {
                     event_loop.exit();
                 }
             }

@@ -40,7 +40,8 @@ use crate::bench::soak::motion::SoakMotion;
 use helixhair_render::head_generate::default_head;
 
 use crate::head::groom::Groom;
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::style::Style;
 
 /// The soak's style: the full head.

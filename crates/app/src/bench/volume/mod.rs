@@ -43,7 +43,8 @@ use super::table::write_csv;
 use crate::bench::volume::measures::{close_pairs, mean_scalp_distance_m, occupied_volume_m3};
 use crate::head::groom::Groom;
 use crate::motion::clip::Clip;
-use crate::sim::headless::{HeadlessSim, SimOverrides};
+use crate::sim::build::SimOverrides;
+use crate::sim::headless::HeadlessSim;
 use crate::style::Style;
 
 const FULL_HEAD_RON: &str = include_str!("../../../../../assets/styles/groomed/full_head.ron");

@@ -81,7 +81,7 @@ impl FrameStepper for WindowRun {
 /// thread. Bad requests (unknown extension, a point count the format cannot
 /// hold, an unwritable folder, an invalid style) fail here, at once.
 pub fn start_export(app: &AppState, request: &ExportRequest) -> anyhow::Result<Job<JobDone>> {
-    if let Err(e) = app.doc.validity() {
+    if let Err(e) = app.doc().validity() {
         anyhow::bail!("the style is invalid ({e}); fix it before exporting");
     }
     let shape = ExportShapeArgs {
@@ -95,15 +95,15 @@ pub fn start_export(app: &AppState, request: &ExportRequest) -> anyhow::Result<J
         no_head: false,
     };
     // The head the window simulates against, as it shows it.
-    let head_mesh = (*app.head_mesh).clone();
-    let export = SimExport::prepare(&request.path, &shape, app.doc.style(), head_mesh)?;
-    let mut head = app.head.clone();
+    let head_mesh = (**app.head_mesh()).clone();
+    let export = SimExport::prepare(&request.path, &shape, app.doc().style(), head_mesh)?;
+    let mut head = app.head().clone();
     head.recorder = None;
     if let Some(clip) = request.clip {
         head.play(clip, app.now_secs());
     }
     let mut run = WindowRun {
-        sim: app.sim.clone(),
+        sim: app.sim().clone(),
         head,
     };
     let steps = request.frames;

@@ -67,7 +67,8 @@ fn a_recorded_animation_is_what_the_window_shows_in_the_next_frames() {
         if frame > 0 {
             app.step_frame();
         }
-        let want = capture_curves(app.sim.engine(), None, StrandChoice::Simulated, POINTS).unwrap();
+        let want =
+            capture_curves(app.sim().engine(), None, StrandChoice::Simulated, POINTS).unwrap();
         let got = read_points(&sequence_path(&path, frame));
         assert_eq!(got.len(), want.curves.len());
         for (g, w) in got.iter().zip(&want.curves) {
@@ -112,7 +113,7 @@ fn export_frame_writes_the_state_on_screen_and_bad_requests_fail_at_once() {
         panic!("an export")
     };
     assert_eq!(outcome.files, vec![path.clone()]);
-    let want = capture_curves(app.sim.engine(), None, StrandChoice::Simulated, POINTS).unwrap();
+    let want = capture_curves(app.sim().engine(), None, StrandChoice::Simulated, POINTS).unwrap();
     let got = read_points(&path);
     assert_eq!(got.len(), want.curves.len());
     assert!((got[0][POINTS - 1] - want.curves[0].points_m[POINTS - 1]).length() < 1e-6);
@@ -136,14 +137,14 @@ fn an_exported_frame_carries_the_head_the_window_simulates_against() {
     let dir = scratch("head");
     let mut app = shaking_app();
     let lift = glam::Vec3::new(0.0, 1.5, 0.0);
-    let mut head = (*app.head_mesh).clone();
+    let mut head = (**app.head_mesh()).clone();
     head.mesh.positions.iter_mut().for_each(|p| *p += lift);
     let want_low = head
         .mesh
         .positions
         .iter()
         .fold(f32::MAX, |low, p| low.min(p.y));
-    app.head_mesh = std::sync::Arc::new(head);
+    app.use_head_mesh(std::sync::Arc::new(head));
     let path = dir.join("now.usda");
     start_export(&app, &request(&path, 0))
         .unwrap()
@@ -196,6 +197,6 @@ fn a_recording_plays_the_clip_picked_in_its_dialog() {
         .fold(0.0f32, f32::max);
     assert!(moved > 0.02, "the turn moved the hair only {moved} m");
     // The window's own head is untouched: nothing plays there.
-    assert!(app.head.playing(app.now_secs()).is_none());
+    assert!(app.head().playing(app.now_secs()).is_none());
     std::fs::remove_dir_all(&dir).unwrap();
 }

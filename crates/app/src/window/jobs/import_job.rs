@@ -230,15 +230,15 @@ mod tests {
         );
         let app = AppState::new(written, Some(&style)).unwrap();
         assert_eq!(
-            app.head_files.as_ref().map(|f| f.drawn.as_path()),
+            app.head_files().as_ref().map(|f| f.drawn.as_path()),
             Some(dir.join("bust.obj").as_path())
         );
         // The head pivot (which the view frames) is on the lifted head, and
         // every root sits on it, not a metre and a half above the default.
-        assert!(app.head.pivot_m.y > 1.2, "pivot {}", app.head.pivot_m);
+        assert!(app.head().pivot_m.y > 1.2, "pivot {}", app.head().pivot_m);
         let top = f64::from(crown.y);
-        for i in 0..app.sim.engine().strand_count() {
-            let root = app.sim.engine().boundary_points_world(i)[0];
+        for i in 0..app.sim().engine().strand_count() {
+            let root = app.sim().engine().boundary_points_world(i)[0];
             assert!((root.y - top).abs() < 0.01, "root {root} vs crown y {top}");
         }
         std::fs::remove_dir_all(&dir).unwrap();

@@ -64,8 +64,8 @@ mod tests {
     use super::*;
     use crate::hair::drawn::drawn_hair_full;
     use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
+    use crate::sim::build::SimOverrides;
     use crate::sim::grown::grown_sim;
-    use crate::sim::headless::SimOverrides;
 
     /// The window drew a fringe over the face for styles without `render`
     /// sections while `render` drew their guides only: both now draw the

@@ -35,9 +35,10 @@ use crate::style::Style;
 
 use super::collision::HeadCollider;
 use super::head_motion::FrameHead;
+use crate::sim::build::{SimError, SimOverrides, build_sim};
 use crate::sim::carry::{Carry, carry_state};
 use crate::sim::settle::settle_on_head;
-use crate::sim::strands::{StyleStrand, add_strands, style_strands};
+use crate::sim::strands::StyleStrand;
 
 /// A hair system kept in step with an edited style.
 #[derive(Clone, Debug)]
@@ -76,7 +77,7 @@ impl LiveSim {
         head: Arc<HeadMesh>,
         engine_override: Option<EngineKind>,
         method_override: Option<Method>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, SimError> {
         let grown = grow(style, &head);
         let (engine, strands) = build(&grown, engine_override, method_override)?;
         Ok(Self {
@@ -139,15 +140,14 @@ impl LiveSim {
         &mut self,
         engine: Option<EngineKind>,
         method: Option<Method>,
-    ) -> Result<(), String> {
+    ) -> Result<(), SimError> {
         let kind = engine.unwrap_or(self.built.engine);
         let solver = method.unwrap_or(self.built.sim.method);
         if !kind.runs(solver) {
-            return Err(format!(
-                "the {} engine cannot run the `{}` solver",
-                kind.label(),
-                solver.label()
-            ));
+            return Err(SimError::Conflict {
+                options: format!("the {} engine", kind.label()),
+                message: format!("it cannot run the `{}` solver", solver.label()),
+            });
         }
         let (old_engine, old_method) = (self.engine_override, self.method_override);
         self.engine_override = engine;
@@ -165,7 +165,7 @@ impl LiveSim {
 
     /// Brings the engine in line with `style` (which must be valid),
     /// keeping the strands' state; returns whether anything changed.
-    pub fn sync(&mut self, style: &Style) -> Result<bool, String> {
+    pub fn sync(&mut self, style: &Style) -> Result<bool, SimError> {
         if *style == self.built {
             return Ok(false);
         }
@@ -185,7 +185,7 @@ impl LiveSim {
     /// A new engine for `style`, every strand's state carried over from the
     /// current one when the root counts match (an edit of values, not of
     /// counts), stretched onto new elements where lengths changed.
-    fn rebuild(&mut self, style: &Style) -> Result<(), String> {
+    fn rebuild(&mut self, style: &Style) -> Result<(), SimError> {
         let grown = grow(style, &self.head);
         let (engine, strands) = build(&grown, self.engine_override, self.method_override)?;
         let counts = |s: &Style| {
@@ -210,7 +210,7 @@ impl LiveSim {
     /// length (a cut strand keeps the rest of its shape), the strands in
     /// `at_rest` still; the style as written takes the same edits
     /// ([`LiveSim::built_style`]).
-    pub fn rebuild_from_grown(&mut self, at_rest: &[usize]) -> Result<(), String> {
+    pub fn rebuild_from_grown(&mut self, at_rest: &[usize]) -> Result<(), SimError> {
         let (engine, strands) = build(
             &self.built_grown,
             self.engine_override,
@@ -362,20 +362,20 @@ fn grow(style: &Style, head: &HeadMesh) -> Style {
     }
 }
 
+/// The engine of the grown `style` through the one builder
+/// ([`build_sim`]), with the window's engine and solver overrides.
 fn build(
     style: &Style,
-    engine_override: Option<EngineKind>,
-    method_override: Option<Method>,
-) -> Result<(Engine, Vec<StyleStrand>), String> {
-    let mut settings = style.sim.clone();
-    if let Some(method) = method_override {
-        settings.method = method;
-    }
-    let kind = engine_override.unwrap_or(style.engine);
-    let mut system = Engine::new(kind, settings).map_err(|e| format!("sim: {e}"))?;
-    let strands = style_strands(style, |_, group| group.params.clone());
-    add_strands(&mut system, &strands).map_err(|(at, e)| format!("{at}: {e}"))?;
-    Ok((system, strands))
+    engine: Option<EngineKind>,
+    method: Option<Method>,
+) -> Result<(Engine, Vec<StyleStrand>), SimError> {
+    let overrides = SimOverrides {
+        engine,
+        method,
+        ..SimOverrides::default()
+    };
+    let built = build_sim(style, overrides)?;
+    Ok((built.engine, built.strands))
 }
 
 #[cfg(test)]

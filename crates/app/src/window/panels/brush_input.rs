@@ -31,7 +31,7 @@ pub fn brush_input(
     response: &Response,
     rect: egui::Rect,
 ) {
-    if app.brush.active.is_some() && !response.dragged_by(PointerButton::Primary) {
+    if app.brush().active.is_some() && !response.dragged_by(PointerButton::Primary) {
         app.end_stroke();
         view.brush_plane_m = None;
     }
@@ -42,13 +42,13 @@ pub fn brush_input(
     let size = Vec2::new(rect.width(), rect.height());
     let local = pointer - rect.min;
     let ray = pointer_ray(&view.camera, size, Vec2::new(local.x, local.y));
-    let radius_m = app.brush.settings.radius_m;
+    let radius_m = app.brush().settings.radius_m;
     let surface = || {
-        let head = app.sim.engine().head();
+        let head = app.sim().engine().head();
         let posed = app
-            .head_mesh
+            .head_mesh()
             .posed(head.world_from_body.as_mat3(), head.position_m.as_vec3());
-        let hair = hair_points_world(app.sim.engine());
+        let hair = hair_points_world(app.sim().engine());
         let t_head = ray_mesh(&ray, &posed.mesh);
         let t_hair = ray_hair(&ray, &hair, 0.5 * radius_m);
         match (t_head, t_hair) {
@@ -56,17 +56,17 @@ pub fn brush_input(
             (a, b) => a.or(b).map(|t| ray.at(t)),
         }
     };
-    let drives = matches!(app.brush.settings.kind, ToolKind::Comb | ToolKind::Grab);
+    let drives = matches!(app.brush().settings.kind, ToolKind::Comb | ToolKind::Grab);
     let facing = (view.camera.target_m - view.camera.eye_m())
         .as_dvec3()
         .normalize();
-    let at = match (view.brush_plane_m, app.brush.active.is_some()) {
+    let at = match (view.brush_plane_m, app.brush().active.is_some()) {
         (Some(plane), true) if drives => ray_plane(&ray, plane, facing),
         (Some(plane), true) => surface().or_else(|| ray_plane(&ray, plane, facing)),
         _ => surface(),
     };
     view.brush_at_m = at;
-    if app.brush.settings.kind == ToolKind::Mask {
+    if app.brush().settings.kind == ToolKind::Mask {
         let painting = response.dragged_by(PointerButton::Primary)
             || response.clicked_by(PointerButton::Primary);
         if painting && let Some(p) = at {
@@ -78,7 +78,7 @@ pub fn brush_input(
         && app.begin_stroke(start)
     {
         view.brush_plane_m = Some(start);
-    } else if app.brush.active.is_some()
+    } else if app.brush().active.is_some()
         && let Some(p) = at
     {
         app.move_brush(p);

@@ -24,7 +24,7 @@ const MAX_BRUSH_RADIUS_M: f64 = 0.2;
 /// text.
 pub fn tool_row(ui: &mut Ui, app: &mut AppState) {
     for kind in ToolKind::ALL {
-        let picked = app.brush.settings.kind == kind;
+        let picked = app.brush().settings.kind == kind;
         let hint = format!("{} (key {:?})", kind.hint(), kind.key());
         if ui
             .selectable_label(picked, kind.label())
@@ -54,14 +54,15 @@ fn millimetres(ui: &mut Ui, value_m: &mut f64, range_m: (f64, f64), label: &str)
 /// The Brush section: settings of the picked tool.
 pub fn brush_controls(ui: &mut Ui, app: &mut AppState) {
     ui.heading("Brush");
-    let kind = app.brush.settings.kind;
+    let kind = app.brush().settings.kind;
     if kind == ToolKind::Orbit {
         ui.small("Pick a tool in the tool bar (Comb, Grab, Cut, …) to style by hand.");
     } else {
         ui.small(kind.hint());
         ui.small("Left drag: brush. Right drag: orbit. Esc: cancel the stroke.");
     }
-    let s = &mut app.brush.settings;
+    let mut settings = app.brush().settings.clone();
+    let s = &mut settings;
     millimetres(
         ui,
         &mut s.radius_m,
@@ -125,31 +126,31 @@ pub fn brush_controls(ui: &mut Ui, app: &mut AppState) {
             "keep the new shape (freeze at the stroke's end)",
         );
     }
-    mask(ui, app);
+    mask(ui, app.doc().style(), &mut settings.masked_groups);
+    app.set_brush_settings(settings);
     ui.horizontal(|ui| {
         ui.label(format!(
             "{} strands masked on the scalp",
-            app.brush.masked.len()
+            app.brush().masked.len()
         ));
-        if !app.brush.masked.is_empty() && ui.button("clear mask").clicked() {
-            app.brush.masked.clear();
+        if !app.brush().masked.is_empty() && ui.button("clear mask").clicked() {
+            app.clear_mask();
         }
     });
     recording(ui, app);
-    if let Some(last) = &app.brush.last {
+    if let Some(last) = &app.brush().last {
         ui.small(format!("last stroke: {}", last.describe()));
     }
 }
 
 /// The selection mask: which groups the brush may touch.
-fn mask(ui: &mut Ui, app: &mut AppState) {
-    let names = app.doc.style().group_names();
+fn mask(ui: &mut Ui, style: &crate::style::Style, masked: &mut Vec<String>) {
+    let names = style.group_names();
     if names.len() < 2 {
         return;
     }
     ui.label("the brush touches:");
     ui.horizontal_wrapped(|ui| {
-        let masked = &mut app.brush.settings.masked_groups;
         for name in names {
             let mut on = !masked.contains(&name);
             if ui.checkbox(&mut on, &name).changed() {
@@ -165,7 +166,7 @@ fn mask(ui: &mut Ui, app: &mut AppState) {
 
 /// Start or stop recording strokes to a file beside the style.
 fn recording(ui: &mut Ui, app: &mut AppState) {
-    match &app.brush.recording {
+    match &app.brush().recording {
         Some(r) => {
             ui.small(format!(
                 "recording {} strokes to {}",
@@ -173,7 +174,7 @@ fn recording(ui: &mut Ui, app: &mut AppState) {
                 r.path.display()
             ));
             if ui.button("stop recording strokes").clicked() {
-                app.brush.recording = None;
+                app.stop_recording_strokes();
             }
         }
         None => {
@@ -182,9 +183,8 @@ fn recording(ui: &mut Ui, app: &mut AppState) {
                 .on_hover_text("write every stroke to a file `helixhair groom --strokes` replays")
                 .clicked()
             {
-                let path = strokes_path_for(app.doc.path());
-                app.brush.record_to(&path);
-                app.message = Some(format!("recording strokes to {}", path.display()));
+                let path = strokes_path_for(app.doc().path());
+                app.record_strokes_to(&path);
             }
         }
     }

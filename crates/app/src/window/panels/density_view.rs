@@ -45,7 +45,7 @@ pub fn show(ctx: &egui::Context, app: &AppState) {
 }
 
 fn slice(ui: &mut Ui, app: &AppState) {
-    let Some((rest, field)) = app.sim.engine().volume_field() else {
+    let Some((rest, field)) = app.sim().engine().volume_field() else {
         ui.label("the hair–hair interaction is off (or not yet stepped)");
         return;
     };

@@ -24,7 +24,7 @@ const AVERAGE_FRAMES: usize = 30;
 
 /// Draws the readouts.
 pub fn readouts(ui: &mut Ui, app: &AppState) {
-    let r = &app.readouts;
+    let r = app.readouts();
     let ms = |s: Option<f64>| s.map_or("–".to_string(), |s| format!("{:.1} ms", 1e3 * s));
     ui.label(format!(
         "frame time {} ({:.0} fps)",
@@ -35,7 +35,7 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
         "physics {} per frame",
         ms(r.mean_physics_secs(AVERAGE_FRAMES))
     ));
-    let batch = app.sim.kind() == EngineKind::Batch;
+    let batch = app.sim().kind() == EngineKind::Batch;
     if batch {
         ui.label(format!("stages: {NOT_ON_BATCH} (its stages are fused)"));
     } else if let Some(s) = r.last().and_then(|last| last.stages) {
@@ -51,12 +51,12 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
     ui.label(format!(
         "{:.3e} element-steps/s; {} strands, {} elements",
         r.element_steps_per_sec(AVERAGE_FRAMES).unwrap_or(0.0),
-        app.sim.engine().strand_count(),
-        app.sim.engine().element_count()
+        app.sim().engine().strand_count(),
+        app.sim().engine().element_count()
     ));
     ui.label(format!(
         "engine: {} ({})",
-        app.sim.kind().label(),
+        app.sim().kind().label(),
         if batch { "f32 SIMD, all cores" } else { "f64" }
     ));
     ui.separator();
@@ -81,7 +81,7 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
             "J",
         );
     }
-    if let Some((_, m)) = &app.compare {
+    if let Some((_, m)) = app.compare() {
         ui.separator();
         let last = r.last().and_then(|s| s.difference_m);
         if let Some((rms, max)) = last {

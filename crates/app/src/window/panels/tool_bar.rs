@@ -15,7 +15,7 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     ui.horizontal(|ui| {
         file_menu(ui, app, &mut view.picker, &mut view.files);
         if ui.button("Save").clicked() {
-            if app.doc.path().is_some() {
+            if app.doc().path().is_some() {
                 app.save(None);
             } else {
                 view.picker = Some(open_picker(
@@ -25,34 +25,34 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
                 ));
             }
         }
-        if app.head.recorder.is_some() && ui.button("Stop recording").clicked() {
+        if app.head().recorder.is_some() && ui.button("Stop recording").clicked() {
             stop_recording(app, &mut view.files);
         }
         ui.separator();
-        let (can_undo, can_redo) = app.doc.can_undo_redo();
+        let (can_undo, can_redo) = app.doc().can_undo_redo();
         if ui
             .add_enabled(can_undo, egui::Button::new("Undo"))
             .clicked()
         {
-            app.doc.undo();
+            app.undo();
         }
         if ui
             .add_enabled(can_redo, egui::Button::new("Redo"))
             .clicked()
         {
-            app.doc.redo();
+            app.redo();
         }
         ui.separator();
-        let pause = if app.paused { "Play" } else { "Pause" };
+        let pause = if app.is_paused() { "Play" } else { "Pause" };
         if ui.button(pause).clicked() {
-            app.paused = !app.paused;
+            app.toggle_pause();
         }
         ui.separator();
-        let mut on = app.compare.is_some();
+        let mut on = app.compare().is_some();
         if ui.checkbox(&mut on, "compare solvers").changed() {
             app.set_compare(on.then(CompareMethods::default));
         }
-        if let Some((_, methods)) = app.compare {
+        if let Some(methods) = app.compare_methods() {
             let mut m = methods;
             method_combo(ui, "left", &mut m.left);
             method_combo(ui, "right", &mut m.right);
@@ -61,7 +61,7 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             }
         }
         ui.separator();
-        ui.label(app.doc.title());
+        ui.label(app.doc().title());
     });
     ui.horizontal(|ui| {
         ui.label("tool:");

@@ -28,32 +28,33 @@ use crate::window::present::viewport::{framed_camera, move_head, orbit, pan, tur
 use crate::window::state::app_state::AppState;
 use crate::window::state::brush_state::ToolKind;
 use crate::window::state::default_style::{grown_count, regrow_roots};
+use crate::window::state::presets::Preset;
 use crate::window::state::unsaved::{AfterAnswer, confirm_dialog};
 
 /// Draws the whole window for one frame.
 pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
-    if view.framed_on_m != app.head.pivot_m {
-        view.framed_on_m = app.head.pivot_m;
+    if view.framed_on_m != app.head().pivot_m {
+        view.framed_on_m = app.head().pivot_m;
         view.camera = framed_camera(view.framed_on_m);
     }
     shortcuts(ui.ctx(), app, view);
     egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, app, view));
     egui::Panel::bottom("messages").show(ui, |ui| {
-        if let Some(e) = &app.invalid {
+        if let Some(e) = app.invalid() {
             ui.colored_label(
                 egui::Color32::from_rgb(255, 120, 90),
                 format!("not simulated: {e}"),
             );
         }
-        if let Some(guard) = app.guard.sentence() {
-            let colour = if app.guard.losses() > 0 {
+        if let Some(guard) = app.guard().sentence() {
+            let colour = if app.guard().losses() > 0 {
                 egui::Color32::from_rgb(255, 190, 90)
             } else {
                 ui.visuals().text_color()
             };
             ui.colored_label(colour, guard);
         }
-        ui.label(app.message.as_deref().unwrap_or("ready"));
+        ui.label(app.message().unwrap_or("ready"));
     });
     egui::Panel::left("style")
         .default_size(330.0)
@@ -64,13 +65,13 @@ pub fn draw(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         .default_size(330.0)
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                if app.brush.settings.kind != ToolKind::Orbit {
+                if app.brush().settings.kind != ToolKind::Orbit {
                     brush_controls(ui, app);
                     ui.separator();
                 }
                 head_controls(ui, app);
                 ui.separator();
-                if app.brush.settings.kind == ToolKind::Orbit {
+                if app.brush().settings.kind == ToolKind::Orbit {
                     brush_controls(ui, app);
                     ui.separator();
                 }
@@ -113,10 +114,10 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
         if i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z)
             || i.consume_key(Modifiers::COMMAND, Key::Y)
         {
-            app.doc.redo();
+            app.redo();
         }
         if i.consume_key(Modifiers::COMMAND, Key::Z) {
-            app.doc.undo();
+            app.undo();
         }
         if i.consume_key(Modifiers::COMMAND, Key::S) {
             app.save(None);
@@ -140,10 +141,10 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
             }
         }
         if !typing && i.consume_key(Modifiers::NONE, Key::F) {
-            view.camera = framed_camera(app.head.pivot_m);
+            view.camera = framed_camera(app.head().pivot_m);
         }
         if !typing && i.consume_key(Modifiers::NONE, Key::Space) {
-            app.paused = !app.paused;
+            app.toggle_pause();
         }
         if i.consume_key(Modifiers::NONE, Key::Escape) {
             app.cancel_stroke();
@@ -160,22 +161,22 @@ fn shortcuts(ctx: &egui::Context, app: &mut AppState, view: &mut ViewState) {
 }
 
 fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
-    let before = app.doc.style().clone();
+    let mut edited = app.doc().style().clone();
     let mut notes = Vec::new();
     ui.heading("Simulation");
-    sim_settings(ui, app.doc.style_mut(), &mut notes);
+    sim_settings(ui, &mut edited, &mut notes);
     // The field follows the style's count when that changes (a load, an
     // undo, a regrow), and keeps what the user typed otherwise.
-    let grown = grown_count(app.doc.style());
+    let grown = grown_count(&edited);
     if view.guides_seen.is_some_and(|seen| seen != grown) {
         view.guides = grown;
     }
     view.guides_seen = Some(grown);
+    let mut buttons = Vec::new();
     ui.horizontal(|ui| {
         count_field(ui, "guide strands", &mut view.guides, MAX_GUIDES);
         if ui.button("regrow on scalp").clicked() {
-            let (head, count) = (&app.head_mesh, view.guides);
-            app.doc.edit(|s| regrow_roots(s, head, count));
+            buttons.push(StyleButton::Regrow(view.guides));
         }
     });
     ui.horizontal(|ui| {
@@ -188,9 +189,9 @@ fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         }
     });
     let open_groups = view.open_groups.take();
-    let groups = app.doc.style().groups.len();
+    let groups = edited.groups.len();
     for g in 0..groups {
-        let group = &app.doc.style().groups[g];
+        let group = &edited.groups[g];
         let title = format!("group `{}` ({})", group.name, strand_count_words(group));
         egui::CollapsingHeader::new(title)
             .id_salt(("group", g))
@@ -199,18 +200,39 @@ fn style_column(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             .show(ui, |ui| {
                 // A preset is mostly a curl, which an imported strand does
                 // not take (its rest shape is the groom's).
-                if group_shapes_strands(&app.doc.style().groups[g]) {
-                    preset_row(ui, app, view, g);
+                if group_shapes_strands(&edited.groups[g]) {
+                    buttons.extend(preset_row(ui, app, view, g));
                 }
-                group_params(ui, &mut app.doc.style_mut().groups[g], &mut notes);
+                group_params(ui, &mut edited.groups[g], &mut notes);
             });
     }
-    if let Some(note) = typed_value_check(app, &before) {
-        notes.push(note);
-    }
     if let Some(last) = notes.pop() {
-        app.message = Some(last);
+        app.say(last);
     }
+    // The widgets' copy goes to the state, which refuses a typed value out
+    // of the format's range; a button's whole edit follows as its own step.
+    app.propose_style(edited);
+    for button in buttons {
+        match button {
+            StyleButton::Regrow(count) => {
+                let head = app.head_mesh().clone();
+                app.edit_style(|s| regrow_roots(s, &head, count));
+            }
+            StyleButton::ApplyPreset(g, preset) => app.apply_preset(g, &preset),
+            StyleButton::SavePreset(g, name) => app.save_user_preset(g, &name),
+        }
+    }
+}
+
+/// A button of the style column, acted on after the widgets' edits are in
+/// (a whole-style change of its own, so an undo step of its own).
+enum StyleButton {
+    /// "regrow on scalp" with this many guide strands.
+    Regrow(usize),
+    /// A preset applied to a group.
+    ApplyPreset(usize, Preset),
+    /// A group's parameters saved as the user's preset of this name.
+    SavePreset(usize, String),
 }
 
 /// Most guide strands the "regrow on scalp" field accepts (as `--guides`
@@ -243,35 +265,19 @@ pub fn strand_count_words(group: &crate::style::StrandGroup) -> String {
     }
 }
 
-/// A typed value the style format refuses (out of its range) is taken
-/// back, and the message names the field and its allowed range. Sliders
-/// cannot leave the format's range, so only typed values land here.
-fn typed_value_check(app: &mut AppState, before: &crate::style::Style) -> Option<String> {
-    if app.doc.style() == before || before.validate().is_err() {
-        return None;
-    }
-    let problem = app.doc.validity().err()?;
-    *app.doc.style_mut() = before.clone();
-    Some(format!("not applied: {problem}"))
-}
-
 /// The preset buttons, the preset name field and "save as preset".
-fn preset_row(ui: &mut Ui, app: &mut AppState, view: &mut ViewState, g: usize) {
+fn preset_row(ui: &mut Ui, app: &AppState, view: &mut ViewState, g: usize) -> Option<StyleButton> {
+    let mut pressed = None;
     ui.horizontal_wrapped(|ui| {
         ui.label("preset:");
-        let presets: Vec<_> = app
-            .presets
-            .iter()
-            .chain(&app.user_presets)
-            .cloned()
-            .collect();
+        let presets: Vec<_> = app.presets().cloned().collect();
         for p in presets {
             let hint = format!(
                 "this group's parameters; the style's substeps (all groups) rise to at least {}",
                 p.min_substeps
             );
             if ui.button(&p.name).on_hover_text(hint).clicked() {
-                app.apply_preset(g, &p);
+                pressed = Some(StyleButton::ApplyPreset(g, p.clone()));
             }
         }
     });
@@ -281,10 +287,11 @@ fn preset_row(ui: &mut Ui, app: &mut AppState, view: &mut ViewState, g: usize) {
         if ui.button("save as preset").clicked() {
             let name = view.preset_name.trim().to_string();
             if !name.is_empty() {
-                app.save_user_preset(g, &name);
+                pressed = Some(StyleButton::SavePreset(g, name));
             }
         }
     });
+    pressed
 }
 
 fn head_controls(ui: &mut Ui, app: &mut AppState) {
@@ -298,11 +305,11 @@ fn head_controls(ui: &mut Ui, app: &mut AppState) {
     });
     // The sliders are the user's own pose; a clip moves the head on top of
     // it, so say which one plays.
-    match app.head.playing(app.now_secs()) {
+    match app.head().playing(app.now_secs()) {
         Some(what) => ui.label(format!("playing: {what} (on top of the pose below)")),
         None => ui.label("playing: nothing"),
     };
-    let pose = &mut app.head.target;
+    let mut pose = app.head().target;
     ui.add(
         egui::Slider::new(&mut pose.turn_rad, -1.4..=1.4)
             .text("turn")
@@ -314,8 +321,9 @@ fn head_controls(ui: &mut Ui, app: &mut AppState) {
             .suffix(" rad"),
     );
     if ui.button("centre head").clicked() {
-        *pose = Default::default();
+        pose = Default::default();
     }
+    app.set_head_pose(pose);
     if ui
         .button("set current shape as rest")
         .on_hover_text("freeze the hair as it is now: its shape becomes the equilibrium (undoable)")
@@ -329,7 +337,7 @@ fn head_controls(ui: &mut Ui, app: &mut AppState) {
 fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     let rect = ui.available_rect_before_wrap();
     let ppp = ui.ctx().pixels_per_point();
-    let halves = if app.compare.is_some() { 2 } else { 1 };
+    let halves = if app.compare().is_some() { 2 } else { 1 };
     let width_pt = rect.width() / halves as f32;
     view.view_px = [
         ((width_pt * ppp) as u32).max(1),
@@ -346,7 +354,7 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
             ui.painter().image(*id, sub, uv, egui::Color32::WHITE);
         }
     }
-    if let Some((_, m)) = &app.compare {
+    if let Some((_, m)) = app.compare() {
         for (k, method) in [m.left, m.right].into_iter().enumerate() {
             ui.painter().text(
                 rect.min + egui::vec2(width_pt * k as f32 + 8.0, 8.0),
@@ -361,7 +369,7 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     let alt = ui.input(|i| i.modifiers.alt);
     let shift = ui.input(|i| i.modifiers.shift);
     let height = rect.height();
-    let brushing = app.brush.settings.kind != ToolKind::Orbit;
+    let brushing = app.brush().settings.kind != ToolKind::Orbit;
     if brushing && !alt {
         let view_rect = egui::Rect::from_min_size(rect.min, egui::vec2(width_pt, rect.height()));
         brush_input(ui, app, view, &response, view_rect);
@@ -372,7 +380,9 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         orbit(&mut view.camera, delta.x, delta.y);
     } else if (alt || !brushing) && response.dragged_by(PointerButton::Primary) {
         if alt {
-            turn_head(&mut app.head.target, delta.x, delta.y);
+            let mut pose = app.head().target;
+            turn_head(&mut pose, delta.x, delta.y);
+            app.set_head_pose(pose);
         } else if shift {
             pan(&mut view.camera, delta.x, delta.y, height);
         } else {
@@ -387,7 +397,9 @@ fn view_area(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
     };
     if pans {
         if alt {
-            move_head(&mut app.head.target, &view.camera, delta.x, delta.y, height);
+            let mut pose = app.head().target;
+            move_head(&mut pose, &view.camera, delta.x, delta.y, height);
+            app.set_head_pose(pose);
         } else {
             pan(&mut view.camera, delta.x, delta.y, height);
         }

@@ -75,19 +75,20 @@ fn expanding_every_group_and_saving_gives_the_file_back_byte_for_byte() {
     let opened = dir.join("beyond.ron");
     std::fs::write(&opened, style_beyond_the_sliders().to_ron().unwrap()).unwrap();
     let mut app = AppState::new(style_beyond_the_sliders(), Some(&opened)).unwrap();
-    app.paused = true;
+    app.toggle_pause();
+    assert!(app.is_paused());
     let mut view = ViewState::new(3000);
     view.open_groups = Some(true);
     let ctx = egui::Context::default();
     for _ in 0..4 {
         let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
-        app.doc.settle(false);
+        app.settle_edits(false);
         app.step_frame();
     }
     assert!(
-        !app.doc.title().contains('*'),
+        !app.doc().title().contains('*'),
         "showing the style changed it: {}",
-        app.doc.title()
+        app.doc().title()
     );
     let saved = dir.join("saved.ron");
     app.save(Some(&saved));
@@ -165,10 +166,12 @@ fn a_typed_value_is_taken_as_typed_not_clamped() {
 #[test]
 fn a_typed_value_out_of_the_format_is_taken_back_with_its_allowed_range() {
     let mut app = AppState::new(default_style(4), None).unwrap();
-    let before = app.doc.style().clone();
-    app.doc.style_mut().groups[0].params.length_m = 5.0;
-    let note = typed_value_check(&mut app, &before).expect("a message");
-    assert_eq!(*app.doc.style(), before);
+    let before = app.doc().style().clone();
+    let mut edited = before.clone();
+    edited.groups[0].params.length_m = 5.0;
+    app.propose_style(edited);
+    assert_eq!(*app.doc().style(), before);
+    let note = app.message().expect("a message");
     assert!(note.contains("groups[0].params.length_m"), "{note}");
     assert!(note.contains("(0, 2]"), "{note}");
     assert!(note.contains('5'), "{note}");
@@ -262,14 +265,15 @@ fn the_guide_field_follows_the_styles_count_when_it_changes() {
     // Issue 32, item 5: after opening another style the field still held
     // the last style's count.
     let mut app = AppState::new(default_style(12), None).unwrap();
-    app.paused = true;
+    app.toggle_pause();
+    assert!(app.is_paused());
     let mut view = ViewState::new(12);
     let ctx = egui::Context::default();
     let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
     view.guides = 40;
     let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
     assert_eq!(view.guides, 40, "what the user typed stays");
-    app.doc.edit(|s| *s = default_style(7));
+    app.edit_style(|s| *s = default_style(7));
     let _ = ctx.run_ui(input(Vec::new()), |ui| draw(ui, &mut app, &mut view));
     assert_eq!(view.guides, 7, "a new style's count replaces it");
 }

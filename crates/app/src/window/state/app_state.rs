@@ -58,44 +58,48 @@ impl Default for CompareMethods {
     }
 }
 
-/// The application's state.
+/// The application's state. Its fields are the state module's own: the
+/// panels read them through [`AppState`]'s accessors and ask for changes
+/// through its methods ([`super::requests`]), which keep what belongs
+/// together together (an edit that would make the style invalid is not
+/// applied; a message is posted with the style it is about).
 #[derive(Debug)]
 pub struct AppState {
     /// The style being edited.
-    pub doc: StyleDoc,
+    pub(in crate::window::state) doc: StyleDoc,
     /// The main run.
-    pub sim: LiveSim,
+    pub(in crate::window::state) sim: LiveSim,
     /// The compare view's second run and its methods, when on.
-    pub compare: Option<(LiveSim, CompareMethods)>,
+    pub(in crate::window::state) compare: Option<(LiveSim, CompareMethods)>,
     /// The head's motion.
-    pub head: HeadDriver,
+    pub(in crate::window::state) head: HeadDriver,
     /// The head mesh, head coordinates.
-    pub head_mesh: Arc<HeadMesh>,
+    pub(in crate::window::state) head_mesh: Arc<HeadMesh>,
     /// The files of `head_mesh` and of the mesh collided with (`None`: the
     /// default head).
-    pub head_files: Option<HeadFiles>,
+    pub(in crate::window::state) head_files: Option<HeadFiles>,
     /// Live numbers.
-    pub readouts: Readouts,
+    pub(in crate::window::state) readouts: Readouts,
     /// Physics paused.
-    pub paused: bool,
+    pub(in crate::window::state) paused: bool,
     /// Why the edited style is not being simulated, if it is invalid.
-    pub invalid: Option<String>,
+    pub(in crate::window::state) invalid: Option<String>,
     /// The last message for the user (load and save errors, notices).
-    pub message: Option<String>,
+    pub(in crate::window::state) message: Option<String>,
     /// Built-in presets.
-    pub presets: Vec<Preset>,
+    pub(in crate::window::state) presets: Vec<Preset>,
     /// The user's presets and their file.
-    pub user_presets: Vec<Preset>,
+    pub(in crate::window::state) user_presets: Vec<Preset>,
     /// Where the user's presets are saved.
-    pub user_presets_path: PathBuf,
+    pub(in crate::window::state) user_presets_path: PathBuf,
     /// An action waiting for "save your changes?" ([`super::unsaved`]).
-    pub leaving: Option<Leave>,
+    pub(in crate::window::state) leaving: Option<Leave>,
     /// The window should close (the user asked, and nothing is unsaved).
-    pub quit: bool,
+    pub(in crate::window::state) quit: bool,
     /// What the stability guard did since the last edit, in words.
-    pub guard: GuardStatus,
+    pub(in crate::window::state) guard: GuardStatus,
     /// The brush: tool, settings, the stroke under way, the recording.
-    pub brush: BrushState,
+    pub(in crate::window::state) brush: BrushState,
     /// The message as last seen and the style it was posted on: once the
     /// style changes, the message is about a style that is gone.
     message_posted: (Option<String>, Option<Style>),
@@ -123,7 +127,8 @@ impl AppState {
             Err(e) => {
                 // No collider (or none from this mesh): simulate without.
                 message = Some(e);
-                LiveSim::new(doc.style(), head.mesh.clone(), None, None)?
+                LiveSim::new(doc.style(), head.mesh.clone(), None, None)
+                    .map_err(|e| e.to_string())?
             }
         };
         let user_presets_path = user_presets_path();
@@ -198,7 +203,7 @@ impl AppState {
             }
         };
         if let Err(e) = result {
-            self.message = Some(e);
+            self.message = Some(e.to_string());
         }
     }
 
@@ -278,7 +283,7 @@ impl AppState {
             let style = self.doc.style();
             for sim in std::iter::once(&mut self.sim).chain(self.compare.as_mut().map(|(s, _)| s)) {
                 if let Err(e) = sim.sync(style) {
-                    self.invalid = Some(e);
+                    self.invalid = Some(e.to_string());
                 }
             }
         }

@@ -40,7 +40,7 @@ impl AppState {
         if self.compare.is_none()
             && let Err(e) = self.sim.set_overrides(engine, None)
         {
-            self.message = Some(e);
+            self.message = Some(e.to_string());
         }
     }
 
@@ -62,7 +62,7 @@ impl AppState {
         if self.sim.kind() != EngineKind::Reference
             && let Err(e) = self.sim.set_overrides(Some(EngineKind::Reference), None)
         {
-            self.message = Some(e);
+            self.message = Some(e.to_string());
             return false;
         }
         let names = self.doc.style().group_names();

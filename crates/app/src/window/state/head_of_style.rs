@@ -67,7 +67,8 @@ pub fn style_head(doc: &StyleDoc) -> Result<StyleHead, String> {
 /// A simulation of `doc`'s style colliding with `head`.
 pub fn simulate_on(doc: &StyleDoc, head: &StyleHead) -> Result<LiveSim, String> {
     let collider = HeadCollider::from_head(head.collider.as_ref().unwrap_or(&head.mesh))?;
-    let mut sim = LiveSim::new(doc.style(), head.mesh.clone(), None, None)?;
+    let mut sim =
+        LiveSim::new(doc.style(), head.mesh.clone(), None, None).map_err(|e| e.to_string())?;
     sim.set_collider(Some(collider));
     Ok(sim)
 }

@@ -19,6 +19,7 @@ pub mod guard_status;
 pub mod head_of_style;
 pub mod presets;
 pub mod readouts;
+pub mod requests;
 pub mod set_rest;
 pub mod undo;
 pub mod unsaved;

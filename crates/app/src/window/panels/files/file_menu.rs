@@ -23,7 +23,6 @@ use super::import_dialog::{ImportAnswer, ImportDialog, import_dialog, open_mater
 use crate::window::jobs::export_job::{ExportRequest, start_export};
 use crate::window::jobs::import_job::{import_extension, start_import};
 use crate::window::jobs::job::{Job, JobDone, progress_ui};
-use crate::window::live::motion_recorder::MotionRecorder;
 use crate::window::state::app_state::AppState;
 use crate::window::state::unsaved::Leave;
 
@@ -48,14 +47,14 @@ pub struct FileWindows {
 /// folder, else the home folder (not the working folder, which is the
 /// source checkout under `cargo run`).
 pub fn open_picker(app: &AppState, last_folder: Option<&Path>, mode: PickerMode) -> FilePicker {
-    let name = match app.doc.path() {
+    let name = match app.doc().path() {
         Some(p) => p
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default(),
-        None => format!("{}.ron", app.doc.style().name),
+        None => format!("{}.ron", app.doc().style().name),
     };
-    let folder = start_folder(last_folder, app.doc.path());
+    let folder = start_folder(last_folder, app.doc().path());
     FilePicker::new(mode, folder, name)
 }
 
@@ -75,7 +74,7 @@ pub fn start_folder(last_folder: Option<&Path>, style: Option<&Path>) -> PathBuf
 /// A file next to the style's (or in the working folder) named after the
 /// style, with `extension`.
 fn beside_style(app: &AppState, extension: &str) -> PathBuf {
-    let (folder, stem) = match app.doc.path() {
+    let (folder, stem) = match app.doc().path() {
         Some(p) => (
             p.parent().map(Path::to_owned).unwrap_or_default(),
             p.file_stem()
@@ -83,7 +82,7 @@ fn beside_style(app: &AppState, extension: &str) -> PathBuf {
         ),
         None => (
             std::env::current_dir().unwrap_or_default(),
-            app.doc.style().name.clone(),
+            app.doc().style().name.clone(),
         ),
     };
     folder.join(format!("{stem}.{extension}"))
@@ -111,7 +110,7 @@ pub fn file_menu(
             ));
         }
         if ui.button("Save").clicked() {
-            if app.doc.path().is_some() {
+            if app.doc().path().is_some() {
                 app.save(None);
             } else {
                 *picker_slot = Some(open_picker(
@@ -156,7 +155,7 @@ pub fn export_dialog_for(app: &AppState, animation: bool) -> ExportDialog {
         points_per_strand: DEFAULT_POINTS_PER_STRAND,
         frames: DEFAULT_RECORD_FRAMES,
         clip: None,
-        frame_secs: app.sim.engine().settings().dt_secs,
+        frame_secs: app.sim().engine().settings().dt_secs,
     }
 }
 
@@ -166,11 +165,10 @@ fn motion_items(
     picker_slot: &mut Option<FilePicker>,
     files: &mut FileWindows,
 ) {
-    match &app.head.recorder {
+    match &app.head().recorder {
         None => {
             if ui.button("Record head motion").clicked() {
-                app.head.recorder = Some(MotionRecorder::default());
-                app.message = Some("recording the head's motion: drag it with Alt".into());
+                app.record_head_motion();
             }
         }
         Some(rec) => {
@@ -200,11 +198,11 @@ fn motion_items(
 
 /// Ends the recording and keeps it for "Save head motion…".
 pub fn stop_recording(app: &mut AppState, files: &mut FileWindows) {
-    let Some(rec) = app.head.recorder.take() else {
+    let Some(rec) = app.take_head_recording() else {
         return;
     };
     files.recorded = rec.motion("recorded in the window");
-    app.message = Some(match &files.recorded {
+    app.say(match &files.recorded {
         Some(m) => format!(
             "recorded {} keys over {:.2} s: File > Save head motion… to keep them",
             m.keys.len(),
@@ -223,7 +221,7 @@ pub fn picked(app: &mut AppState, files: &mut FileWindows, mode: PickerMode, pat
         PickerMode::ImportGroom => start_import_job(app, files, path),
         PickerMode::PlayMotion => play_motion_file(app, &path),
         PickerMode::SaveMotion => {
-            app.message = Some(match &files.recorded {
+            app.say(match &files.recorded {
                 Some(m) => match m.save(&path) {
                     Ok(()) => format!("head motion saved to {}", path.display()),
                     Err(e) => e.to_string(),
@@ -238,11 +236,10 @@ pub fn picked(app: &mut AppState, files: &mut FileWindows, mode: PickerMode, pat
 pub fn play_motion_file(app: &mut AppState, path: &Path) {
     match Playback::File(path.to_owned()).load() {
         Ok(playback) => {
-            let now = app.now_secs();
-            app.head.play_motion(playback, now);
-            app.message = Some(format!("playing {}", path.display()));
+            app.play_head_motion(playback);
+            app.say(format!("playing {}", path.display()));
         }
-        Err(e) => app.message = Some(e.to_string()),
+        Err(e) => app.say(e.to_string()),
     }
 }
 
@@ -260,10 +257,10 @@ pub fn dropped(app: &mut AppState, files: &mut FileWindows, path: PathBuf) {
 /// when the user answers.
 fn start_import_job(app: &mut AppState, files: &mut FileWindows, groom: PathBuf) {
     if files.job.is_some() {
-        app.message = Some("another file job is running; wait for it or cancel it".into());
+        app.say("another file job is running; wait for it or cancel it");
         return;
     }
-    let material = open_material(app.doc.style());
+    let material = open_material(app.doc().style());
     files.import = Some(ImportDialog::new(&groom, material));
 }
 
@@ -286,7 +283,7 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
                         files.job = Some(job);
                         files.export = None;
                     }
-                    Err(e) => app.message = Some(format!("{e:#}")),
+                    Err(e) => app.say(format!("{e:#}")),
                 }
             }
         }
@@ -299,7 +296,7 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
                 let (head, collider) = (dialog.head_path(), dialog.collider_path());
                 match start_import(&dialog.groom, head, collider, dialog.material()) {
                     Ok(job) => files.job = Some(job),
-                    Err(e) => app.message = Some(format!("{e:#}")),
+                    Err(e) => app.say(format!("{e:#}")),
                 }
                 files.import = None;
             }
@@ -317,15 +314,15 @@ pub fn file_windows(ctx: &egui::Context, app: &mut AppState, files: &mut FileWin
     };
     files.job = None;
     match result {
-        Ok(JobDone::Exported(outcome)) => app.message = Some(outcome.summary()),
+        Ok(JobDone::Exported(outcome)) => app.say(outcome.summary()),
         Ok(JobDone::Imported(style, warnings)) => {
             app.request_leave(Leave::Open(style));
             if !warnings.is_empty() {
                 // After the open, which starts the status line afresh.
-                app.message = Some(format!("imported with warnings: {}", warnings.join("; ")));
+                app.say(format!("imported with warnings: {}", warnings.join("; ")));
             }
         }
-        Err(e) => app.message = Some(format!("{e:#}")),
+        Err(e) => app.say(format!("{e:#}")),
     }
 }
 
