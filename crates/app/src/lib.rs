@@ -40,8 +40,9 @@
 //!    the line and the field ([`StyleError`], located with
 //!    [`style::source_map::SourceMap`]).
 //! 2. [`HeadlessSim::new`] builds an [`helixhair_physics::engine::Engine`]
-//!    from it ([`sim::headless`]) on the style's engine or `--engine`, with
-//!    the command line's other overrides (and, with an accuracy target, the
+//!    from it through the one builder, [`sim::build`] (which the window's
+//!    live run uses too), on the style's engine or `--engine`, with the
+//!    command line's other overrides (and, with an accuracy target, the
 //!    solver and element counts of [`sim::auto_choice`]).
 //! 3. [`HeadlessSim::run`] steps it, timing each frame and checking the
 //!    state stays finite.
