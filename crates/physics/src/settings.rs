@@ -142,8 +142,9 @@ pub enum StepScheme {
     /// G x, a jet sweep, and one solve with the factors they already have),
     /// stopping once the residual is below 1e-5 of the right-hand side
     /// (`gmres::GMRES_TOLERANCE`).
-    /// Block-diagonal keeps the velocity terms explicit (its P is too far
-    /// from the whole matrix for the iteration to converge).
+    /// Block-diagonal runs the same GMRES with its own P = s M_bd + D and
+    /// the derivative of its own Lagrangian's velocity terms
+    /// (`step::block_velocity_terms`), on the reference engine.
     VelocityImplicit {
         /// Most GMRES iterations per step, range 0..=8 (0 is the explicit
         /// answer). Default 8: a 0.66 m curl needs up to 8 to stop gaining

@@ -33,20 +33,21 @@ fn own_element_blocks_blow_up_on_a_curly_strand_at_any_usable_step() {
 fn block_diagonal_without_friction_blows_up_under_a_head_shake() {
     // What goes wrong: with zero internal friction and a head shaking
     // 0.5 rad at 1.5 Hz, a curly 20 cm strand at 60 Hz goes non-finite
-    // within a second under Block-diagonal; with the default friction it
-    // stays bounded, and Dense stays bounded either way. Block-diagonal's
-    // own Lagrangian velocity terms (the default scheme) do not save it:
-    // with the head moving they are a driven system's, and they stay
-    // explicit in the step, which is what made every solver blow up under
-    // a shake before the velocity-implicit step (docs/solvers.md).
+    // within a second under Block-diagonal with the velocity terms frozen
+    // at the step's start (the whole system's, `VelocityExplicit`); with
+    // the default friction it stays bounded, and Dense stays bounded
+    // either way. With its own Lagrangian's terms taken implicitly (the
+    // default scheme, docs/solvers.md) Block-diagonal stays finite
+    // without friction too: explicit velocity terms were the cause.
     let head = Oscillation {
         axis: DVec3::Y,
         amplitude_rad: 0.5,
         frequency_hz: 1.5,
     };
-    let run = |method: Method, friction: f64| -> bool {
+    let run = |method: Method, scheme: StepScheme, friction: f64| -> bool {
         let settings = SimSettings {
             method,
+            scheme,
             ..SimSettings::default()
         };
         let mut system = HairSystem::new(settings).expect("valid settings");
@@ -63,15 +64,23 @@ fn block_diagonal_without_friction_blows_up_under_a_head_shake() {
             system.is_finite()
         })
     };
+    let (explicit, implicit) = (StepScheme::VelocityExplicit, StepScheme::default());
     assert!(
-        !run(Method::BlockDiagonal, 0.0),
-        "block-diagonal stayed finite without friction"
+        !run(Method::BlockDiagonal, explicit, 0.0),
+        "block-diagonal stayed finite without friction, velocity terms explicit"
     );
     assert!(
-        run(Method::BlockDiagonal, 2e-10),
-        "block-diagonal failed with default friction"
+        run(Method::BlockDiagonal, explicit, 2e-10),
+        "block-diagonal failed with default friction, velocity terms explicit"
     );
-    assert!(run(Method::Dense, 0.0), "dense failed without friction");
+    assert!(
+        run(Method::BlockDiagonal, implicit, 0.0),
+        "block-diagonal failed without friction, its own velocity terms implicit"
+    );
+    assert!(
+        run(Method::Dense, implicit, 0.0),
+        "dense failed without friction"
+    );
 }
 
 #[test]

@@ -169,6 +169,9 @@ fn a_strand_that_keeps_failing_is_pinned_once_not_reset_every_frame() {
     assert!(events[2].to_string().contains("pinned"));
 }
 
+/// A real blow-up of Block-diagonal (the whole system's velocity terms,
+/// frozen at the step's start, no friction: tests/failure_modes.rs) is
+/// caught although the guard judges Block-diagonal by its own energy.
 #[test]
 fn a_frictionless_head_shake_is_caught_before_it_shows() {
     let head = Oscillation {
@@ -181,6 +184,7 @@ fn a_frictionless_head_shake_is_caught_before_it_shows() {
     p.natural_shape = helix_shape();
     let settings = SimSettings {
         method: Method::BlockDiagonal,
+        scheme: StepScheme::VelocityExplicit,
         ..SimSettings::default()
     };
     let mut system = HairSystem::new(settings).expect("valid settings");

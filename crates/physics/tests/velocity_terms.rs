@@ -20,11 +20,7 @@ const ROUNDOFF_REL: f64 = 1e-9;
 fn product_matches_differences_of_the_forces() {
     for (seed, elements, curl) in [(3, 6, 60.0), (4, 10, 150.0), (5, 4, 0.0)] {
         let mut rng = Rng::new(seed);
-        let mut p = params(0.2, elements);
-        p.layout = helixhair_physics::ElementLayout::Graded {
-            tip_to_root_ratio: 3.0,
-        };
-        let m = model(&p, 3);
+        let m = graded_model(0.2, elements);
         let q = random_strains(&mut rng, elements, curl);
         let v = random_strains(&mut rng, elements, 30.0);
         let x = random_strains(&mut rng, elements, 10.0);

@@ -53,9 +53,9 @@
 //!   polarisation, two kinematic sweeps with rates q̇ ± cz
 //!   ([`velocity_terms`]). `StepScheme::VelocityExplicit` (and 0
 //!   corrections) runs the explicit step bit for bit as before.
-//!   Block-diagonal stays velocity-explicit, as in the reference (its
-//!   truncated matrix is too far from the whole one for the iteration to
-//!   converge).
+//!   Block-diagonal stays velocity-explicit with the whole system's
+//!   velocity terms: the reference's own-Lagrangian terms, implicit there
+//!   ([`crate::step::block_velocity_terms`]), are not on this engine yet.
 //! - **Threads**: rayon over batches; a batch's arithmetic does not depend
 //!   on which thread runs it, so serial and parallel runs are bit-identical.
 //! - **Collide** ([`contact`], optional): the head's collider

@@ -95,6 +95,8 @@ pub struct StepWorkspace {
     pub scheme: StepScheme,
     velocity_terms: VelocityTerms,
     block_terms: BlockVelocityTerms,
+    /// Block-diagonal's share of a GMRES product.
+    block_product: Vec<DVec3>,
     gmres: GmresBridge,
     contact_weights: Vec<(usize, DMat3)>,
     step_mass: MassData,
@@ -116,6 +118,7 @@ impl StepWorkspace {
             scheme: StepScheme::default(),
             velocity_terms: VelocityTerms::default(),
             block_terms: BlockVelocityTerms::default(),
+            block_product: Vec::new(),
             gmres: GmresBridge::default(),
             contact_weights: Vec::new(),
             step_mass: MassData::default(),
@@ -153,14 +156,16 @@ pub fn step_strand(
         StepScheme::VelocityExplicit => 0,
         StepScheme::VelocityImplicit { corrections } => corrections,
     };
-    // The velocity terms' products need the Jacobians' rates (Block-diagonal
-    // keeps its velocity terms explicit and does without).
-    let implicit_velocity = corrections > 0 && !matches!(ws.solver, Solver::BlockDiagonal(_));
     // Block-diagonal (subtree blocks) takes the velocity terms of its own
-    // Lagrangian instead ([`crate::step::block_velocity_terms`]).
+    // Lagrangian ([`crate::step::block_velocity_terms`]), implicit with its
+    // own derivative; the "own element" reading keeps the whole system's,
+    // explicit.
     let block_lagrangian = corrections > 0 && ws.solver.method() == Method::BlockDiagonal;
+    // The velocity terms' products need the Jacobians' rates.
+    let implicit_velocity =
+        corrections > 0 && (block_lagrangian || !matches!(ws.solver, Solver::BlockDiagonal(_)));
     let t = Instant::now();
-    if implicit_velocity || block_lagrangian {
+    if implicit_velocity {
         reconstruct_with_rates(model, q, v, inputs.forces.root, &mut ws.kinematics);
     } else {
         reconstruct(model, q, v, inputs.forces.root, &mut ws.kinematics);
@@ -238,11 +243,10 @@ pub fn step_strand(
     let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
     ws.solver
         .solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
-    // Block-diagonal's own P is too far from P + hG on a whipping strand
-    // (measured: Richardson's residual grew from the first correction), so
-    // its velocity terms stay explicit: its own Lagrangian's, added to the
-    // forces above.
-    if matches!(ws.solver, Solver::Exact(_) | Solver::Iterative(_)) {
+    // Block-diagonal corrects with its own Lagrangian's G: with the true
+    // system's, its P was too far from P + hG on a whipping strand
+    // (Richardson's residual grew from the first correction).
+    if matches!(ws.solver, Solver::Exact(_) | Solver::Iterative(_)) || block_lagrangian {
         velocity_corrections(model, q, v, root, h, corrections, in_contact, ws);
     }
     times.solve_secs = t.elapsed().as_secs_f64();
@@ -309,11 +313,14 @@ fn velocity_corrections(
     in_contact: bool,
     ws: &mut StepWorkspace,
 ) {
+    let own_terms = ws.solver.method() == Method::BlockDiagonal;
     let StepWorkspace {
         kinematics,
         mass,
         solver,
         velocity_terms,
+        block_terms,
+        block_product,
         gmres: bridge,
         step_mass,
         velocity_product,
@@ -338,6 +345,7 @@ fn velocity_corrections(
         &mut *solve_out,
         &mut *product_in,
         &mut *velocity_product,
+        &mut *block_product,
     ] {
         buffer.resize(n, DVec3::ZERO);
     }
@@ -364,6 +372,13 @@ fn velocity_corrections(
                 product_in,
                 velocity_product,
             );
+            if own_terms {
+                // G_bd x = G_true x − ∂(F_true − F_bd)/∂q̇ x.
+                block_terms.correction_rate_times(model, q, v, root, product_in, block_product);
+                for (g, c) in velocity_product.iter_mut().zip(block_product.iter()) {
+                    *g -= *c;
+                }
+            }
             from_dvec3(velocity_product, out);
         },
     );

@@ -51,6 +51,16 @@ pub fn params(length_m: f64, elements: usize) -> StrandParams {
     }
 }
 
+/// A strand of `length_m` and `elements` whose elements grow 3:1 from
+/// root to tip, 3 quadrature points each: the derivative checks' strand.
+pub fn graded_model(length_m: f64, elements: usize) -> StrandModel {
+    let mut p = params(length_m, elements);
+    p.layout = helixhair_physics::ElementLayout::Graded {
+        tip_to_root_ratio: 3.0,
+    };
+    model(&p, 3)
+}
+
 pub fn model(p: &StrandParams, quadrature_points: usize) -> StrandModel {
     StrandModel::new(p, quadrature_points).expect("valid test parameters")
 }

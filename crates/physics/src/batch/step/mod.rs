@@ -77,7 +77,8 @@ impl Scratch {
 /// Which step a batch takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum BatchStep {
-    /// Block-diagonal, velocity terms explicit (as in the reference).
+    /// Block-diagonal, the whole system's velocity terms, explicit (the
+    /// reference takes its own Lagrangian's, implicit).
     BlockDiagonal,
     /// Exact, velocity terms explicit.
     Exact,
