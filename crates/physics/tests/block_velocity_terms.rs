@@ -175,8 +175,10 @@ fn the_corrections_rate_derivative_is_its_directional_derivative() {
                 .zip(&minus)
                 .map(|(p, m)| (*p - *m) / (2.0 * FD_STEP))
                 .collect();
+            let at_rates = correction(0.0);
             let mut got = vec![DVec3::ZERO; elements];
-            BlockVelocityTerms::default().correction_rate_times(&m, &q, &v, &root, &z, &mut got);
+            BlockVelocityTerms::default()
+                .correction_rate_times(&m, &q, &v, &root, &at_rates, &z, &mut got);
             let scale = expected
                 .iter()
                 .map(|g| g.abs().max_element())

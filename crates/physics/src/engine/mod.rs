@@ -41,8 +41,8 @@
 //! physics. Both engines collide with it: the reference at every
 //! quadrature sample, the batch engine at element end points
 //! ([`crate::batch::contact`]), both with the implicit contact (its
-//! stiffness and damping in the step matrix) except the batch engine's
-//! Block-diagonal, which keeps the explicit penalty.
+//! stiffness and damping in the step matrix; Block-diagonal keeps its
+//! diagonal blocks, on both engines).
 
 pub mod rest_contact;
 

@@ -95,6 +95,8 @@ pub struct StepWorkspace {
     pub scheme: StepScheme,
     velocity_terms: VelocityTerms,
     block_terms: BlockVelocityTerms,
+    /// Block-diagonal's correction F_true − F_bd at the step's rates.
+    block_correction: Vec<DVec3>,
     /// Block-diagonal's share of a GMRES product.
     block_product: Vec<DVec3>,
     gmres: GmresBridge,
@@ -118,6 +120,7 @@ impl StepWorkspace {
             scheme: StepScheme::default(),
             velocity_terms: VelocityTerms::default(),
             block_terms: BlockVelocityTerms::default(),
+            block_correction: Vec::new(),
             block_product: Vec::new(),
             gmres: GmresBridge::default(),
             contact_weights: Vec::new(),
@@ -176,15 +179,15 @@ pub fn step_strand(
     ws.forces.resize(n, DVec3::ZERO);
     generalized_forces(model, &ws.kinematics, &inputs.forces, &mut ws.forces);
     if block_lagrangian {
-        ws.velocity_product.resize(n, DVec3::ZERO);
+        ws.block_correction.resize(n, DVec3::ZERO);
         ws.block_terms.correction(
             model,
             &ws.kinematics,
             v,
             inputs.forces.root,
-            &mut ws.velocity_product,
+            &mut ws.block_correction,
         );
-        for (f, c) in ws.forces.iter_mut().zip(&ws.velocity_product) {
+        for (f, c) in ws.forces.iter_mut().zip(&ws.block_correction) {
             *f += *c;
         }
     }
@@ -320,6 +323,7 @@ fn velocity_corrections(
         solver,
         velocity_terms,
         block_terms,
+        block_correction,
         block_product,
         gmres: bridge,
         step_mass,
@@ -374,7 +378,15 @@ fn velocity_corrections(
             );
             if own_terms {
                 // G_bd x = G_true x − ∂(F_true − F_bd)/∂q̇ x.
-                block_terms.correction_rate_times(model, q, v, root, product_in, block_product);
+                block_terms.correction_rate_times(
+                    model,
+                    q,
+                    v,
+                    root,
+                    block_correction,
+                    product_in,
+                    block_product,
+                );
                 for (g, c) in velocity_product.iter_mut().zip(block_product.iter()) {
                     *g -= *c;
                 }
