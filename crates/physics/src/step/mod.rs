@@ -246,10 +246,11 @@ pub fn step_strand(
     let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
     ws.solver
         .solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
-    // Block-diagonal corrects with its own Lagrangian's G: with the true
-    // system's, its P was too far from P + hG on a whipping strand
-    // (Richardson's residual grew from the first correction).
-    if matches!(ws.solver, Solver::Exact(_) | Solver::Iterative(_)) || block_lagrangian {
+    // The O(N) solvers correct by GMRES (Dense factored hG in above);
+    // Block-diagonal with its own Lagrangian's G: with the true system's,
+    // its P was too far from P + hG on a whipping strand (Richardson's
+    // residual grew from the first correction).
+    if implicit_velocity && !matches!(ws.solver, Solver::Dense(_)) {
         velocity_corrections(model, q, v, root, h, corrections, in_contact, ws);
     }
     times.solve_secs = t.elapsed().as_secs_f64();

@@ -230,7 +230,7 @@ mod tests {
         );
         let app = AppState::new(written, Some(&style)).unwrap();
         assert_eq!(
-            app.head_files().as_ref().map(|f| f.drawn.as_path()),
+            app.head_files().map(|f| f.drawn.as_path()),
             Some(dir.join("bust.obj").as_path())
         );
         // The head pivot (which the view frames) is on the lifted head, and

@@ -363,12 +363,26 @@ fn grow(style: &Style, head: &HeadMesh) -> Style {
 }
 
 /// The engine of the grown `style` through the one builder
-/// ([`build_sim`]), with the window's engine and solver overrides.
+/// ([`build_sim`]), with the window's engine and solver overrides. The
+/// window runs the solver and element counts the style names: it switches
+/// solvers in place ([`LiveSim::sync`], the compare view), which a
+/// per-strand automatic choice would not survive, so an accuracy target is
+/// left to `sim`, `render` and `export`.
 fn build(
     style: &Style,
     engine: Option<EngineKind>,
     method: Option<Method>,
 ) -> Result<(Engine, Vec<StyleStrand>), SimError> {
+    let without_target;
+    let style = if style.accuracy_target.is_some() {
+        without_target = Style {
+            accuracy_target: None,
+            ..style.clone()
+        };
+        &without_target
+    } else {
+        style
+    };
     let overrides = SimOverrides {
         engine,
         method,

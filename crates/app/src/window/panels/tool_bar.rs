@@ -52,7 +52,7 @@ pub(super) fn tool_bar(ui: &mut Ui, app: &mut AppState, view: &mut ViewState) {
         if ui.checkbox(&mut on, "compare solvers").changed() {
             app.set_compare(on.then(CompareMethods::default));
         }
-        if let Some(methods) = app.compare_methods() {
+        if let Some(&(_, methods)) = app.compare() {
             let mut m = methods;
             method_combo(ui, "left", &mut m.left);
             method_combo(ui, "right", &mut m.right);

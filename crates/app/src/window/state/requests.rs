@@ -50,11 +50,6 @@ impl AppState {
         self.compare.as_ref()
     }
 
-    /// The compare view's methods, when on.
-    pub fn compare_methods(&self) -> Option<CompareMethods> {
-        self.compare.as_ref().map(|(_, m)| *m)
-    }
-
     /// The head's motion: pose, clip, recorder, pivot.
     pub fn head(&self) -> &HeadDriver {
         &self.head
