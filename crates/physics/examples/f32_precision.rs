@@ -86,8 +86,8 @@ fn main() {
     let model = StrandModel::new(&params, settings.quadrature_points).expect("valid strand");
     let model = BatchModel::new(&model);
     let env = StepEnv {
-        h_secs: settings.substep_secs() as f32,
-        gravity_m_per_s2: settings.gravity_m_per_s2.as_vec3().to_array(),
+        h_secs: settings.substep_secs(),
+        gravity_m_per_s2: settings.gravity_m_per_s2.to_array(),
         air_velocity_m_per_s: [0.0; 3],
     };
     let head = RigidMotion::default();

@@ -70,7 +70,7 @@ fn friction_in_the_batch_step_is_air_drag_toward_the_target() {
     let env = |air: DVec3| StepEnv {
         h_secs: 1.0 / 60.0,
         gravity_m_per_s2: [0.0, -9.81, 0.0],
-        air_velocity_m_per_s: air.as_vec3().to_array(),
+        air_velocity_m_per_s: air.to_array(),
     };
     let known = vec![lanes_of(&[rho_s * mu * u; LANES]); n * points_per_element(4)];
     let pull = SamplePull {

@@ -191,9 +191,9 @@ fn f32_dense_step(reference: &HairSystem, index: usize, head: &RigidMotion) -> V
     let model = BatchModel::new(strand.model());
     let s = reference.settings();
     let env = StepEnv {
-        h_secs: s.substep_secs() as f32,
-        gravity_m_per_s2: s.gravity_m_per_s2.as_vec3().to_array(),
-        air_velocity_m_per_s: s.air_velocity_m_per_s.as_vec3().to_array(),
+        h_secs: s.substep_secs(),
+        gravity_m_per_s2: s.gravity_m_per_s2.to_array(),
+        air_velocity_m_per_s: s.air_velocity_m_per_s.to_array(),
     };
     let root = RootMotion::<f32>::gather(&[head.carry(strand.root())]);
     let to32 = |x: &[DVec3]| -> Vec<V3<f32>> {

@@ -17,6 +17,7 @@ mod block_velocity_terms;
 mod collision;
 mod derivatives;
 mod engine;
+mod f64_instance;
 mod failure_modes;
 mod fit;
 mod geometry;

@@ -115,9 +115,9 @@ fn lane_dense(
     let model = BatchModel::new(&StrandModel::new(params, settings.quadrature_points)?);
     let n = model.elements();
     let env = StepEnv {
-        h_secs: settings.substep_secs() as f32,
-        gravity_m_per_s2: settings.gravity_m_per_s2.as_vec3().to_array(),
-        air_velocity_m_per_s: settings.air_velocity_m_per_s.as_vec3().to_array(),
+        h_secs: settings.substep_secs(),
+        gravity_m_per_s2: settings.gravity_m_per_s2.to_array(),
+        air_velocity_m_per_s: settings.air_velocity_m_per_s.to_array(),
     };
     let natural: Vec<V3<Lanes>> = model.natural.iter().map(|k| V3::splat(*k)).collect();
     let batches = roots.len().div_ceil(LANES);

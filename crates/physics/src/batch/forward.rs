@@ -97,8 +97,8 @@ pub fn sweep_samples<T: Real>(
     let mut s = FrameState::at_root(root);
     for (e, (k, k_dot)) in q.iter().zip(v).enumerate() {
         let length_m = model.length_m(e);
-        for (j, node) in model.nodes().iter().enumerate() {
-            let lp = local_point(T::splat(*node) * length_m, *k, *k_dot);
+        for j in 0..model.node_count() {
+            let lp = local_point(model.node(j) * length_m, *k, *k_dot);
             let [r, vel, _] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
             sample(e, j, r, vel);
         }
@@ -234,8 +234,8 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: SampleHook<T>>(
     let length_m = model.length_m(e);
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
-    let g = V3::splat(env.gravity_m_per_s2);
-    let air = V3::splat(env.air_velocity_m_per_s);
+    let g = V3::splat_f64(env.gravity_m_per_s2);
+    let air = V3::splat_f64(env.air_velocity_m_per_s);
     let zero = T::splat(0.0);
     let (mut force_sum, mut torque_sum, mut first_moment) = (V3::zero(), V3::zero(), V3::zero());
     let mut mass = zero;
@@ -252,20 +252,20 @@ pub fn own_sums_into<T: Real, const OFF_DIAGONAL: bool, H: SampleHook<T>>(
     // share is taken over s here, so that it enters unscaled, as the
     // parent's share (`contact`) does (crate::batch::contact).
     let inverse_sqrt_scale = if H::SAMPLE_CONTACT {
-        let drag = nu / rho_s + T::splat(hook.drag_rate_per_s());
-        T::splat(1.0) / (T::splat(1.0) + T::splat(env.h_secs) * drag).sqrt()
+        let drag = nu / rho_s + T::splat_f64(hook.drag_rate_per_s());
+        T::splat(1.0) / (T::splat(1.0) + T::splat_f64(env.h_secs) * drag).sqrt()
     } else {
         T::splat(1.0)
     };
-    for (j, (node, weight)) in model.nodes().iter().zip(model.weights()).enumerate() {
-        let sigma = T::splat(*node) * length_m;
+    for j in 0..model.node_count() {
+        let sigma = model.node(j) * length_m;
         let co = match coefficients {
             Some(known) => known[j],
             None => coefficients_at(sigma, k, false),
         };
         let lp = local_point_with(sigma, k, k_dot, co);
         let [r, vel, acc] = s.carry(lp.h, lp.h_dot, lp.h_ddot);
-        let w_len = T::splat(*weight) * length_m;
+        let w_len = model.weight(j) * length_m;
         let w_mass = w_len * rho_s;
         let mut per_length = (g - acc).scale_add(rho_s, (air - vel).scale(nu));
         if H::SAMPLE_FORCES {
@@ -397,7 +397,7 @@ pub fn forward_with<T: Real, const OFF_DIAGONAL: bool, const LOCAL: bool, H: Sam
     hook: &H,
     coefficients: Option<&[Coefficients<T>]>,
 ) {
-    let per_element = model.nodes().len() + 1;
+    let per_element = model.node_count() + 1;
     let mut s = FrameState::at_root(root);
     for (e, el) in out.iter_mut().enumerate() {
         let co = coefficients
@@ -475,7 +475,7 @@ pub trait SampleHook<T> {
     /// An extra drag rate, 1/s, taken implicitly through the mass scale
     /// (the hair–hair friction μ, [`crate::batch::volume::pull`]).
     #[inline(always)]
-    fn drag_rate_per_s(&self) -> f32 {
+    fn drag_rate_per_s(&self) -> f64 {
         0.0
     }
 

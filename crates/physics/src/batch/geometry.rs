@@ -19,7 +19,8 @@
 //!
 //! The coefficients come from 11 terms of their series in y below y = 16
 //! (x = 4 rad of turn across an element; the first neglected term is
-//! 16¹¹/23! ≈ 7e-10) and from sines and cosines above; a batch whose lanes
+//! 16¹¹/23! ≈ 7e-10; the f64 instance keeps 16, 16¹⁶/33! ≈ 2e-18) and
+//! from sines and cosines above; a batch whose lanes
 //! are all below 16 skips the closed form. The series reach that far
 //! because, in f32, they are the more accurate of the two there: their
 //! largest term (0.67 for B at x = 4) against B = 0.10 costs a few ulps,
@@ -35,41 +36,44 @@ use super::vec::{M3, V3};
 
 /// Below this y = x² the coefficients come from their series (module docs).
 pub const SERIES_LIMIT_Y: f32 = 16.0;
-/// Series terms kept in f32: enough for round-off only up to
-/// [`SERIES_LIMIT_Y`].
-const TERMS: usize = 11;
+/// Series terms kept at most (the f64 instance's [`Real::SERIES_TERMS`]);
+/// f32 keeps 11, enough for its round-off up to [`SERIES_LIMIT_Y`].
+const MAX_TERMS: usize = 16;
 
-/// (−1)ⁿ/(2n + offset)! for n = 0..TERMS, computed in f64 then rounded.
-const fn series_coefficients(offset: u32) -> [f32; TERMS] {
-    let mut c = [0.0; TERMS];
+/// (−1)ⁿ/(2n + offset)! for n = 0..MAX_TERMS, in f64; each width rounds
+/// them once ([`Real::splat_f64`]).
+const fn series_coefficients(offset: u32) -> [f64; MAX_TERMS] {
+    let mut c = [0.0; MAX_TERMS];
     let mut n = 0;
-    while n < TERMS {
+    while n < MAX_TERMS {
         let mut factorial = 1.0f64;
         let mut j = 2;
         while j <= 2 * n as u32 + offset {
             factorial *= j as f64;
             j += 1;
         }
-        c[n] = ((if n % 2 == 0 { 1.0 } else { -1.0 }) / factorial) as f32;
+        c[n] = (if n % 2 == 0 { 1.0 } else { -1.0 }) / factorial;
         n += 1;
     }
     c
 }
 
-const A_SERIES: [f32; TERMS] = series_coefficients(1);
-const B_SERIES: [f32; TERMS] = series_coefficients(2);
-const C_SERIES: [f32; TERMS] = series_coefficients(3);
+const A_SERIES: [f64; MAX_TERMS] = series_coefficients(1);
+const B_SERIES: [f64; MAX_TERMS] = series_coefficients(2);
+const C_SERIES: [f64; MAX_TERMS] = series_coefficients(3);
 
-/// f(y), f′(y), f″(y) of a power series by Horner's rule.
+/// f(y), f′(y), f″(y) of a power series by Horner's rule, with the
+/// first [`Real::SERIES_TERMS`] terms of `c`.
 #[inline(always)]
-fn horner<T: Real>(c: &[f32; TERMS], y: T) -> [T; 3] {
-    let mut p = T::splat(c[TERMS - 1]);
+fn horner<T: Real>(c: &[f64; MAX_TERMS], y: T) -> [T; 3] {
+    let terms = T::SERIES_TERMS.min(MAX_TERMS);
+    let mut p = T::splat_f64(c[terms - 1]);
     let mut dp = T::splat(0.0);
     let mut half_ddp = T::splat(0.0);
-    for &cn in c[..TERMS - 1].iter().rev() {
+    for &cn in c[..terms - 1].iter().rev() {
         half_ddp = half_ddp.mul_add(y, dp);
         dp = dp.mul_add(y, p);
-        p = p.mul_add(y, T::splat(cn));
+        p = p.mul_add(y, T::splat_f64(cn));
     }
     [p, dp, half_ddp + half_ddp]
 }

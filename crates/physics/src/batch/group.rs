@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::contact::{LaneContact, SkinTest};
 use super::forward::NoContact;
 use super::guard::{check_lanes, measure_lanes, set_at_rest};
-use super::lane_model::{Constants, LaneModel};
+use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
 use super::vec::{V3, lane_of, set_lane};
@@ -498,7 +498,7 @@ fn judge_batch(
     let root = RootMotion::<Lanes>::gather(&motions);
     let contact = check.contact.as_ref();
     let samples = pull.is_some().then(|| {
-        kept.resize(q.len() * model.nodes().len(), [V3::zero(); 2]);
+        kept.resize(q.len() * model.nodes.len(), [V3::zero(); 2]);
         kept.as_mut_slice()
     });
     let end = measure_lanes(

@@ -115,15 +115,15 @@ pub fn measure_lanes<'a>(
 ) -> LaneMeasures<'a> {
     let rho_s = model.mass_per_length();
     let nu = model.air_drag();
-    let g = V3::splat(env.gravity_m_per_s2);
-    let air = V3::splat(env.air_velocity_m_per_s);
+    let g = V3::splat_f64(env.gravity_m_per_s2);
+    let air = V3::splat_f64(env.air_velocity_m_per_s);
     let zero = Lanes::splat(0.0);
     let (mut kinetic, mut elastic, mut power, mut fastest_squared) = (zero, zero, zero, zero);
     let mut strain_kinetic = zero;
     let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
         (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
     let (mut mass, mut second_moment) = (zero, zero);
-    let nodes = model.nodes().len();
+    let nodes = model.node_count();
     // Quadrature samples (relative to the root) and their velocities, for
     // the contact's test after the sweep: kept out of the SIMD loop, whose
     // state would otherwise be spilled for the per-lane lookups.
@@ -140,7 +140,7 @@ pub fn measure_lanes<'a>(
         if let Some(kept) = samples.as_deref_mut() {
             kept[e * nodes + j] = [r, vel];
         }
-        let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
+        let w_len = model.weight(j) * model.length_m(e);
         let w_mass = w_len * rho_s;
         if let Some(block) = &block {
             block.borrow_mut().sample(w_mass, r, vel);
@@ -208,7 +208,11 @@ pub fn measure_lanes<'a>(
         in_contact,
         motions,
         fastest: fastest_squared.sqrt(),
-        gravity_m_per_s2: DVec3::from_array(env.gravity_m_per_s2.map(f64::from)),
+        // The gravity the f32 step felt, rounded as it was.
+        gravity_m_per_s2: DVec3::from_array(
+            env.gravity_m_per_s2
+                .map(|g| Lanes::splat_f64(g).lane_f64(0)),
+        ),
     }
 }
 

@@ -28,6 +28,7 @@
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::BatchModel;
 use super::vec::V3;
+use crate::model::StrandModel;
 
 /// The constants one step reads, as values of `T` (one per lane).
 pub trait Constants<T: Real> {
@@ -45,10 +46,12 @@ pub trait Constants<T: Real> {
     fn mass_per_length(&self) -> T;
     /// ν, N·s/m².
     fn air_drag(&self) -> T;
-    /// Quadrature nodes in [0, 1] (the same for every lane).
-    fn nodes(&self) -> &[f32];
-    /// Quadrature weights, summing to 1 (the same for every lane).
-    fn weights(&self) -> &[f32];
+    /// Quadrature points per element (the same for every lane).
+    fn node_count(&self) -> usize;
+    /// Quadrature node `j` in [0, 1] (the same for every lane).
+    fn node(&self, j: usize) -> T;
+    /// Quadrature weight `j`; the weights sum to 1 (the same for every lane).
+    fn weight(&self, j: usize) -> T;
 }
 
 /// One strand's constants, the same in every lane.
@@ -82,12 +85,16 @@ impl<T: Real> Constants<T> for BatchModel {
         T::splat(self.air_drag)
     }
     #[inline(always)]
-    fn nodes(&self) -> &[f32] {
-        &self.nodes
+    fn node_count(&self) -> usize {
+        self.nodes.len()
     }
     #[inline(always)]
-    fn weights(&self) -> &[f32] {
-        &self.weights
+    fn node(&self, j: usize) -> T {
+        T::splat(self.nodes[j])
+    }
+    #[inline(always)]
+    fn weight(&self, j: usize) -> T {
+        T::splat(self.weights[j])
     }
 }
 
@@ -215,11 +222,60 @@ impl Constants<Lanes> for LaneModel {
         self.air_drag
     }
     #[inline(always)]
-    fn nodes(&self) -> &[f32] {
-        &self.nodes
+    fn node_count(&self) -> usize {
+        self.nodes.len()
     }
     #[inline(always)]
-    fn weights(&self) -> &[f32] {
-        &self.weights
+    fn node(&self, j: usize) -> Lanes {
+        Lanes::splat(self.nodes[j])
+    }
+    #[inline(always)]
+    fn weight(&self, j: usize) -> Lanes {
+        Lanes::splat(self.weights[j])
+    }
+}
+
+/// The f64 reference's constants, exactly: the step's f64 instance reads
+/// them unrounded; any other width rounds each once ([`Real::splat_f64`]).
+impl<T: Real> Constants<T> for StrandModel {
+    #[inline(always)]
+    fn element_count(&self) -> usize {
+        self.lengths_m.len()
+    }
+    #[inline(always)]
+    fn length_m(&self, e: usize) -> T {
+        T::splat_f64(self.lengths_m[e])
+    }
+    #[inline(always)]
+    fn stiffness(&self, e: usize) -> V3<T> {
+        V3::splat_f64(self.stiffness[e].to_array())
+    }
+    #[inline(always)]
+    fn natural(&self, e: usize) -> V3<T> {
+        V3::splat_f64(self.natural[e].to_array())
+    }
+    #[inline(always)]
+    fn friction(&self, e: usize) -> T {
+        T::splat_f64(self.friction[e])
+    }
+    #[inline(always)]
+    fn mass_per_length(&self) -> T {
+        T::splat_f64(self.mass_per_length)
+    }
+    #[inline(always)]
+    fn air_drag(&self) -> T {
+        T::splat_f64(self.air_drag)
+    }
+    #[inline(always)]
+    fn node_count(&self) -> usize {
+        self.quadrature.nodes.len()
+    }
+    #[inline(always)]
+    fn node(&self, j: usize) -> T {
+        T::splat_f64(self.quadrature.nodes[j])
+    }
+    #[inline(always)]
+    fn weight(&self, j: usize) -> T {
+        T::splat_f64(self.quadrature.weights[j])
     }
 }

@@ -38,10 +38,18 @@ pub trait Real:
     /// The same value in every lane, from an f64 constant: rounded once to
     /// the type's own precision (kept exact by `f64`).
     fn splat_f64(x: f64) -> Self;
+    /// Terms of the helix coefficients' power series that this precision
+    /// needs below [`crate::batch::geometry::SERIES_LIMIT_Y`]: the first
+    /// neglected term, 16ⁿ/(2n + 1)!, under the type's round-off.
+    const SERIES_TERMS: usize;
     /// Lane `i` from `f(i)`, for `i` in `0..WIDTH`.
     fn from_fn(f: impl Fn(usize) -> f32) -> Self;
+    /// Lane `i` from `f(i)`, rounded once to the type's own precision.
+    fn from_fn_f64(f: impl Fn(usize) -> f64) -> Self;
     /// The value of lane `i`.
     fn lane(self, i: usize) -> f32;
+    /// The value of lane `i`, in f64 (exact).
+    fn lane_f64(self, i: usize) -> f64;
     /// Square root, lane by lane.
     fn sqrt(self) -> Self;
     /// (sin, cos), lane by lane.
@@ -64,6 +72,7 @@ pub trait Real:
 
 impl Real for f32 {
     const WIDTH: usize = 1;
+    const SERIES_TERMS: usize = 11;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         x
@@ -77,8 +86,16 @@ impl Real for f32 {
         f(0)
     }
     #[inline(always)]
+    fn from_fn_f64(f: impl Fn(usize) -> f64) -> Self {
+        f(0) as f32
+    }
+    #[inline(always)]
     fn lane(self, _i: usize) -> f32 {
         self
+    }
+    #[inline(always)]
+    fn lane_f64(self, _i: usize) -> f64 {
+        f64::from(self)
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
@@ -118,11 +135,11 @@ impl Real for f32 {
     }
 }
 
-/// The step's arithmetic in f64 on the f32 constants: a diagnostic twin
-/// (does a difference from the f64 reference come from f32 round-off in
-/// the arithmetic, or from the algorithm?).
+/// The step's arithmetic in f64, one strand at a time: the f64 reference's
+/// precision, with constants given in f64 ([`Real::splat_f64`]).
 impl Real for f64 {
     const WIDTH: usize = 1;
+    const SERIES_TERMS: usize = 16;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         x as f64
@@ -136,8 +153,16 @@ impl Real for f64 {
         f(0) as f64
     }
     #[inline(always)]
+    fn from_fn_f64(f: impl Fn(usize) -> f64) -> Self {
+        f(0)
+    }
+    #[inline(always)]
     fn lane(self, _i: usize) -> f32 {
         self as f32
+    }
+    #[inline(always)]
+    fn lane_f64(self, _i: usize) -> f64 {
+        self
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
@@ -257,6 +282,7 @@ impl Neg for Lanes {
 
 impl Real for Lanes {
     const WIDTH: usize = LANES;
+    const SERIES_TERMS: usize = 11;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         Lanes(f32x8::splat(x))
@@ -270,8 +296,16 @@ impl Real for Lanes {
         Self::from_array(std::array::from_fn(f))
     }
     #[inline(always)]
+    fn from_fn_f64(f: impl Fn(usize) -> f64) -> Self {
+        Self::from_array(std::array::from_fn(|i| f(i) as f32))
+    }
+    #[inline(always)]
     fn lane(self, i: usize) -> f32 {
         self.0.as_array()[i]
+    }
+    #[inline(always)]
+    fn lane_f64(self, i: usize) -> f64 {
+        f64::from(self.0.as_array()[i])
     }
     #[inline(always)]
     fn sqrt(self) -> Self {

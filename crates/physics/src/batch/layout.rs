@@ -72,11 +72,11 @@ impl BatchModel {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepEnv {
     /// Step length h, seconds.
-    pub h_secs: f32,
+    pub h_secs: f64,
     /// Gravity, m/s².
-    pub gravity_m_per_s2: [f32; 3],
+    pub gravity_m_per_s2: [f64; 3],
     /// Air velocity, m/s.
-    pub air_velocity_m_per_s: [f32; 3],
+    pub air_velocity_m_per_s: [f64; 3],
 }
 
 /// The motion of each lane's root frame at the start of a step.
@@ -97,9 +97,9 @@ pub struct RootMotion<T> {
 fn gather_v3<T: Real>(motions: &[RigidMotion], f: impl Fn(&RigidMotion) -> DVec3) -> V3<T> {
     let at = |i: usize| f(&motions[i.min(motions.len() - 1)]);
     V3::new(
-        T::from_fn(|i| at(i).x as f32),
-        T::from_fn(|i| at(i).y as f32),
-        T::from_fn(|i| at(i).z as f32),
+        T::from_fn_f64(|i| at(i).x),
+        T::from_fn_f64(|i| at(i).y),
+        T::from_fn_f64(|i| at(i).z),
     )
 }
 

@@ -142,7 +142,7 @@ fn retry_batch(
         v.copy_from_slice(start.1);
         let h_secs = frame.dt_secs / f64::from(substeps);
         let env = StepEnv {
-            h_secs: h_secs as f32,
+            h_secs,
             ..inputs.env
         };
         for i in 0..substeps {

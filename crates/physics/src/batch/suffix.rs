@@ -113,8 +113,8 @@ pub fn step_terms<T: Real>(
     q: V3<T>,
     v: V3<T>,
 ) -> (V3<T>, V3<T>) {
-    let h = T::splat(env.h_secs);
-    let h_squared = T::splat(env.h_secs * env.h_secs);
+    let h = T::splat_f64(env.h_secs);
+    let h_squared = h * h;
     let kv = model.stiffness(e);
     let friction = model.friction(e);
     let n = model.natural(e);
@@ -142,12 +142,12 @@ pub fn step_terms<T: Real>(
 /// s = 1 + hν/ρS, which folds the implicit drag into the mass term.
 #[inline(always)]
 pub fn mass_scale<T: Real>(model: &impl Constants<T>, env: &StepEnv) -> T {
-    T::splat(1.0) + T::splat(env.h_secs) * model.air_drag() / model.mass_per_length()
+    T::splat(1.0) + T::splat_f64(env.h_secs) * model.air_drag() / model.mass_per_length()
 }
 
 /// Stage "integrate": v ← v + Δv, q ← q + h v.
 #[inline(always)]
-pub fn integrate<T: Real>(h_secs: f32, q: &mut V3<T>, v: &mut V3<T>, delta_v: V3<T>) {
+pub fn integrate<T: Real>(h_secs: f64, q: &mut V3<T>, v: &mut V3<T>, delta_v: V3<T>) {
     *v += delta_v;
-    *q += v.scale(T::splat(h_secs));
+    *q += v.scale(T::splat_f64(h_secs));
 }

@@ -282,9 +282,9 @@ impl BatchSystem {
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
         let h = self.settings.substep_secs();
         let env = StepEnv {
-            h_secs: h as f32,
-            gravity_m_per_s2: self.settings.gravity_m_per_s2.as_vec3().to_array(),
-            air_velocity_m_per_s: self.settings.air_velocity_m_per_s.as_vec3().to_array(),
+            h_secs: h,
+            gravity_m_per_s2: self.settings.gravity_m_per_s2.to_array(),
+            air_velocity_m_per_s: self.settings.air_velocity_m_per_s.to_array(),
         };
         let kinds = StepKinds {
             own: BatchStep::of(&self.settings),

@@ -42,6 +42,12 @@ impl<T: Real> V3<T> {
     pub fn splat(v: [f32; 3]) -> Self {
         Self::new(T::splat(v[0]), T::splat(v[1]), T::splat(v[2]))
     }
+    /// The same f64 vector in every lane, each component rounded once to
+    /// the type's precision.
+    #[inline(always)]
+    pub fn splat_f64(v: [f64; 3]) -> Self {
+        Self::new(T::splat_f64(v[0]), T::splat_f64(v[1]), T::splat_f64(v[2]))
+    }
     /// Dot product.
     #[inline(always)]
     pub fn dot(self, o: Self) -> T {

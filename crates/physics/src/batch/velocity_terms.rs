@@ -81,8 +81,8 @@ pub fn coefficients_of<T: Real>(
     out.clear();
     for (e, k) in q.iter().enumerate() {
         let length_m = model.length_m(e);
-        for node in model.nodes() {
-            out.push(coefficients_at(T::splat(*node) * length_m, *k, false));
+        for j in 0..model.node_count() {
+            out.push(coefficients_at(model.node(j) * length_m, *k, false));
         }
         out.push(coefficients_at(length_m, *k, true));
     }
@@ -134,7 +134,7 @@ pub fn velocity_product<T: Real>(
     };
     let mut plus = FrameState::at_root(&still);
     let mut minus = plus;
-    let per_element = model.nodes().len() + 1;
+    let per_element = model.node_count() + 1;
     for ((e, sums), co) in own
         .iter_mut()
         .enumerate()
@@ -156,13 +156,13 @@ pub fn velocity_product<T: Real>(
         };
         let mut result = OwnProduct::zero();
         let mut local = V3::zero();
-        for ((node, weight), co) in model.nodes().iter().zip(model.weights()).zip(co_nodes) {
-            let sigma = T::splat(*node) * length_m;
+        for (j, co) in co_nodes.iter().enumerate() {
+            let sigma = model.node(j) * length_m;
             let lp = local_point_with(sigma, k, k_plus, *co);
             let lm = local_point_with(sigma, k, k_minus, *co);
             let [r, _, acc_plus] = origin_plus.carry(lp.h, lp.h_dot, lp.h_ddot);
             let [_, _, acc_minus] = origin_minus.carry(lm.h, lm.h_dot, lm.h_ddot);
-            let f = (acc_plus - acc_minus).scale(factor * (T::splat(*weight) * length_m));
+            let f = (acc_plus - acc_minus).scale(factor * (model.weight(j) * length_m));
             local = lp.jacobian.t_mul_vec_add(plus.frame.t_mul_vec(f), local);
             result.force += f;
             result.torque += r.cross(f);

@@ -49,9 +49,9 @@ pub fn model_of(params: &ParamsGpu, elements: &[ElementConstGpu]) -> (BatchModel
         nodes: flat(&params.nodes),
         weights: flat(&params.weights),
     };
-    let xyz = |v: [f32; 4]| [v[0], v[1], v[2]];
+    let xyz = |v: [f32; 4]| [v[0], v[1], v[2]].map(f64::from);
     let env = StepEnv {
-        h_secs: params.h_secs,
+        h_secs: f64::from(params.h_secs),
         gravity_m_per_s2: xyz(params.gravity_m_per_s2),
         air_velocity_m_per_s: xyz(params.air_velocity_m_per_s),
     };

@@ -32,7 +32,8 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     hook: &H,
 ) {
     forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, hook, None);
-    let s = mass_scale(model, env) + T::splat(env.h_secs * hook.drag_rate_per_s());
+    let s =
+        mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(hook.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     // The implicit contact of the samples past the element, about the
     // same origin as `beyond` (crate::batch::contact); `None` until a

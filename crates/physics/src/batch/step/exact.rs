@@ -125,7 +125,8 @@ pub fn eliminate<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     coefficients: Option<&[Coefficients<T>]>,
 ) -> T {
     forward_with::<T, true, LOCAL, H>(model, env, root, q, v, scratch, hook, coefficients);
-    let s = mass_scale(model, env) + T::splat(env.h_secs * hook.drag_rate_per_s());
+    let s =
+        mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(hook.drag_rate_per_s());
     let mut beyond = Beyond::zero();
     let mut h = [M3::zero(); 4];
     let mut carried = [V3::zero(); 2];

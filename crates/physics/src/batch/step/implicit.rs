@@ -102,7 +102,7 @@ pub fn step_exact_implicit<T: Real, H: SampleHook<T>>(
     back_substitute::<T, true>(scratch, elimination, |e, dv| delta_v[e] = dv);
     let iterations = gmres::correct(
         gmres.iterations(),
-        T::splat(env.h_secs),
+        T::splat_f64(env.h_secs),
         rhs_squared.sqrt(),
         delta_v,
         gmres,

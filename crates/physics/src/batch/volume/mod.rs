@@ -339,7 +339,7 @@ impl BatchVolume {
 /// ([`KeptSamples`]), else swept.
 fn gather_group(view: &GroupView<'_>, head: &RigidMotion, parallel: bool, out: &mut GroupPulls) {
     let n = view.n;
-    out.nodes = view.models.first().map_or(0, |m| m.nodes().len());
+    out.nodes = view.models.first().map_or(0, |m| m.nodes.len());
     out.points_per_strand = n * points_per_element(out.nodes);
     out.samples = n * out.nodes;
     let batches = view.models.len();
@@ -424,7 +424,7 @@ pub fn gather_batch(
         Some(kept) => kept,
         None => {
             let root = RootMotion::<Lanes>::gather(&motions);
-            let nodes = model.nodes().len();
+            let nodes = model.nodes.len();
             let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
                 motion[e * nodes + j] = [r, vel];
             };
@@ -433,7 +433,7 @@ pub fn gather_batch(
         }
     };
     let mut out = out.chunks_exact_mut(HALVES);
-    for (e, nodes) in samples.chunks_exact(model.nodes().len().max(1)).enumerate() {
+    for (e, nodes) in samples.chunks_exact(model.nodes.len().max(1)).enumerate() {
         let points = nodes.chunks(NODES_PER_POINT).zip(pairs);
         for ((nodes, pair), out) in points.zip(&mut out) {
             place.write(nodes, pair, model.length_m(e), out);
@@ -444,7 +444,7 @@ pub fn gather_batch(
 /// The pairs' weights ([`pair_weights`]) of `model`'s quadrature, widened
 /// to f64: the same for every batch of a system, so found once per group.
 pub fn lane_pair_weights(model: &LaneModel) -> Vec<PairWeights> {
-    let weights: Vec<f64> = model.weights().iter().map(|w| f64::from(*w)).collect();
+    let weights: Vec<f64> = model.weights.iter().map(|w| f64::from(*w)).collect();
     pair_weights(&weights)
 }
 
@@ -568,8 +568,8 @@ pub fn rest_density(
         let rest = view.rest_q.chunks(view.n.max(1));
         for ((model, roots), q) in view.models.iter().zip(view.roots.chunks(LANES)).zip(rest) {
             let v = vec![V3::zero(); q.len()];
-            let samples = q.len() * model.nodes().len();
-            let count = q.len() * points_per_element(model.nodes().len());
+            let samples = q.len() * model.nodes.len();
+            let count = q.len() * points_per_element(model.nodes.len());
             let mut batch = vec![PointLanes::default(); count * HALVES];
             let mut motion = vec![[V3::zero(); 2]; samples];
             let pairs = lane_pair_weights(model);

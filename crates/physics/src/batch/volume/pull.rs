@@ -87,8 +87,8 @@ impl<H: SampleHook<Lanes>> SampleHook<Lanes> for WithPull<'_, H> {
     const SAMPLE_CONTACT: bool = H::SAMPLE_CONTACT;
 
     #[inline(always)]
-    fn drag_rate_per_s(&self) -> f32 {
-        self.pull.friction_per_s
+    fn drag_rate_per_s(&self) -> f64 {
+        f64::from(self.pull.friction_per_s)
     }
 
     #[inline(always)]

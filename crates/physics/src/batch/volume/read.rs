@@ -102,7 +102,7 @@ fn works(
     (old, new): (&[V3<Lanes>], &[V3<Lanes>]),
 ) -> [Exchange; LANES] {
     let model = rates.model;
-    let nodes = model.nodes().len();
+    let nodes = model.nodes.len();
     let friction_per_s = settings.friction_per_s as f32;
     let old_pull = rates.old.map(|rate| SamplePull {
         friction_per_s,
@@ -120,7 +120,7 @@ fn works(
     let (mut old_sums, mut new_sums) = (zero(), zero());
     for (i, [r, v]) in motion.iter().enumerate() {
         let (e, j) = (i / nodes, i % nodes);
-        let w_len = Lanes::splat(model.weights()[j]) * model.length_m(e);
+        let w_len = Lanes::splat(model.weights[j]) * model.length_m(e);
         let relative = *v - root.at(*r);
         if let Some(old_pull) = &old_pull {
             let (force, torque, power) = &mut old_sums;
