@@ -513,7 +513,7 @@ fn judge_batch(
         samples,
         check.kinetic,
     );
-    let judged_by = if kind == BatchStep::BlockDiagonal {
+    let judged_by = if kind.is_block_diagonal() {
         check.kinetic
     } else {
         KineticEnergy::True

@@ -108,6 +108,7 @@
 //! reference running it).
 
 pub mod block_kinetic;
+pub mod block_terms;
 pub mod contact;
 pub mod forward;
 pub mod geometry;

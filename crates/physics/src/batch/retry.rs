@@ -32,7 +32,7 @@ use super::guard::{F32_ENERGY_ROUND_OFF, finite_lanes, measure_lanes, set_at_res
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes};
 use super::layout::{RootMotion, StepEnv};
-use super::step::{BatchStep, Scratch};
+use super::step::Scratch;
 use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, carried};
 use crate::collision::{ContactSettings, SignedDistanceField};
@@ -128,7 +128,7 @@ fn retry_batch(
     // What the frame left, which the lanes that passed keep.
     let (mut kept_q, mut kept_v) = (q.to_vec(), v.to_vec());
     let mut pending: [bool; LANES] = std::array::from_fn(|lane| standing.failed[lane].is_some());
-    let mut substeps = if standing.stepped_own && inputs.kinds.own == BatchStep::BlockDiagonal {
+    let mut substeps = if standing.stepped_own && inputs.kinds.own.is_block_diagonal() {
         frame.substeps
     } else {
         frame.substeps.saturating_mul(2)

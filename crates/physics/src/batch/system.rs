@@ -497,7 +497,7 @@ impl BatchSystem {
             scratch_bytes_per_thread: n_max
                 * (std::mem::size_of::<ElementData<Lanes>>()
                     + std::mem::size_of::<Elimination<Lanes>>()
-                    + krylov_bytes_per_element(BatchStep::of(&self.settings).iterations())),
+                    + krylov_bytes_per_element(BatchStep::of(&self.settings))),
         }
     }
 }

@@ -27,13 +27,14 @@
 //! for bit (the GPU kernels' CPU twins run it).
 
 use super::exact::{Elimination, back_substitute, eliminate, solve_again};
+use crate::batch::block_terms::BlockElement;
 use crate::batch::forward::SampleHook;
 use crate::batch::geometry::Coefficients;
 use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
 use crate::batch::layout::{ElementData, RootMotion, StepEnv};
 use crate::batch::suffix::integrate;
-use crate::batch::vec::V3;
+use crate::batch::vec::{M3, V3};
 use crate::batch::velocity_terms::{OwnProduct, coefficients_of, velocity_product};
 use crate::gmres;
 
@@ -42,11 +43,27 @@ use crate::gmres;
 /// of the product G z.
 #[derive(Clone, Debug)]
 pub struct Krylov<T> {
-    gmres: gmres::Krylov<T>,
-    delta_v: Vec<V3<T>>,
-    own: Vec<OwnProduct<T>>,
+    pub(super) gmres: gmres::Krylov<T>,
+    pub(super) delta_v: Vec<V3<T>>,
+    pub(super) own: Vec<OwnProduct<T>>,
     /// The helix coefficients of the step's q ([`coefficients_of`]).
-    coefficients: Vec<Coefficients<T>>,
+    pub(super) coefficients: Vec<Coefficients<T>>,
+    /// Block-diagonal's own buffers, sized on its first step
+    /// ([`super::block_implicit`]).
+    pub(super) block: BlockBuffers<T>,
+}
+
+/// What Block-diagonal's velocity-implicit step needs besides GMRES's
+/// vectors: its own velocity terms' sweep, their correction at the step's
+/// rates and at shifted ones, and the inverse of each diagonal block.
+#[derive(Clone, Debug, Default)]
+pub struct BlockBuffers<T> {
+    pub(super) elements: Vec<BlockElement<T>>,
+    pub(super) correction: Vec<V3<T>>,
+    pub(super) shifted_rates: Vec<V3<T>>,
+    pub(super) plus: Vec<V3<T>>,
+    pub(super) minus: Vec<V3<T>>,
+    pub(super) inverse: Vec<M3<T>>,
 }
 
 impl<T: Real> Krylov<T> {
@@ -57,6 +74,14 @@ impl<T: Real> Krylov<T> {
             delta_v: vec![V3::zero(); n],
             own: vec![OwnProduct::zero(); n],
             coefficients: Vec::new(),
+            block: BlockBuffers {
+                elements: Vec::new(),
+                correction: Vec::new(),
+                shifted_rates: Vec::new(),
+                plus: Vec::new(),
+                minus: Vec::new(),
+                inverse: Vec::new(),
+            },
         }
     }
 
@@ -98,6 +123,7 @@ pub fn step_exact_implicit<T: Real, H: SampleHook<T>>(
         delta_v,
         own,
         coefficients,
+        block: _,
     } = krylov;
     back_substitute::<T, true>(scratch, elimination, |e, dv| delta_v[e] = dv);
     let iterations = gmres::correct(

@@ -7,6 +7,7 @@
 //! once per thread: a step allocates nothing.
 
 pub mod block_diagonal;
+pub mod block_implicit;
 pub mod dense;
 pub mod exact;
 pub mod implicit;
@@ -19,6 +20,7 @@ use super::lanes::Lanes;
 use super::layout::{ElementData, RootMotion, StepEnv};
 use super::vec::V3;
 use crate::batch::step::block_diagonal::step_block_diagonal_with;
+use crate::batch::step::block_implicit::step_block_implicit;
 use crate::batch::step::exact::{Elimination, step_exact_with};
 use crate::batch::step::implicit::{Krylov, step_exact_implicit};
 use crate::batch::volume::pull::{RootVelocity, SamplePull, WithPull};
@@ -77,9 +79,11 @@ impl Scratch {
 /// Which step a batch takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum BatchStep {
-    /// Block-diagonal, the whole system's velocity terms, explicit (the
-    /// reference takes its own Lagrangian's, implicit).
+    /// Block-diagonal, the whole system's velocity terms, explicit.
     BlockDiagonal,
+    /// Block-diagonal with its own Lagrangian's velocity terms, implicit,
+    /// at most this many GMRES iterations ([`block_implicit`]).
+    BlockImplicit(usize),
     /// Exact, velocity terms explicit.
     Exact,
     /// Exact with at most this many GMRES iterations on the velocity terms.
@@ -93,6 +97,11 @@ impl BatchStep {
                 BatchStep::ExactImplicit(corrections as usize)
             }
             (Method::Exact, _) => BatchStep::Exact,
+            (Method::BlockDiagonal, StepScheme::VelocityImplicit { corrections })
+                if corrections > 0 =>
+            {
+                BatchStep::BlockImplicit(corrections as usize)
+            }
             _ => BatchStep::BlockDiagonal,
         }
     }
@@ -106,24 +115,41 @@ impl BatchStep {
         })
     }
 
+    /// Whether this is a Block-diagonal step (the guard judges it by
+    /// Block-diagonal's own energy, and retries it with Exact at the
+    /// frame's substeps first).
+    pub(super) fn is_block_diagonal(self) -> bool {
+        matches!(self, BatchStep::BlockDiagonal | BatchStep::BlockImplicit(_))
+    }
+
     /// GMRES iterations the scratch must hold.
     pub(super) fn iterations(self) -> usize {
         match self {
-            BatchStep::ExactImplicit(k) => k,
+            BatchStep::ExactImplicit(k) | BatchStep::BlockImplicit(k) => k,
             _ => 0,
         }
     }
 }
 
-/// Bytes of GMRES buffers per element for `iterations` iterations: the
-/// basis (k + 1 vectors), the directions (k), Δv, the product and its
-/// partial sums.
-pub(super) fn krylov_bytes_per_element(iterations: usize) -> usize {
+/// Bytes of the velocity-implicit buffers per element for `step`: GMRES's
+/// basis (k + 1 vectors) and directions (k), Δv, the product and its
+/// partial sums; Block-diagonal's own terms add their sweep's record, four
+/// vectors of corrections and rates, and the inverted blocks.
+pub(super) fn krylov_bytes_per_element(step: BatchStep) -> usize {
+    let iterations = step.iterations();
     if iterations == 0 {
         return 0;
     }
-    (2 * iterations + 3) * std::mem::size_of::<V3<Lanes>>()
-        + std::mem::size_of::<super::velocity_terms::OwnProduct<Lanes>>()
+    let gmres = (2 * iterations + 3) * std::mem::size_of::<V3<Lanes>>()
+        + std::mem::size_of::<super::velocity_terms::OwnProduct<Lanes>>();
+    let block = if step.is_block_diagonal() {
+        std::mem::size_of::<super::block_terms::BlockElement<Lanes>>()
+            + 4 * std::mem::size_of::<V3<Lanes>>()
+            + std::mem::size_of::<super::vec::M3<Lanes>>()
+    } else {
+        0
+    };
+    gmres + block
 }
 
 /// One step of one batch with `hook` at the quadrature samples.
@@ -157,6 +183,9 @@ fn step_batch_with<H: SampleHook<Lanes>>(
         }
         BatchStep::BlockDiagonal => {
             step_block_diagonal_with::<_, true, _>(model, env, root, q, v, elements, hook);
+        }
+        BatchStep::BlockImplicit(_) => {
+            step_block_implicit(model, env, root, q, v, elements, krylov, hook);
         }
     }
 }

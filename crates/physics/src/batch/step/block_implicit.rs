@@ -1,0 +1,157 @@
+//! Block-diagonal's velocity-implicit step: its own matrix and its own
+//! Lagrangian's velocity terms, for every width (the f64 reference's
+//! scheme, [`crate::step::block_velocity_terms`], written once).
+//!
+//! # How it works
+//!
+//! The step solves (P + h G_bd) Δv = rhs, where
+//!
+//! - P = s M_bd + D (+ the head's contact) is Block-diagonal's matrix: the
+//!   diagonal blocks of the whole one, as the explicit step forms them
+//!   ([`super::block_diagonal`]), each inverted once and kept;
+//! - rhs takes the forces of Block-diagonal's own Lagrangian: the forward
+//!   sweep's forces plus the correction F_true − F_bd
+//!   ([`crate::batch::block_terms`]);
+//! - G_bd = G_true − ∂(F_true − F_bd)/∂q̇: the whole system's derivative
+//!   ([`crate::batch::velocity_terms::velocity_product`], which holds the
+//!   head's gyroscopic and centrifugal terms) less the correction's. The
+//!   correction is a polynomial of degree two in the rates, so its
+//!   derivative along z is exactly [corr(q̇ + cz) − corr(q̇ − cz)]/2c
+//!   (polarisation, two more sweeps per product; c as the velocity
+//!   product scales it).
+//!
+//! GMRES ([`crate::gmres`]) corrects Δv₀ = P⁻¹ rhs, right-preconditioned by
+//! P; every stopping test is per lane.
+
+use super::implicit::{BlockBuffers, Krylov};
+use crate::batch::block_terms::{BlockElement, block_correction};
+use crate::batch::forward::{SampleHook, forward_with};
+use crate::batch::lane_model::Constants;
+use crate::batch::lanes::Real;
+use crate::batch::layout::{ContactInertia, ElementData, RootMotion, StepEnv};
+use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
+use crate::batch::vec::{M3, V3};
+use crate::batch::velocity_terms::{coefficients_of, largest_abs, velocity_product};
+use crate::gmres;
+
+/// One velocity-implicit Block-diagonal step of every lane's strand, with
+/// at most `krylov.iterations()` GMRES iterations; moments about each
+/// element's own points. Returns the iterations the batch ran.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's buffers, as in `step_exact_implicit`"
+)]
+#[inline(always)]
+pub fn step_block_implicit<T: Real, H: SampleHook<T>>(
+    model: &impl Constants<T>,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &mut [V3<T>],
+    v: &mut [V3<T>],
+    scratch: &mut [ElementData<T>],
+    krylov: &mut Krylov<T>,
+    hook: &H,
+) -> usize {
+    let n = q.len();
+    let Krylov {
+        gmres,
+        delta_v,
+        own,
+        coefficients,
+        block,
+    } = krylov;
+    block.size(n);
+    coefficients_of(model, q, coefficients);
+    forward_with::<T, false, true, H>(model, env, root, q, v, scratch, hook, Some(coefficients));
+    let BlockBuffers {
+        elements,
+        correction,
+        shifted_rates,
+        plus,
+        minus,
+        inverse,
+    } = block;
+    block_correction(model, root, q, v, coefficients, elements, correction);
+    let s =
+        mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(hook.drag_rate_per_s());
+    let mut beyond = Beyond::zero();
+    let mut contact: Option<ContactInertia<T>> = None;
+    let mut rhs_squared = T::splat(0.0);
+    for e in (0..n).rev() {
+        let el = &scratch[e];
+        let terms = element_terms(el, &beyond);
+        let force = terms.force + correction[e];
+        let (diagonal, rhs) = step_terms(model, env, e, force, q[e], v[e]);
+        let mut step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
+        if let Some(c) = &contact {
+            step_matrix += c.project(&el.a, &el.b);
+        }
+        inverse[e] = step_matrix.inverse();
+        delta_v[e] = inverse[e] * rhs;
+        rhs_squared = rhs.dot_add(rhs, rhs_squared);
+        beyond.shift(-el.span);
+        if let Some(c) = &mut contact {
+            c.shift(-el.span);
+        }
+        beyond.add(el);
+        if el.touching {
+            contact
+                .get_or_insert_with(ContactInertia::zero)
+                .add(&el.contact);
+        }
+    }
+    let iterations = gmres::correct(
+        gmres.iterations(),
+        T::splat_f64(env.h_secs),
+        rhs_squared.sqrt(),
+        delta_v,
+        gmres,
+        |b, z| {
+            for ((z, b), inv) in z.iter_mut().zip(b).zip(inverse.iter()) {
+                *z = *inv * *b;
+            }
+        },
+        |x, out| {
+            velocity_product(model, root, q, v, scratch, coefficients, x, own, out);
+            // G_bd x = G_true x − (∂corr/∂q̇) x, by polarisation.
+            let one = T::splat(1.0);
+            let x_size = largest_abs(x);
+            let x_size = x_size.select_below(f32::MIN_POSITIVE, one, x_size);
+            let reach = largest_abs(v).max(one) / x_size;
+            for (sign, into) in [(one, &mut *plus), (-one, &mut *minus)] {
+                shifted_rates.clear();
+                shifted_rates.extend(
+                    v.iter()
+                        .zip(x.iter())
+                        .map(|(v, x)| *v + x.scale(reach * sign)),
+                );
+                block_correction(model, root, q, shifted_rates, coefficients, elements, into);
+            }
+            let half_over = one / (reach + reach);
+            for ((o, p), m) in out.iter_mut().zip(plus.iter()).zip(minus.iter()) {
+                *o = *o - (*p - *m).scale(half_over);
+            }
+        },
+    );
+    for ((q, v), dv) in q.iter_mut().zip(v.iter_mut()).zip(delta_v.iter()) {
+        integrate(env.h_secs, q, v, *dv);
+    }
+    iterations
+}
+
+impl<T: Real> BlockBuffers<T> {
+    /// Room for `n` elements (kept once grown: a step allocates nothing
+    /// after its thread's first).
+    fn size(&mut self, n: usize) {
+        self.elements.resize(n, BlockElement::zero());
+        for x in [
+            &mut self.correction,
+            &mut self.shifted_rates,
+            &mut self.plus,
+            &mut self.minus,
+        ] {
+            x.resize(n, V3::zero());
+        }
+        self.inverse.resize(n, M3::zero());
+    }
+}
