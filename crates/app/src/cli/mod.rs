@@ -116,8 +116,8 @@ pub struct SimArgs {
     /// Frame time step in seconds, instead of the style's (1e-6 to 0.1).
     #[arg(long, value_name = "SECS", allow_negative_numbers = true)]
     pub dt: Option<f64>,
-    /// How the step (reference engine, and the batch engine's Exact)
-    /// treats the centrifugal and Coriolis terms, instead of the style's
+    /// How the step (either engine) treats the centrifugal and Coriolis
+    /// terms, instead of the style's
     /// `sim.scheme`: implicit (the default: in the step matrix) or explicit
     /// (frozen at the step's start, as the GPU kernels step; for
     /// comparisons).

@@ -53,9 +53,12 @@
 //!   polarisation, two kinematic sweeps with rates q̇ ± cz
 //!   ([`velocity_terms`]). `StepScheme::VelocityExplicit` (and 0
 //!   corrections) runs the explicit step bit for bit as before.
-//!   Block-diagonal stays velocity-explicit with the whole system's
-//!   velocity terms: the reference's own-Lagrangian terms, implicit there
-//!   ([`crate::step::block_velocity_terms`]), are not on this engine yet.
+//! - **Velocity-implicit Block-diagonal** ([`step::block_implicit`]):
+//!   Block-diagonal with its own Lagrangian's velocity terms
+//!   ([`block_terms`], the correction F_true − F_bd from one sweep with the
+//!   root held still), its own P = s M_bd + D and G_bd, and the same
+//!   GMRES; velocity-explicit, it takes the whole system's terms as
+//!   Bertails 2006 did.
 //! - **Threads**: rayon over batches; a batch's arithmetic does not depend
 //!   on which thread runs it, so serial and parallel runs are bit-identical.
 //! - **Collide** ([`contact`], optional): the head's collider

@@ -39,7 +39,7 @@
 //!
 //! [`Engine::set_collider`] is the one place a collider reaches the
 //! physics. Both engines collide with it: the reference at every
-//! quadrature sample, the batch engine at element end points
+//! quadrature sample, the batch engine too
 //! ([`crate::batch::contact`]), both with the implicit contact (its
 //! stiffness and damping in the step matrix; Block-diagonal keeps its
 //! diagonal blocks, on both engines).

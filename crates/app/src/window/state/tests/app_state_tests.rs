@@ -1,7 +1,7 @@
 //! Tests of [`super::app_state`] (kept apart to keep the module short).
 
 use helixhair_physics::engine::EngineKind;
-use helixhair_physics::{Method, NaturalShape};
+use helixhair_physics::{Method, NaturalShape, StepScheme};
 
 use super::super::default_style::default_style;
 use super::*;
@@ -159,25 +159,33 @@ fn a_long_length_edit_ends_in_no_loop_of_resets() {
 }
 
 /// Issue 14, items 2 and 7, and issue 33: what the batch engine's guard
-/// does is shown, once, in words (it used to say "guard: not on the batch
-/// engine"); Block-diagonal that cannot hold the curls is handed to Exact,
-/// and the sentence says so.
+/// does is shown, once, in words; Block-diagonal with its own velocity
+/// terms (the default scheme) holds the curls on a still head, and with
+/// the whole system's (velocity-explicit), which it cannot hold, it is
+/// handed to Exact, and the sentence says so.
 #[test]
 fn batch_engine_guard_is_told_once_in_words() {
-    let mut app = AppState::new(default_style(16), None).unwrap();
-    let curly = app.presets[2].clone();
-    app.apply_preset(0, &curly);
-    app.doc.edit(|s| {
-        crate::window::panels::style_panel::select_engine(s, EngineKind::Batch);
-        s.sim.method = Method::BlockDiagonal;
-    });
-    for _ in 0..120 {
-        app.step_frame();
-    }
+    let curls_on_block = |scheme: StepScheme| {
+        let mut app = AppState::new(default_style(16), None).unwrap();
+        let curly = app.presets[2].clone();
+        app.apply_preset(0, &curly);
+        app.doc.edit(|s| {
+            crate::window::panels::style_panel::select_engine(s, EngineKind::Batch);
+            s.sim.method = Method::BlockDiagonal;
+            s.sim.scheme = scheme;
+        });
+        for _ in 0..120 {
+            app.step_frame();
+        }
+        app
+    };
+    let own = curls_on_block(StepScheme::default());
+    assert_eq!(own.guard.sentence(), None, "with its own terms");
+    let app = curls_on_block(StepScheme::VelocityExplicit);
     let sentence = app
         .guard
         .sentence()
-        .expect("Block-diagonal at 60 Hz should draw the guard");
+        .expect("Block-diagonal with the whole system's terms should draw the guard");
     assert!(
         sentence.contains("Block-diagonal could not hold")
             || sentence.contains("not the simulation"),
