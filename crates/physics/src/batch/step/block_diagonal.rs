@@ -14,7 +14,7 @@ use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
 use crate::batch::layout::{ContactInertia, ElementData, RootMotion, StepEnv};
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
-use crate::batch::vec::V3;
+use crate::batch::vec::{M3, V3};
 
 /// One Block-diagonal step of every lane's strand (`scratch` has N
 /// entries), with the hook's forces and the head's implicit contact at the
@@ -32,8 +32,38 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     hook: &H,
 ) {
     forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, hook, None);
-    let s =
-        mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(hook.drag_rate_per_s());
+    let h_secs = env.h_secs;
+    let drag = hook.drag_rate_per_s();
+    blocks_tip_to_root::<T, LOCAL>(model, env, scratch, drag, q, v, None, |_, m, rhs, q, v| {
+        integrate(h_secs, q, v, m.inverse() * rhs);
+    });
+}
+
+/// The tip-to-root sweep of a Block-diagonal step, after the forward sweep
+/// filled `scratch`: element by element, from the suffix sums past it and
+/// the head's contact there, its step matrix s M_QQ + D (+ contact; s with
+/// the hook's extra drag rate `drag_rate_per_s`, 1/s) and
+/// right-hand side (with `extra_force[e]` added to its generalized force:
+/// Block-diagonal's own velocity terms, [`super::block_implicit`]), handed
+/// to `each(e, matrix, rhs, q_e, v_e)` before the sums move on to the
+/// element before it; moments about each element's own points with
+/// `LOCAL` (the sums then move by −span from each element to the next).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the sweep's inputs and its per-element callback"
+)]
+#[inline(always)]
+pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
+    model: &impl Constants<T>,
+    env: &StepEnv,
+    scratch: &[ElementData<T>],
+    drag_rate_per_s: f64,
+    q: &mut [V3<T>],
+    v: &mut [V3<T>],
+    extra_force: Option<&[V3<T>]>,
+    mut each: impl FnMut(usize, M3<T>, V3<T>, &mut V3<T>, &mut V3<T>),
+) {
+    let s = mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(drag_rate_per_s);
     let mut beyond = Beyond::zero();
     // The implicit contact of the samples past the element, about the
     // same origin as `beyond` (crate::batch::contact); `None` until a
@@ -42,13 +72,16 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     for e in (0..q.len()).rev() {
         let el = &scratch[e];
         let terms = element_terms(el, &beyond);
-        let (diagonal, rhs) = step_terms(model, env, e, terms.force, q[e], v[e]);
+        let force = match extra_force {
+            Some(extra) => terms.force + extra[e],
+            None => terms.force,
+        };
+        let (diagonal, rhs) = step_terms(model, env, e, force, q[e], v[e]);
         let mut step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
         if let Some(c) = &contact {
             step_matrix += c.project(&el.a, &el.b);
         }
-        let delta_v = step_matrix.inverse() * rhs;
-        integrate(env.h_secs, &mut q[e], &mut v[e], delta_v);
+        each(e, step_matrix, rhs, &mut q[e], &mut v[e]);
         if LOCAL {
             beyond.shift(-el.span);
             if let Some(c) = &mut contact {

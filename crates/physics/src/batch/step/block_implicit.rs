@@ -28,8 +28,9 @@ use crate::batch::block_terms::{BlockElement, block_correction};
 use crate::batch::forward::{SampleHook, forward_with};
 use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
-use crate::batch::layout::{ContactInertia, ElementData, RootMotion, StepEnv};
-use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
+use crate::batch::layout::{ElementData, RootMotion, StepEnv};
+use crate::batch::step::block_diagonal::blocks_tip_to_root;
+use crate::batch::suffix::integrate;
 use crate::batch::vec::{M3, V3};
 use crate::batch::velocity_terms::{coefficients_of, largest_abs, velocity_product};
 use crate::gmres;
@@ -72,34 +73,22 @@ pub fn step_block_implicit<T: Real, H: SampleHook<T>>(
         inverse,
     } = block;
     block_correction(model, root, q, v, coefficients, elements, correction);
-    let s =
-        mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(hook.drag_rate_per_s());
-    let mut beyond = Beyond::zero();
-    let mut contact: Option<ContactInertia<T>> = None;
     let mut rhs_squared = T::splat(0.0);
-    for e in (0..n).rev() {
-        let el = &scratch[e];
-        let terms = element_terms(el, &beyond);
-        let force = terms.force + correction[e];
-        let (diagonal, rhs) = step_terms(model, env, e, force, q[e], v[e]);
-        let mut step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
-        if let Some(c) = &contact {
-            step_matrix += c.project(&el.a, &el.b);
-        }
-        inverse[e] = step_matrix.inverse();
-        delta_v[e] = inverse[e] * rhs;
-        rhs_squared = rhs.dot_add(rhs, rhs_squared);
-        beyond.shift(-el.span);
-        if let Some(c) = &mut contact {
-            c.shift(-el.span);
-        }
-        beyond.add(el);
-        if el.touching {
-            contact
-                .get_or_insert_with(ContactInertia::zero)
-                .add(&el.contact);
-        }
-    }
+    let drag = hook.drag_rate_per_s();
+    blocks_tip_to_root::<T, true>(
+        model,
+        env,
+        scratch,
+        drag,
+        q,
+        v,
+        Some(correction),
+        |e, block, rhs, _, _| {
+            inverse[e] = block.inverse();
+            delta_v[e] = inverse[e] * rhs;
+            rhs_squared = rhs.dot_add(rhs, rhs_squared);
+        },
+    );
     let iterations = gmres::correct(
         gmres.iterations(),
         T::splat_f64(env.h_secs),
