@@ -6,7 +6,7 @@
 //!
 //! T_bd is defined in the root's frame, so F_bd and F_true's strain-rate
 //! part depend on the strain rates alone, not on the head's motion: the
-//! sweep here runs the forward kinematics ([`super::forward::advance_local_with`],
+//! sweep here runs the forward kinematics ([`super::forward::advance_from_end`],
 //! [`super::geometry::local_point_with`]) with the root held still (its
 //! frame kept, its velocities and accelerations zero). Then at every
 //! sample the acceleration with q̈ = 0 is J̇ˢq̇, the strain-rate
@@ -34,7 +34,7 @@
 //! the f32 instance's round-off is measured against the f64 one in
 //! `tests/block_terms.rs`.
 
-use super::forward::{FrameState, advance_local_with, root_jacobian};
+use super::forward::{FrameState, advance_from_end, root_jacobian};
 use super::geometry::{Coefficients, local_end_with, local_point_with};
 use super::lane_model::Constants;
 use super::lanes::Real;
@@ -159,9 +159,9 @@ pub fn block_correction<T: Real>(
             sums.mixed = M3::outer_add(r_dot.scale(m), r, sums.mixed);
         }
         sums.own = own_local;
-        let (next, a_end, b, _) = advance_local_with(&s, length_m, k, k_dot, co_end[0]);
-        // The end point's local jet again, for α's rate.
-        let (end, _) = local_end_with(length_m, k, k_dot, co_end[0]);
+        // The end point's local jet serves the advance and α's rate.
+        let (end, turn) = local_end_with(length_m, k, k_dot, co_end[0]);
+        let (next, a_end, b, _) = advance_from_end(&s, length_m, &end, &turn);
         let (p, p_dot) = (next.point_m, next.point_velocity);
         let a = root_jacobian(a_end, p, &b);
         let beta = next.angular_velocity - s.angular_velocity;

@@ -18,7 +18,8 @@
 //! matrix-free product M q̇ (one sweep fewer).
 
 use super::geometry::{
-    Coefficients, coefficients_at, local_end_with, local_point, local_point_with,
+    Coefficients, LocalPoint, LocalTurn, coefficients_at, local_end_with, local_point,
+    local_point_with,
 };
 use super::lane_model::Constants;
 use super::lanes::Real;
@@ -153,6 +154,19 @@ pub fn advance_local_with<T: Real>(
     co: Coefficients<T>,
 ) -> (FrameState<T>, M3<T>, M3<T>, V3<T>) {
     let (end, turn) = local_end_with(length_m, k, k_dot, co);
+    advance_from_end(s, length_m, &end, &turn)
+}
+
+/// [`advance_local_with`] from the end's local jet and turn
+/// ([`local_end_with`]), for a caller that needs them too
+/// ([`super::block_terms`]): the same bits.
+#[inline(always)]
+pub fn advance_from_end<T: Real>(
+    s: &FrameState<T>,
+    length_m: T,
+    end: &LocalPoint<T>,
+    turn: &LocalTurn<T>,
+) -> (FrameState<T>, M3<T>, M3<T>, V3<T>) {
     let [p, pv, pa] = s.carry(end.h, end.h_dot, end.h_ddot);
     let b = s.frame.mul_mat(&turn.left_jacobian).scale(length_m);
     let a = s.frame.mul_mat(&end.jacobian);

@@ -97,6 +97,18 @@ pub fn largest_abs<T: Real>(x: &[V3<T>]) -> T {
     })
 }
 
+/// Per lane, the scale c of the polarised difference along `z` at rates
+/// `v`: c = max(|q̇|∞, 1 m⁻¹/s)/|z|∞, so that the shift cz is the size of
+/// the rates it perturbs (module docs). A lane with z = 0 gets c = 1 and
+/// an exact zero; a non-finite z stays so.
+#[inline(always)]
+pub fn polarisation_shift<T: Real>(v: &[V3<T>], z: &[V3<T>]) -> T {
+    let one = T::splat(1.0);
+    let z_size = largest_abs(z);
+    let z_size = z_size.select_below(f32::MIN_POSITIVE, one, z_size);
+    largest_abs(v).max(one) / z_size
+}
+
 /// out = G z per element (N·m²·s per unit of z) for the strands in state
 /// (`q`, `v`) with roots moving as `root`; `scratch` holds sweep 1's data
 /// for this state (A_Q about each element's end point, B_Q, span: the
@@ -118,11 +130,7 @@ pub fn velocity_product<T: Real>(
     own: &mut [OwnProduct<T>],
     out: &mut [V3<T>],
 ) {
-    let one = T::splat(1.0);
-    let z_size = largest_abs(z);
-    // A lane with z = 0 gets c = 1 and an exact zero; a non-finite z stays so.
-    let z_size = z_size.select_below(f32::MIN_POSITIVE, one, z_size);
-    let reach = largest_abs(v).max(one) / z_size;
+    let reach = polarisation_shift(v, z);
     let rho_s = model.mass_per_length();
     // Σ wρS δr̈ with δr̈ = (plus − minus)/2 in units of z: the factor 1/(2c).
     let factor = rho_s / (reach + reach);

@@ -32,7 +32,7 @@ use crate::batch::layout::{ElementData, RootMotion, StepEnv};
 use crate::batch::step::block_diagonal::blocks_tip_to_root;
 use crate::batch::suffix::integrate;
 use crate::batch::vec::{M3, V3};
-use crate::batch::velocity_terms::{coefficients_of, largest_abs, velocity_product};
+use crate::batch::velocity_terms::{coefficients_of, polarisation_shift, velocity_product};
 use crate::gmres;
 
 /// One velocity-implicit Block-diagonal step of every lane's strand, with
@@ -104,9 +104,7 @@ pub fn step_block_implicit<T: Real, H: SampleHook<T>>(
             velocity_product(model, root, q, v, scratch, coefficients, x, own, out);
             // G_bd x = G_true x − (∂corr/∂q̇) x, by polarisation.
             let one = T::splat(1.0);
-            let x_size = largest_abs(x);
-            let x_size = x_size.select_below(f32::MIN_POSITIVE, one, x_size);
-            let reach = largest_abs(v).max(one) / x_size;
+            let reach = polarisation_shift(v, x);
             for (sign, into) in [(one, &mut *plus), (-one, &mut *minus)] {
                 shifted_rates.clear();
                 shifted_rates.extend(
@@ -126,6 +124,20 @@ pub fn step_block_implicit<T: Real, H: SampleHook<T>>(
         integrate(env.h_secs, q, v, *dv);
     }
     iterations
+}
+
+/// Empty: Exact's steps never size them.
+impl<T> Default for BlockBuffers<T> {
+    fn default() -> Self {
+        Self {
+            elements: Vec::new(),
+            correction: Vec::new(),
+            shifted_rates: Vec::new(),
+            plus: Vec::new(),
+            minus: Vec::new(),
+            inverse: Vec::new(),
+        }
+    }
 }
 
 impl<T: Real> BlockBuffers<T> {

@@ -56,7 +56,7 @@ pub struct Krylov<T> {
 /// What Block-diagonal's velocity-implicit step needs besides GMRES's
 /// vectors: its own velocity terms' sweep, their correction at the step's
 /// rates and at shifted ones, and the inverse of each diagonal block.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct BlockBuffers<T> {
     pub(super) elements: Vec<BlockElement<T>>,
     pub(super) correction: Vec<V3<T>>,
@@ -74,14 +74,7 @@ impl<T: Real> Krylov<T> {
             delta_v: vec![V3::zero(); n],
             own: vec![OwnProduct::zero(); n],
             coefficients: Vec::new(),
-            block: BlockBuffers {
-                elements: Vec::new(),
-                correction: Vec::new(),
-                shifted_rates: Vec::new(),
-                plus: Vec::new(),
-                minus: Vec::new(),
-                inverse: Vec::new(),
-            },
+            block: BlockBuffers::default(),
         }
     }
 
