@@ -4,7 +4,8 @@
 //! strains and element count; the equilibrium of a heavy straight strand,
 //! computed by the dynamics, imported sag-free gives straight natural
 //! strains and stays put; Greenhill's self-weight column decides which
-//! upright strands the stability check flags.
+//! upright strands the stability check flags; the fit's short series
+//! agree with the step's.
 
 use crate::common;
 
@@ -12,11 +13,13 @@ use std::sync::Arc;
 
 use common::*;
 use glam::{DMat3, DVec3};
+use helixhair_physics::fit::coefficients::FitCoefficients;
 use helixhair_physics::fit::stiffen::stiffened_params;
 use helixhair_physics::fit::{
     FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, UniformHelixChain,
     fit_polyline, sag_free, sag_free_stiffened,
 };
+use helixhair_physics::geometry::helix::HelixCoefficients;
 use helixhair_physics::{
     Method, NaturalShape, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
 };
@@ -501,4 +504,31 @@ fn imported_hair_relaxes_without_gravity_to_the_natural_shape_it_hung_from() {
         failures += usize::from(off >= NATURAL_SHAPE_TOL_OVER_LENGTH * l);
     }
     assert_eq!(failures, 0, "see the measurements above");
+}
+
+/// The fit's short series against the step's twenty terms: round-off.
+const SERIES_AGREEMENT_TOL: f64 = 1e-15;
+
+#[test]
+fn the_fits_short_series_agree_with_the_steps_to_round_off() {
+    // Over every range of y the term count changes at, both sides of it,
+    // and past the series' limit (closed forms on both sides).
+    for i in 0..=2000 {
+        let y = 6.0 * (i as f64 / 2000.0).powi(3);
+        let fit = FitCoefficients::at(y);
+        let step = HelixCoefficients::at(y);
+        let pairs = [
+            (fit.a, step.a[0]),
+            (fit.b, step.b[0]),
+            (fit.c, step.c[0]),
+            (fit.b1, step.b[1]),
+            (fit.c1, step.c[1]),
+        ];
+        for (k, (got, want)) in pairs.into_iter().enumerate() {
+            assert!(
+                (got - want).abs() <= SERIES_AGREEMENT_TOL * want.abs().max(1e-3),
+                "y = {y}: coefficient {k} is {got}, the step's {want}"
+            );
+        }
+    }
 }

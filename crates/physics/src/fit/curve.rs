@@ -12,27 +12,41 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::geometry::helix::{
-    HelixCoefficients, centreline_jacobian_with, left_jacobian_with, skew,
-};
+use super::coefficients::FitCoefficients;
+use crate::geometry::helix::{outer, skew};
 
 /// Centreline h(σ, k), its Jacobian (when asked) and the frame's turn
 /// exp(σ[k]×), from one evaluation of the coefficients A, B, C (the fit
 /// evaluates the chain thousands of times per strand: this sharing halves
-/// its cost).
-fn element_at(sigma: f64, k: DVec3, jacobian: bool) -> (DVec3, DMat3, DMat3, HelixCoefficients) {
+/// its cost, and [`FitCoefficients`] sums only the series terms σ|k|
+/// needs).
+fn element_at(sigma: f64, k: DVec3, jacobian: bool) -> (DVec3, DMat3, DMat3, FitCoefficients) {
     let phi = k * sigma;
-    let co = HelixCoefficients::at(phi.length_squared());
+    let co = FitCoefficients::at(phi.length_squared());
     let e0 = DVec3::X;
-    let h = sigma * (e0 + co.b[0] * phi.cross(e0) + co.c[0] * phi.cross(phi.cross(e0)));
+    let phi_x_e0 = phi.cross(e0);
+    let phi_x_phi_x_e0 = phi.cross(phi_x_e0);
+    let h = sigma * (e0 + co.b * phi_x_e0 + co.c * phi_x_phi_x_e0);
     let s = skew(phi);
-    let turn = DMat3::IDENTITY + s * co.a[0] + s * s * co.b[0];
+    let turn = DMat3::IDENTITY + s * co.a + s * s * co.b;
     let dh = if jacobian {
-        centreline_jacobian_with(sigma, phi, &co)
+        // ∂h/∂k = σ² ∂f/∂φ with f(φ) = J_l(φ) e₀ (`geometry::helix`).
+        let df = skew(e0) * (-co.b)
+            + (outer(phi, e0) + DMat3::from_diagonal(DVec3::splat(phi.x)) - outer(e0, phi) * 2.0)
+                * co.c
+            + outer(phi_x_e0, phi) * (2.0 * co.b1)
+            + outer(phi_x_phi_x_e0, phi) * (2.0 * co.c1);
+        df * (sigma * sigma)
     } else {
         DMat3::ZERO
     };
     (h, dh, turn, co)
+}
+
+/// J_l(φ) = I + B[φ]× + C[φ]×², the left Jacobian of SO(3).
+fn left_jacobian(phi: DVec3, co: &FitCoefficients) -> DMat3 {
+    let s = skew(phi);
+    DMat3::IDENTITY + s * co.b + s * s * co.c
 }
 
 /// A strand of equal elements, positions relative to its root point.
@@ -97,7 +111,7 @@ impl UniformHelixChain {
             out.frames.push(frame);
             if jacobians {
                 let a = frame * dh;
-                let b = frame * left_jacobian_with(*k * l, &co) * l;
+                let b = frame * left_jacobian(*k * l, &co) * l;
                 out.a.push(a + skew(next) * b);
                 out.b.push(b);
             }

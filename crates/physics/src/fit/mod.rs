@@ -24,8 +24,10 @@
 //!
 //! This module knows no file format: callers pass plain point lists.
 
+pub mod coefficients;
 pub mod curve;
 pub mod initial;
+pub mod normal;
 pub mod refine;
 pub mod sag_free;
 pub mod stiffen;
@@ -108,10 +110,7 @@ pub fn fit_polyline(
 ) -> Result<StrandFit, FitError> {
     check(points_m, options)?;
     let m = points_m.len() - 1;
-    let cap = options
-        .max_elements
-        .min((2 * m).saturating_sub(2) / 3)
-        .max(1);
+    let cap = element_cap(m, options);
     let arc = initial::chord_arc_lengths(points_m);
     let length = arc[m];
     let mut best = None;
@@ -131,8 +130,10 @@ pub fn fit_polyline(
 
 /// Fits `points_m` with exactly `elements` elements (no search over N);
 /// `arc` holds the polyline's chord arc lengths. The refinement stops once
-/// every point is within a tenth of the tolerance: closer is invisible,
-/// and the search over N only needs to know the tolerance is met.
+/// every point is within a tenth of the tolerance (closer is invisible,
+/// and the search over N only needs to know the tolerance is met), or
+/// once it crawls within the tolerance, or outside it below the cap,
+/// where the search will try a larger N ([`refine::EarlyStop`]).
 pub fn fit_with_elements(
     points_m: &[DVec3],
     elements: usize,
@@ -142,8 +143,13 @@ pub fn fit_with_elements(
 ) -> StrandFit {
     let length = *arc.last().unwrap_or(&0.0);
     let start = initial::initial_chain(points_m, elements, reference);
-    let good_enough = 0.1 * options.tolerance_over_length * length;
-    let mut refined = refine::refine(points_m, start, arc, good_enough);
+    let tolerance_m = options.tolerance_over_length * length;
+    let stop = refine::EarlyStop {
+        good_enough_m: 0.1 * tolerance_m,
+        tolerance_m,
+        last_try: elements >= element_cap(points_m.len() - 1, options),
+    };
+    let mut refined = refine::refine(points_m, start, arc, &stop);
     refine::fix_roll(&mut refined.chain, reference);
     let worst = refined.deviations_m.iter().copied().fold(0.0, f64::max);
     StrandFit {
@@ -153,6 +159,15 @@ pub fn fit_with_elements(
         within_tolerance: true,
         polyline_length_m: length,
     }
+}
+
+/// The most elements `options` and M + 1 points allow (see
+/// [`fit_polyline`]).
+fn element_cap(m: usize, options: &FitOptions) -> usize {
+    options
+        .max_elements
+        .min((2 * m).saturating_sub(2) / 3)
+        .max(1)
 }
 
 fn check(points_m: &[DVec3], options: &FitOptions) -> Result<(), FitError> {
