@@ -4,8 +4,10 @@
 //! strains and element count; the equilibrium of a heavy straight strand,
 //! computed by the dynamics, imported sag-free gives straight natural
 //! strains and stays put; Greenhill's self-weight column decides which
-//! upright strands the stability check flags; the fit's short series
-//! agree with the step's.
+//! upright strands the stability check flags; heavy strands of known
+//! natural shape, imported with the elements their sag asks for, relax
+//! to that shape without gravity; the sag rotation of a strand held out
+//! is α/6; the fit's short series agree with the step's.
 
 use crate::common;
 
@@ -14,6 +16,9 @@ use std::sync::Arc;
 use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::fit::coefficients::FitCoefficients;
+use helixhair_physics::fit::resolution::{
+    NATURAL_SHAPE_ERROR_CONSTANT, elements_for_sag, sag_load_per_m3, sag_rotation,
+};
 use helixhair_physics::fit::stiffen::stiffened_params;
 use helixhair_physics::fit::{
     FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, UniformHelixChain,
@@ -68,6 +73,7 @@ fn a_sampled_super_helix_is_fitted_back_to_its_strains_and_element_count() {
         let options = FitOptions {
             tolerance_over_length: EXACT_FIT_TOL,
             max_elements: 20,
+            ..FitOptions::default()
         };
         let fit = fit_polyline(&polyline, reference, &options).expect("a clean polyline");
         assert_eq!(fit.chain.elements(), n, "case {case}: wrong N");
@@ -120,6 +126,7 @@ fn the_default_tolerance_picks_fewer_elements_within_half_a_percent() {
     let exact = FitOptions {
         tolerance_over_length: EXACT_FIT_TOL,
         max_elements: 20,
+        ..FitOptions::default()
     };
     let fit = fit_polyline(&arc, DVec3::Z, &exact).expect("clean");
     assert_eq!(fit.chain.elements(), 1);
@@ -175,6 +182,7 @@ fn a_heavy_straight_strand_at_equilibrium_imports_straight_and_stays_put() {
     let options = FitOptions {
         tolerance_over_length: EXACT_FIT_TOL,
         max_elements: 20,
+        ..FitOptions::default()
     };
     let fit = fit_polyline(&polyline, DVec3::Y, &options).expect("clean");
     assert_eq!(fit.chain.elements(), 10);
@@ -412,14 +420,13 @@ fn stable_strands_are_not_stiffened() {
 const NATURAL_SHAPE_TOL_OVER_LENGTH: f64 = 0.01;
 
 #[test]
-#[ignore = "issue 30, open: today 3.2%, 7.6% and 7.0% of L (the fit tilts the root tangent \
-            by 0.07 to 0.11 rad and stops at 3 or 4 elements); run with --ignored"]
 fn imported_hair_relaxes_without_gravity_to_the_natural_shape_it_hung_from() {
     // The groom: heavy strands (α = ρS g L³/EI = 20) of known natural
     // shape, settled under gravity at 20 elements by the reference's
     // Dense step, sampled at 32 points evenly by arc length (a groom's
-    // resolution). Imported as `import` does (default tolerance, sag-free
-    // for the same gravity and material), the strand at rest without
+    // resolution). Imported as `import` does (default tolerances, the
+    // elements the sag load asks for, sag-free for the same gravity and
+    // material), the strand at rest without
     // gravity sits at its natural strains, from its fitted root frame:
     // compared with the true natural shape from the true root.
     let elements = 20;
@@ -457,7 +464,11 @@ fn imported_hair_relaxes_without_gravity_to_the_natural_shape_it_hung_from() {
         };
         let samples: Vec<f64> = (0..32).map(|i| l * i as f64 / 31.0).collect();
         let groom = hung.positions(&samples);
-        let fit = fit_polyline(&groom, DVec3::Y, &FitOptions::default()).expect("clean");
+        let options = FitOptions {
+            sag_load_per_m3: sag_load_per_m3(&p, g),
+            ..FitOptions::default()
+        };
+        let fit = fit_polyline(&groom, DVec3::Y, &options).expect("clean");
         let fitted = &fit.chain;
         let fitted_params = StrandParams {
             length_m: fitted.length_m(),
@@ -531,4 +542,40 @@ fn the_fits_short_series_agree_with_the_steps_to_round_off() {
             );
         }
     }
+}
+
+/// The polyline's lumped weights against the integral, relative: the
+/// trapezoid rule's error at 1000 segments is about 1e-6.
+const SAG_ROTATION_TOL: f64 = 1e-5;
+
+#[test]
+fn the_sag_rotation_of_a_strand_held_out_is_a_sixth_of_its_load_and_of_a_hanging_one_none() {
+    // Held out along x under gravity along −y: M(s) = w(L − s)²/2 with
+    // w = ρS g/EI, so Θ = ∫ M ds = wL³/6 = α/6.
+    let p = params(0.2, 10);
+    let g = DVec3::new(0.0, -9.81, 0.0);
+    let load = sag_load_per_m3(&p, g);
+    let alpha = load.length() * p.length_m.powi(3);
+    let out: Vec<DVec3> = (0..=1000)
+        .map(|i| DVec3::X * (p.length_m * i as f64 / 1000.0))
+        .collect();
+    let theta = sag_rotation(&out, load);
+    assert!(
+        (theta / (alpha / 6.0) - 1.0).abs() < SAG_ROTATION_TOL,
+        "Θ = {theta} against α/6 = {}",
+        alpha / 6.0
+    );
+    // Hanging straight down, the weight beyond every point pulls along the
+    // strand: no moment, no extra elements.
+    let down: Vec<DVec3> = out.iter().map(|x| DVec3::new(0.0, -x.x, 0.0)).collect();
+    assert!(sag_rotation(&down, load) < 1e-12 * alpha);
+    let natural = FitOptions::default().natural_tolerance_over_length;
+    assert_eq!(elements_for_sag(&down, load, natural), 1);
+    // Held out, N = ⌈√(CΘ/e)⌉; without a sag load the search starts at 1.
+    let want = (NATURAL_SHAPE_ERROR_CONSTANT * theta / natural)
+        .sqrt()
+        .ceil() as usize;
+    assert_eq!(elements_for_sag(&out, load, natural), want);
+    assert!(want > 1, "{want}");
+    assert_eq!(elements_for_sag(&out, DVec3::ZERO, natural), 1);
 }

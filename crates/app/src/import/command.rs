@@ -23,6 +23,7 @@ use glam::DVec3;
 use helixhair_formats::{Format, ReadOptions};
 use helixhair_physics::engine::EngineKind;
 use helixhair_physics::engine::RestContact;
+use helixhair_physics::fit::resolution::sag_load_per_m3;
 use helixhair_physics::fit::{FitOptions, StiffenOptions};
 use helixhair_physics::{RigidMotion, SimSettings};
 
@@ -127,6 +128,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     let options = FitOptions {
         tolerance_over_length: args.fit_tolerance,
         max_elements: args.max_elements,
+        ..FitOptions::default()
     };
     if !(options.tolerance_over_length > 0.0 && options.tolerance_over_length < 1.0) {
         bail!("--fit-tolerance {}: must lie in (0, 1)", args.fit_tolerance);
@@ -199,10 +201,16 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
 
     let material = args.material.params()?;
     let fit_start = Instant::now();
+    let gravity_m_per_s2 = (!args.no_sag_free).then_some(SimSettings::default().gravity_m_per_s2);
     let settings = FitSettings {
-        options,
+        // With sag-free, enough elements for the natural shape too.
+        options: FitOptions {
+            sag_load_per_m3: gravity_m_per_s2
+                .map_or(DVec3::ZERO, |gravity| sag_load_per_m3(&material, gravity)),
+            ..options
+        },
         material: &material,
-        gravity_m_per_s2: (!args.no_sag_free).then_some(SimSettings::default().gravity_m_per_s2),
+        gravity_m_per_s2,
         support: collider.as_ref().map(|collider| {
             RestContact::for_engine(&SimSettings::default(), collider, RigidMotion::default())
         }),
