@@ -13,6 +13,7 @@ use crate::motion::{RigidMotion, RootPose};
 use crate::settings::{Method, StepScheme};
 use crate::step::forces::ForceInputs;
 use crate::step::reconstruct::{Kinematics, reconstruct};
+use crate::step::solve::Solver;
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
 use crate::volume::VolumePull;
 use crate::volume::balance::{PullWork, add_pull, pull_work};
@@ -213,7 +214,7 @@ impl Strand {
 
     /// The solver method.
     pub fn method(&self) -> Method {
-        self.workspace.solver.method()
+        self.workspace.method
     }
 
     /// Switches the solver; the state is kept.
@@ -221,6 +222,17 @@ impl Strand {
         let scheme = self.workspace.scheme;
         self.workspace = StepWorkspace::new(method);
         self.workspace.scheme = scheme;
+    }
+
+    /// Steps Block-diagonal with the assembled arrangement's solver (the
+    /// subtree blocks of the assembled mass matrix,
+    /// [`crate::step::solve::block_diagonal`]), velocity-explicit, instead
+    /// of the generic step: the independent check of the generic
+    /// Block-diagonal step (`tests/f64_instance.rs`). Undone by
+    /// [`Self::set_method`].
+    pub fn use_assembled_block_diagonal(&mut self) {
+        self.workspace.method = Method::BlockDiagonal;
+        self.workspace.solver = Solver::new(Method::BlockDiagonal);
     }
 
     /// How the strand's steps treat the velocity-dependent forces.
@@ -233,7 +245,9 @@ impl Strand {
         self.workspace.scheme = scheme;
     }
 
-    /// Step buffers of the last step (kinematics, mass, forces, solver).
+    /// Step buffers of the last step: the assembled arrangement's
+    /// kinematics, mass, forces and solver (Dense, Iterative, the
+    /// own-element Block), the generic step's (Exact, Block-diagonal).
     pub fn workspace(&self) -> &StepWorkspace {
         &self.workspace
     }

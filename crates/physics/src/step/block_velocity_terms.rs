@@ -46,27 +46,17 @@
 //! energy with only its strain-strain part truncated; the head's terms all
 //! come from the first two parts, which are the true system's.
 //!
-//! # In the step: velocity-implicit, with its own derivative
+//! # Where it is used
 //!
-//! The velocity-implicit step (`StepScheme::VelocityImplicit`) solves
-//! (P + hG) Δv = rhs by GMRES preconditioned with the solver's P
-//! ([`crate::gmres`]). For Block-diagonal, P = s M_bd + D and G is the
-//! derivative of its own Lagrangian's forces,
-//! G_bd = G_true − ∂(F_true − F_bd)/∂q̇: the true system's G (which holds
-//! the head's gyroscopic and centrifugal terms, the true system's in both)
-//! less the derivative of the correction
-//! ([`BlockVelocityTerms::correction_rate_times`]). With the true system's
-//! G alone, P_bd is too far from P + hG for GMRES on a whipping strand;
-//! with its own, matrix and derivative belong to one mechanical system.
-//! Measured on the bundled styles at 60 Hz, one substep, 300 frames under
-//! each head clip: the guard stepped in on 504 strand-frames with the
-//! terms frozen at the step's start, on 42 with them implicit, and a 30 cm
-//! straight strand on a still head no longer whips (docs/solvers.md).
-//! The price: each GMRES iteration rebuilds the kinematics once more (the
-//! derivative by a one-sided difference): a Block-diagonal frame of the
-//! curly example takes 1.8 ms on the reference engine against Exact's
-//! 0.8 ms (medians of 300 frames), where with the terms frozen it cost
-//! about what Exact does.
+//! This is the terms' f64 statement on the assembled kinematics
+//! ([`crate::step::reconstruct`]), checked against the truncated energy's
+//! Lagrangian by differences (`tests/block_velocity_terms.rs`). The step
+//! runs the generic code's arrangement of the same sums
+//! ([`crate::batch::block_terms`], checked against this one to 2.4e-14 at
+//! f64, `tests/block_terms.rs`) in both engines, velocity-implicit with the
+//! correction's derivative by polarisation
+//! ([`crate::batch::step::block_implicit`]). The guard judges
+//! Block-diagonal by T_bd + V ([`block_kinetic_energy_j`]).
 //!
 //! Cost: O(N). The sums over Ω_Q beyond element Q are polynomials of
 //! degree two in r and ṙ, so five suffix moments of the samples, taken tip
@@ -78,7 +68,7 @@ use crate::geometry::helix::{outer, skew};
 use crate::model::StrandModel;
 use crate::motion::RigidMotion;
 use crate::step::forces::project_sample_forces;
-use crate::step::reconstruct::{Kinematics, reconstruct_with_rates};
+use crate::step::reconstruct::Kinematics;
 use crate::step::velocity_terms::jacobian_rate_times;
 
 /// Buffers of [`BlockVelocityTerms::correction`], reused from step to step.
@@ -88,24 +78,7 @@ pub struct BlockVelocityTerms {
     forces: Vec<DVec3>,
     /// Per element: Ω_Q, c_Q, S_Q, t_Q (see [`BlockVelocityTerms::forces`]).
     prefix: Vec<(DVec3, DVec3, DMat3, f64)>,
-    /// The shifted states of [`BlockVelocityTerms::correction_rate_times`].
-    shifted: Shifted,
 }
-
-/// The kinematics and correction at the rates q̇ + c z.
-#[derive(Clone, Debug, Default)]
-struct Shifted {
-    kinematics: Kinematics,
-    rates: Vec<DVec3>,
-    plus: Vec<DVec3>,
-}
-
-/// The relative shift of the rates in
-/// [`BlockVelocityTerms::correction_rate_times`]: the one-sided
-/// difference's truncation error is this fraction of the derivative, and
-/// its f64 round-off about 1e-16 over it; 1e-7 keeps both near 1e-7 and
-/// 1e-9, far inside GMRES's tolerance of 1e-5.
-pub const RATE_SHIFT: f64 = 1e-7;
 
 impl BlockVelocityTerms {
     /// out = F_bd = Ṁ_bd q̇ − ∂T_bd/∂q per element (N·m²), strain rates only,
@@ -223,53 +196,6 @@ impl BlockVelocityTerms {
             *o -= *f;
         }
         self.forces = forces;
-    }
-}
-
-impl BlockVelocityTerms {
-    /// out = (∂/∂q̇ of [`BlockVelocityTerms::correction`]) z, N·m² per unit
-    /// of z, at the shape `q` and rates `v`, where `at_rates` is the
-    /// correction there (the step has it): the derivative the
-    /// velocity-implicit step takes off the true system's G to get
-    /// Block-diagonal's own (module docs). One-sided, one kinematic sweep:
-    /// [corr(q̇ + c z) − corr(q̇)] / c with c = [`RATE_SHIFT`] ·
-    /// max(|q̇|∞, 1 m⁻¹/s) / |z|∞. The correction is a polynomial of degree
-    /// two in the rates, so the difference's error is c times its
-    /// quadratic part, [`RATE_SHIFT`] of the derivative, well inside the
-    /// GMRES tolerance; its round-off, about 1e-16 / [`RATE_SHIFT`], too.
-    #[allow(clippy::too_many_arguments)] // the step's state, named as the step names it
-    pub fn correction_rate_times(
-        &mut self,
-        model: &StrandModel,
-        q: &[DVec3],
-        v: &[DVec3],
-        root: &RigidMotion,
-        at_rates: &[DVec3],
-        z: &[DVec3],
-        out: &mut [DVec3],
-    ) {
-        let largest = |x: &[DVec3]| x.iter().map(|d| d.abs().max_element()).fold(0.0, f64::max);
-        let z_max = largest(z);
-        if z_max == 0.0 {
-            out.fill(DVec3::ZERO);
-            return;
-        }
-        let c = RATE_SHIFT * largest(v).max(1.0) / z_max;
-        let mut shifted = std::mem::take(&mut self.shifted);
-        let Shifted {
-            kinematics,
-            rates,
-            plus,
-        } = &mut shifted;
-        rates.clear();
-        rates.extend(v.iter().zip(z).map(|(v, z)| *v + c * *z));
-        reconstruct_with_rates(model, q, rates, root, kinematics);
-        plus.resize(v.len(), DVec3::ZERO);
-        self.correction(model, kinematics, rates, root, plus);
-        for ((o, p), a) in out.iter_mut().zip(plus.iter()).zip(at_rates) {
-            *o = (*p - *a) / c;
-        }
-        self.shifted = shifted;
     }
 }
 

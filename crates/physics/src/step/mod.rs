@@ -1,4 +1,9 @@
-//! One linearly implicit step of one strand: the pipeline of named stages.
+//! One linearly implicit step of one strand on the reference engine.
+//!
+//! Exact and Block-diagonal run the step's generic code at f64
+//! ([`generic`]); the other methods (Dense, Iterative, the own-element
+//! Block reading) run the assembled arrangement, the pipeline of named
+//! stages below.
 //!
 //! 1. **reconstruct**: shape, velocities, free accelerations and Jacobians
 //!    root to tip ([`crate::step::reconstruct`]).
@@ -23,6 +28,7 @@
 
 pub mod block_velocity_terms;
 pub mod forces;
+pub mod generic;
 pub mod mass;
 pub mod reconstruct;
 pub mod solve;
@@ -38,8 +44,8 @@ use crate::gmres;
 pub use crate::gmres::GMRES_TOLERANCE;
 use crate::model::StrandModel;
 use crate::settings::{Method, StepScheme};
-use crate::step::block_velocity_terms::BlockVelocityTerms;
 use crate::step::forces::{ForceInputs, generalized_forces};
+use crate::step::generic::{GenericBuffers, is_generic, step_generic};
 use crate::step::mass::{MassData, add_sample_weights, mass_blocks, mass_times, scaled};
 use crate::step::reconstruct::{Kinematics, reconstruct, reconstruct_with_rates};
 use crate::step::solve::{Solver, StepSolver};
@@ -54,7 +60,9 @@ pub struct StageTimes {
     pub forces_secs: f64,
     /// Stage "mass".
     pub mass_secs: f64,
-    /// Stage "solve".
+    /// Stage "solve"; for Exact and Block-diagonal the whole generic step,
+    /// whose stages are fused into its sweeps ([`generic`]), the others
+    /// then zero.
     pub solve_secs: f64,
     /// Stage "integrate".
     pub integrate_secs: f64,
@@ -89,16 +97,17 @@ pub struct StepWorkspace {
     pub mass: MassData,
     /// Generalized forces of the last step.
     pub forces: Vec<DVec3>,
-    /// The solver, with its factorisation of the last step.
-    pub solver: Solver,
+    /// The method the strand steps with.
+    pub method: Method,
+    /// The assembled arrangement's solver, with its factorisation of the
+    /// last step: Dense, Iterative and the own-element Block reading
+    /// (`None` for the methods the generic step runs, [`is_generic`]).
+    pub solver: Option<Solver>,
     /// How the step treats the velocity-dependent forces.
     pub scheme: StepScheme,
+    /// The generic step's buffers (Exact and Block-diagonal).
+    generic: GenericBuffers,
     velocity_terms: VelocityTerms,
-    block_terms: BlockVelocityTerms,
-    /// Block-diagonal's correction F_true − F_bd at the step's rates.
-    block_correction: Vec<DVec3>,
-    /// Block-diagonal's share of a GMRES product.
-    block_product: Vec<DVec3>,
     gmres: GmresBridge,
     contact_weights: Vec<(usize, DMat3)>,
     step_mass: MassData,
@@ -116,12 +125,15 @@ impl StepWorkspace {
             kinematics: Kinematics::default(),
             mass: MassData::default(),
             forces: Vec::new(),
-            solver: Solver::new(method),
+            method,
+            solver: if is_generic(method) {
+                None
+            } else {
+                Solver::new(method)
+            },
             scheme: StepScheme::default(),
+            generic: GenericBuffers::default(),
             velocity_terms: VelocityTerms::default(),
-            block_terms: BlockVelocityTerms::default(),
-            block_correction: Vec::new(),
-            block_product: Vec::new(),
             gmres: GmresBridge::default(),
             contact_weights: Vec::new(),
             step_mass: MassData::default(),
@@ -154,19 +166,22 @@ pub fn step_strand(
     let n = model.elements();
     let h = inputs.h_secs;
     let mut times = StageTimes::default();
+    let Some(mut solver) = ws.solver.take() else {
+        // Exact and Block-diagonal: the generic step, whose stages are
+        // fused into two sweeps; its time counts as stage "solve".
+        let t = Instant::now();
+        step_generic(model, ws.method, ws.scheme, q, v, &mut ws.generic, inputs);
+        times.solve_secs = t.elapsed().as_secs_f64();
+        return times;
+    };
 
     let corrections = match ws.scheme {
         StepScheme::VelocityExplicit => 0,
         StepScheme::VelocityImplicit { corrections } => corrections,
     };
-    // Block-diagonal (subtree blocks) takes the velocity terms of its own
-    // Lagrangian ([`crate::step::block_velocity_terms`]), implicit with its
-    // own derivative; the "own element" reading keeps the whole system's,
-    // explicit.
-    let block_lagrangian = corrections > 0 && ws.solver.method() == Method::BlockDiagonal;
-    // The velocity terms' products need the Jacobians' rates.
-    let implicit_velocity =
-        corrections > 0 && (block_lagrangian || !matches!(ws.solver, Solver::BlockDiagonal(_)));
+    // The velocity terms' products need the Jacobians' rates; the "own
+    // element" Block reading keeps the whole system's terms, explicit.
+    let implicit_velocity = corrections > 0 && !matches!(solver, Solver::BlockDiagonal(_));
     let t = Instant::now();
     if implicit_velocity {
         reconstruct_with_rates(model, q, v, inputs.forces.root, &mut ws.kinematics);
@@ -178,19 +193,6 @@ pub fn step_strand(
     let t = Instant::now();
     ws.forces.resize(n, DVec3::ZERO);
     generalized_forces(model, &ws.kinematics, &inputs.forces, &mut ws.forces);
-    if block_lagrangian {
-        ws.block_correction.resize(n, DVec3::ZERO);
-        ws.block_terms.correction(
-            model,
-            &ws.kinematics,
-            v,
-            inputs.forces.root,
-            &mut ws.block_correction,
-        );
-        for (f, c) in ws.forces.iter_mut().zip(&ws.block_correction) {
-            *f += *c;
-        }
-    }
     times.forces_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -223,7 +225,7 @@ pub fn step_strand(
     } else {
         (&ws.mass, mass_scale)
     };
-    match &mut ws.solver {
+    match &mut solver {
         Solver::Dense(dense) if implicit_velocity => {
             // The reference: h G assembled column by column (3N products,
             // O(N²)) and the whole non-symmetric matrix LU-factored.
@@ -244,15 +246,22 @@ pub fn step_strand(
     }));
     ws.delta_v.resize(n, DVec3::ZERO);
     let matrix = if in_contact { &ws.step_mass } else { &ws.mass };
-    ws.solver
-        .solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
-    // The O(N) solvers correct by GMRES (Dense factored hG in above);
-    // Block-diagonal with its own Lagrangian's G: with the true system's,
-    // its P was too far from P + hG on a whipping strand (Richardson's
-    // residual grew from the first correction).
-    if implicit_velocity && !matches!(ws.solver, Solver::Dense(_)) {
-        velocity_corrections(model, q, v, root, h, corrections, in_contact, ws);
+    solver.solve(&ws.kinematics, matrix, &ws.rhs, &mut ws.delta_v);
+    // Iterative corrects by GMRES (Dense factored hG in above).
+    if implicit_velocity && !matches!(solver, Solver::Dense(_)) {
+        velocity_corrections(
+            model,
+            q,
+            v,
+            root,
+            h,
+            corrections,
+            in_contact,
+            &mut solver,
+            ws,
+        );
     }
+    ws.solver = Some(solver);
     times.solve_secs = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -315,17 +324,13 @@ fn velocity_corrections(
     h: f64,
     corrections: u32,
     in_contact: bool,
+    solver: &mut Solver,
     ws: &mut StepWorkspace,
 ) {
-    let own_terms = ws.solver.method() == Method::BlockDiagonal;
     let StepWorkspace {
         kinematics,
         mass,
-        solver,
         velocity_terms,
-        block_terms,
-        block_correction,
-        block_product,
         gmres: bridge,
         step_mass,
         velocity_product,
@@ -350,7 +355,6 @@ fn velocity_corrections(
         &mut *solve_out,
         &mut *product_in,
         &mut *velocity_product,
-        &mut *block_product,
     ] {
         buffer.resize(n, DVec3::ZERO);
     }
@@ -377,21 +381,6 @@ fn velocity_corrections(
                 product_in,
                 velocity_product,
             );
-            if own_terms {
-                // G_bd x = G_true x − ∂(F_true − F_bd)/∂q̇ x.
-                block_terms.correction_rate_times(
-                    model,
-                    q,
-                    v,
-                    root,
-                    block_correction,
-                    product_in,
-                    block_product,
-                );
-                for (g, c) in velocity_product.iter_mut().zip(block_product.iter()) {
-                    *g -= *c;
-                }
-            }
             from_dvec3(velocity_product, out);
         },
     );

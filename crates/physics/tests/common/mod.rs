@@ -284,3 +284,17 @@ pub fn outward_roots(count: usize) -> Vec<RootPose> {
         })
         .collect()
 }
+
+/// A random rigid motion of the head: position within 0.1 m, any
+/// orientation, speeds up to 0.5 m/s and 4 rad/s, accelerations up to
+/// 5 m/s² and 40 rad/s² per axis (a brisk head shake's order).
+pub fn moving_root(rng: &mut Rng) -> RigidMotion {
+    RigidMotion {
+        position_m: rng.vec3(0.1),
+        world_from_body: rng.rotation(),
+        velocity_m_per_s: rng.vec3(0.5),
+        angular_velocity_rad_per_s: rng.vec3(4.0),
+        acceleration_m_per_s2: rng.vec3(5.0),
+        angular_acceleration_rad_per_s2: rng.vec3(40.0),
+    }
+}

@@ -1,6 +1,8 @@
-//! Exact step of a batch: the true step matrix solved in O(N) by the
-//! tip-to-root recursion of [`crate::step::solve::exact`], fused with the suffix
-//! sums.
+//! Exact step of a batch (and, at f64 one strand wide, of the reference
+//! engine, [`crate::step::generic`]): the true step matrix solved in O(N)
+//! by a tip-to-root recursion over articulated inertias, fused with the
+//! suffix sums. Dense's Cholesky of the assembled matrix is its
+//! independent check.
 //!
 //! Sweep 1 (root to tip, [`crate::batch::forward`] with U_Q and V_Q): element data.
 //! Sweep 2 (tip to root): suffix sums give X_Q = U_Q + X_b, Y_Q = V_Q + Y_b

@@ -1,4 +1,6 @@
-//! Stage "solve": the linearly implicit step, solved several ways.
+//! Stage "solve" of the assembled arrangement: the linearly implicit step
+//! solved on the mass data of [`crate::step::mass`], for the methods the
+//! generic step ([`crate::step::generic`]) does not run.
 //!
 //! Every method sees the same right-hand side (the exact forces, with the
 //! drag on the current velocity from the exact M q̇) and differs only in the
@@ -7,16 +9,17 @@
 //!
 //! [`dense::DenseSolver`] uses the true M (Cholesky, O(N³)).
 //! [`block_diagonal::BlockDiagonalSolver`] keeps the N diagonal 3×3 blocks
-//! (either reading of the seed paper): O(N), elements independent.
-//! [`exact::ExactSolver`] solves the true step matrix in O(N) by a
-//! tip-to-root recursion. [`iterative::IterativeSolver`] runs k steps of
+//! (either reading of the seed paper): O(N), elements independent; it
+//! steps the own-element reading, and with subtree blocks it is the
+//! independent check of the generic Block-diagonal step and Iterative's
+//! preconditioner. Exact's O(N) tip-to-root recursion is the generic
+//! step's ([`crate::batch::step::exact`]). [`iterative::IterativeSolver`] runs k steps of
 //! block-preconditioned conjugate gradients from the Block-diagonal answer.
 //! h²K > 0 keeps every step matrix definite even where a straight strand's
 //! twist rows of M vanish.
 
 pub mod block_diagonal;
 pub mod dense;
-pub mod exact;
 pub mod iterative;
 
 use glam::DVec3;
@@ -40,17 +43,16 @@ pub enum Solver {
     Dense(dense::DenseSolver),
     /// See [`block_diagonal::BlockDiagonalSolver`].
     BlockDiagonal(block_diagonal::BlockDiagonalSolver),
-    /// See [`exact::ExactSolver`].
-    Exact(exact::ExactSolver),
     /// See [`iterative::IterativeSolver`].
     Iterative(iterative::IterativeSolver),
 }
 
 impl Solver {
-    /// A fresh solver for `method`.
-    pub fn new(method: Method) -> Self {
+    /// A fresh solver for `method`; `None` for Exact, which only the
+    /// generic step runs ([`crate::step::generic`]).
+    pub fn new(method: Method) -> Option<Self> {
         use block_diagonal::{BlockDiagonalSolver, BlockVariant};
-        match method {
+        Some(match method {
             Method::Dense => Solver::Dense(dense::DenseSolver::default()),
             Method::BlockDiagonal => {
                 Solver::BlockDiagonal(BlockDiagonalSolver::new(BlockVariant::Subtree))
@@ -58,11 +60,11 @@ impl Solver {
             Method::BlockDiagonalOwnElement => {
                 Solver::BlockDiagonal(BlockDiagonalSolver::new(BlockVariant::OwnElement))
             }
-            Method::Exact => Solver::Exact(exact::ExactSolver::default()),
+            Method::Exact => return None,
             Method::Iterative { iterations } => {
                 Solver::Iterative(iterative::IterativeSolver::new(iterations))
             }
-        }
+        })
     }
 
     /// The method this solver implements.
@@ -73,7 +75,6 @@ impl Solver {
                 block_diagonal::BlockVariant::Subtree => Method::BlockDiagonal,
                 block_diagonal::BlockVariant::OwnElement => Method::BlockDiagonalOwnElement,
             },
-            Solver::Exact(_) => Method::Exact,
             Solver::Iterative(i) => Method::Iterative {
                 iterations: i.iterations(),
             },
@@ -84,7 +85,6 @@ impl Solver {
         match self {
             Solver::Dense(s) => s,
             Solver::BlockDiagonal(s) => s,
-            Solver::Exact(s) => s,
             Solver::Iterative(s) => s,
         }
     }
