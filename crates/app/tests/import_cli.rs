@@ -250,6 +250,22 @@ fn malformed_grooms_are_clear_errors_with_exit_code_1() {
     let missing = helixhair(&["import", "no/such/groom.tfx", "--out", "x.ron"]);
     assert_eq!(missing.status.code(), Some(1));
     assert!(text(&missing.stderr).contains("no/such/groom.tfx"));
+    // An impossible tolerance is refused, naming the flag, before any fit.
+    let groom = write(&dir, "good.tfx", &good);
+    for (flag, value) in [
+        ("--fit-tolerance", "0"),
+        ("--natural-tolerance", "0"),
+        ("--natural-tolerance", "1.5"),
+    ] {
+        let style = dir.join("tolerance.ron").display().to_string();
+        let out = helixhair(&["import", &groom, "--out", &style, flag, value]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{flag} {value}: {err}");
+        assert!(
+            err.contains(&format!("{flag} {value}")) && err.contains("must lie in (0, 1)"),
+            "{flag} {value}: {err}"
+        );
+    }
 }
 
 /// An OBJ groom of straight strands rooted at y = 0 (metres), one per

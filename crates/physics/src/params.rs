@@ -28,6 +28,10 @@ pub enum ElementLayout {
     },
 }
 
+/// The largest Young's or shear modulus a strand may have, Pa: a hundred
+/// times the stiffest keratin fibres, far past any hair; steel is 2e11.
+pub const MAX_MODULUS_PA: f64 = 1e12;
+
 /// Physical parameters shared by a group of strands.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -49,10 +53,12 @@ pub struct StrandParams {
     pub ellipticity: f64,
     /// Mass density ρ in kg/m³, range [100, 10000]. Default 1300, keratin.
     pub density_kg_per_m3: f64,
-    /// Young's modulus E in pascals (bending), range [1e6, 1e12]. Default
+    /// Young's modulus E in pascals (bending), range [1e6,
+    /// [`MAX_MODULUS_PA`]]. Default
     /// 3.9e9, measured on human hair.
     pub youngs_modulus_pa: f64,
-    /// Shear modulus G in pascals (twisting), range [1e5, 1e12]. Default
+    /// Shear modulus G in pascals (twisting), range [1e5,
+    /// [`MAX_MODULUS_PA`]]. Default
     /// 0.9e9, measured on human hair.
     pub shear_modulus_pa: f64,
     /// The rest shape: natural twist and curvatures (the curl).
@@ -111,8 +117,18 @@ impl StrandParams {
         check_range("radius_m", self.radius_m, 5e-6, 5e-4)?;
         check_range("ellipticity", self.ellipticity, 1.0, 4.0)?;
         check_range("density_kg_per_m3", self.density_kg_per_m3, 100.0, 1e4)?;
-        check_range("youngs_modulus_pa", self.youngs_modulus_pa, 1e6, 1e12)?;
-        check_range("shear_modulus_pa", self.shear_modulus_pa, 1e5, 1e12)?;
+        check_range(
+            "youngs_modulus_pa",
+            self.youngs_modulus_pa,
+            1e6,
+            MAX_MODULUS_PA,
+        )?;
+        check_range(
+            "shear_modulus_pa",
+            self.shear_modulus_pa,
+            1e5,
+            MAX_MODULUS_PA,
+        )?;
         check_range("internal_friction", self.internal_friction, 0.0, 1e-6)?;
         check_range("air_drag", self.air_drag, 0.0, 1e-2)?;
         self.natural_shape.validate(self.elements)

@@ -19,7 +19,7 @@ use helixhair_physics::fit::coefficients::FitCoefficients;
 use helixhair_physics::fit::resolution::{
     NATURAL_SHAPE_ERROR_CONSTANT, elements_for_sag, sag_load_per_m3, sag_rotation,
 };
-use helixhair_physics::fit::stiffen::stiffened_params;
+use helixhair_physics::fit::stiffen::{max_stiffness_scale, stiffened_params};
 use helixhair_physics::fit::{
     FitError, FitOptions, SagFreeInputs, SagFreeStatus, StiffenOptions, UniformHelixChain,
     fit_polyline, sag_free, sag_free_stiffened,
@@ -578,4 +578,22 @@ fn the_sag_rotation_of_a_strand_held_out_is_a_sixth_of_its_load_and_of_a_hanging
     assert_eq!(elements_for_sag(&out, load, natural), want);
     assert!(want > 1, "{want}");
     assert_eq!(elements_for_sag(&out, DVec3::ZERO, natural), 1);
+}
+
+/// The stiffening cap is where the moduli leave their valid range
+/// (1e12 Pa): 1e12 / 3.9e9 = 256 for the default hair (its shear
+/// modulus, 0.9e9, would allow 1111); a stiffer material gets less room.
+#[test]
+fn the_stiffening_cap_keeps_the_moduli_in_their_range() {
+    let hair = StrandParams::default();
+    let cap = max_stiffness_scale(&hair);
+    assert!((cap - 1e12 / 3.9e9).abs() < 1e-9, "{cap}");
+    assert_eq!(StiffenOptions::default().max_scale, cap);
+    let stiff = StrandParams {
+        shear_modulus_pa: 4e10,
+        ..hair.clone()
+    };
+    assert!((max_stiffness_scale(&stiff) - 25.0).abs() < 1e-12);
+    let scaled = stiffened_params(&hair, cap);
+    scaled.validate().expect("the capped moduli are valid");
 }

@@ -19,18 +19,19 @@
 //! unstable, and would fall away at the smallest push. As the import does,
 //! such a strand is stiffened by the least factor that holds it
 //! ([`helixhair_physics::fit::stiffen`]), at most
-//! [`MAX_STIFFNESS_SCALE`] in all; one that would need more stays
+//! the edits' largest scale ([`STIFFNESS_SCALE_RANGE`], 100×) in all and
+//! within the moduli's range; one that would need more stays
 //! unstable, and the counts say so.
 
 use glam::DVec3;
 use helixhair_physics::RigidMotion;
 use helixhair_physics::engine::Engine;
-use helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE;
+use helixhair_physics::fit::stiffen::max_stiffness_scale;
 use helixhair_physics::fit::{SagFreeInputs, SagFreeStatus, StiffenOptions, sag_free_stiffened};
 
 use crate::sim::strands::StyleStrand;
 use crate::style::Style;
-use crate::style::strand_edit::{RestShape, edit_mut};
+use crate::style::strand_edit::{RestShape, STIFFNESS_SCALE_RANGE, edit_mut};
 
 /// How freezing went, strand by strand.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -76,7 +77,7 @@ pub struct Frozen {
 /// Strand `index` of `engine` frozen as it is now, resting on the head
 /// where it lies on it; stiffened if its equilibrium is unstable, so that
 /// its whole scale (`scale_now` times the new factor) stays within
-/// [`MAX_STIFFNESS_SCALE`]. Counts the outcome in `counts`.
+/// [`STIFFNESS_SCALE_RANGE`]. Counts the outcome in `counts`.
 pub fn freeze_strand(
     engine: &Engine,
     index: usize,
@@ -93,7 +94,7 @@ pub fn freeze_strand(
     };
     let model = engine.strand_model(index);
     let options = StiffenOptions {
-        max_scale: MAX_STIFFNESS_SCALE / scale_now,
+        max_scale: (STIFFNESS_SCALE_RANGE.1 / scale_now).min(max_stiffness_scale(&model.params)),
         ..StiffenOptions::default()
     };
     let samples = model.quadrature.nodes.len();

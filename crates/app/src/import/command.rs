@@ -74,13 +74,20 @@ pub struct ImportArgs {
     /// Most Super-Helix elements per strand (1 to 200).
     #[arg(long, value_name = "N", default_value_t = FitOptions::default().max_elements)]
     pub max_elements: usize,
+    /// Largest distance of a strand's natural shape (relaxed without
+    /// gravity) from the hair's, as a fraction of its length: with
+    /// sag-free, strands get the elements this needs (docs/import.md,
+    /// "Choosing N"). Larger is cheaper to simulate, less true.
+    #[arg(long, value_name = "F", default_value_t = FitOptions::default().natural_tolerance_over_length)]
+    pub natural_tolerance: f64,
     /// Keep the fitted shape as the rest shape (it then sags under
     /// gravity) instead of solving sag-free natural strains.
     #[arg(long)]
     pub no_sag_free: bool,
     /// Leave strands whose sag-free equilibrium is unstable as they are
     /// (they fall when simulated) instead of stiffening each by the least
-    /// factor that holds it (up to 100×; docs/import.md).
+    /// factor that holds it (as far as the moduli's valid range allows:
+    /// 256× for the default hair; docs/import.md).
     #[arg(long)]
     pub no_stiffen: bool,
     /// Simulate K guide strands spread over the scalp and draw the others
@@ -128,10 +135,18 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
     let options = FitOptions {
         tolerance_over_length: args.fit_tolerance,
         max_elements: args.max_elements,
+        natural_tolerance_over_length: args.natural_tolerance,
         ..FitOptions::default()
     };
     if !(options.tolerance_over_length > 0.0 && options.tolerance_over_length < 1.0) {
         bail!("--fit-tolerance {}: must lie in (0, 1)", args.fit_tolerance);
+    }
+    if !(options.natural_tolerance_over_length > 0.0 && options.natural_tolerance_over_length < 1.0)
+    {
+        bail!(
+            "--natural-tolerance {}: must lie in (0, 1)",
+            args.natural_tolerance
+        );
     }
     if !(1..=helixhair_physics::params::MAX_ELEMENTS).contains(&options.max_elements) {
         bail!("--max-elements {}: must lie in 1..=200", args.max_elements);
@@ -217,7 +232,7 @@ pub fn import_groom(args: &ImportArgs, progress: &WorkProgress) -> anyhow::Resul
         stiffen: if args.no_stiffen {
             StiffenOptions::none()
         } else {
-            StiffenOptions::default()
+            StiffenOptions::for_material(&material)
         },
     };
     let outcomes = fit_all(&jobs, &settings, progress);

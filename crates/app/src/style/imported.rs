@@ -70,7 +70,8 @@ pub struct ImportedStrand {
     /// Default 1. The import raises it for a strand whose sag-free
     /// equilibrium is unstable, by the least that holds it
     /// (`helixhair_physics::fit::stiffen`); at most
-    /// `helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE` (100).
+    /// `helixhair_physics::fit::stiffen::MAX_STIFFNESS_SCALE` (1000), and
+    /// the scaled moduli within their range (at most 1e12 Pa).
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub stiffness_scale: f64,
 }

@@ -47,7 +47,7 @@ use crate::style::field_path::FieldPath;
 use crate::style::root::Root;
 
 /// Stiffness scales a painted or frozen strand may carry: a tenth of the
-/// group's moduli to the import's most stiffening (100).
+/// group's moduli to a hundred times.
 pub const STIFFNESS_SCALE_RANGE: (f64, f64) = (0.1, 100.0);
 
 /// The shortest element a cut may leave, metres: a strand is never cut

@@ -62,7 +62,7 @@ pub struct FitOptions {
     pub sag_load_per_m3: DVec3,
     /// Largest allowed distance of the natural shape (the strand relaxed
     /// without gravity) from the hair's, as a fraction of the strand's
-    /// length, with a sag load. Default 0.01 (1%): issue 30's bar, 2 mm on
+    /// length, with a sag load. Default 0.01 (1%): 2 mm on
     /// a 20 cm strand; it asks for more elements than the position
     /// tolerance alone (Sintel: 7.3 per strand against 4.2).
     pub natural_tolerance_over_length: f64,

@@ -35,9 +35,19 @@ use super::sag_free::{SagFree, SagFreeInputs, SagFreeStatus, sag_free};
 use crate::model::StrandModel;
 use crate::{ParamError, StrandParams};
 
-/// The default cap on the scale of the moduli (see
-/// [`StiffenOptions::max_scale`]); styles refuse larger scales.
-pub const MAX_STIFFNESS_SCALE: f64 = 100.0;
+/// The largest scale of the moduli a style accepts; the moduli's own
+/// range ([`crate::params::MAX_MODULUS_PA`]) caps it further per material
+/// ([`max_stiffness_scale`]): 256× for the default hair.
+pub const MAX_STIFFNESS_SCALE: f64 = 1000.0;
+
+/// The largest scale of `params`' moduli that keeps both inside their
+/// valid range, capped at [`MAX_STIFFNESS_SCALE`] (≥ 1 for valid params).
+pub fn max_stiffness_scale(params: &StrandParams) -> f64 {
+    let max = crate::params::MAX_MODULUS_PA;
+    (max / params.youngs_modulus_pa)
+        .min(max / params.shear_modulus_pa)
+        .min(MAX_STIFFNESS_SCALE)
+}
 
 /// How unstable strands are stiffened.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,23 +58,30 @@ pub struct StiffenOptions {
     /// it, while the stiffening stays the least that holds (μ = 0 would be
     /// neutral, μ → 1 needs infinite stiffness).
     pub margin: f64,
-    /// Largest scale of the moduli, ≥ 1. Default 100: hair's bending
-    /// modulus spans about a factor 10 between thin and coarse hair; a
-    /// hundred times covers strands standing well past their buckling
-    /// length, and keeps the moduli inside their valid range (1e12 Pa).
+    /// Largest scale of the moduli, ≥ 1. Default: as far as the moduli's
+    /// valid range allows ([`max_stiffness_scale`]; 256× for the default
+    /// hair, [`StiffenOptions::for_material`] for another). A groom holds
+    /// strands standing well past their buckling length (Sintel's
+    /// stiffest needs 159×): the artist shaped them so, and the price, a
+    /// strand stiffer than its material, is counted in the report.
     pub max_scale: f64,
 }
 
 impl Default for StiffenOptions {
     fn default() -> Self {
-        Self {
-            margin: 0.2,
-            max_scale: MAX_STIFFNESS_SCALE,
-        }
+        Self::for_material(&StrandParams::default())
     }
 }
 
 impl StiffenOptions {
+    /// The default margin, and the cap the moduli of `params` allow.
+    pub fn for_material(params: &StrandParams) -> Self {
+        Self {
+            margin: 0.2,
+            max_scale: max_stiffness_scale(params),
+        }
+    }
+
     /// No strand is stiffened (a cap of 1): [`sag_free_stiffened`] is then
     /// the plain sag-free solve.
     pub fn none() -> Self {

@@ -70,6 +70,7 @@ pub fn start_import(
         head,
         fit_tolerance: defaults.tolerance_over_length,
         max_elements: defaults.max_elements,
+        natural_tolerance: defaults.natural_tolerance_over_length,
         no_sag_free: false,
         no_stiffen: false,
         guides: None,
