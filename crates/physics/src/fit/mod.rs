@@ -147,7 +147,8 @@ pub fn fit_polyline(
             break;
         }
     }
-    let mut fit = best.ok_or(FitError::TooFewPoints(points_m.len()))?;
+    let fit = best.ok_or(FitError::TooFewPoints(points_m.len()))?;
+    let mut fit = relax_twist(points_m, fit, reference, &arc, options);
     fit.within_tolerance = fit.error_over_length <= options.tolerance_over_length;
     fit.polyline_length_m = length;
     Ok(fit)
@@ -174,7 +175,7 @@ pub fn fit_with_elements(
         tolerance_m,
         last_try: elements >= element_cap(points_m.len() - 1, options),
     };
-    let mut refined = refine::refine(points_m, start, arc, &stop);
+    let mut refined = refine::refine(points_m, start, arc, &stop, 0.0);
     refine::fix_roll(&mut refined.chain, reference);
     let worst = refined.deviations_m.iter().copied().fold(0.0, f64::max);
     StrandFit {
@@ -183,6 +184,54 @@ pub fn fit_with_elements(
         error_over_length: worst / length,
         within_tolerance: true,
         polyline_length_m: length,
+    }
+}
+
+/// Each radian of an element's twist costs, in [`relax_twist`], as much as
+/// a point this fraction of the strand's length off: a fifth of the
+/// default tolerance, so a twist that moves the points less than that is
+/// given up, and one the shape needs (a helix's: each radian moves points
+/// by a good part of its radius) is kept.
+pub const TWIST_WEIGHT_OVER_LENGTH: f64 = 1e-3;
+
+/// The fit with only the twist its shape needs. A polyline carries no
+/// material twist, and an element's twist is seen only through its
+/// curvature's turn, so on a nearly straight element it is barely
+/// observable: a least-squares fit near the data's cap of elements spends
+/// it on the polyline's last tenths of a millimetre (Sintel's fitted twists
+/// reached hundreds of rad/m on nearly straight strands). The fit is
+/// refined again with a penalty on each element's twist angle ℓτ
+/// ([`TWIST_WEIGHT_OVER_LENGTH`]) and the result kept if its points stay
+/// within the tolerance (or, for a fit outside it, no further out). A
+/// polyline a chain reproduces exactly keeps its exact fit: the penalty
+/// would move its points further than its tolerance allows.
+fn relax_twist(
+    points_m: &[DVec3],
+    fit: StrandFit,
+    reference: DVec3,
+    arc: &[f64],
+    options: &FitOptions,
+) -> StrandFit {
+    let length = *arc.last().unwrap_or(&0.0);
+    let tolerance_m = options.tolerance_over_length * length;
+    let stop = refine::EarlyStop {
+        good_enough_m: f64::MIN_POSITIVE,
+        tolerance_m,
+        last_try: false,
+    };
+    let weight_m = TWIST_WEIGHT_OVER_LENGTH * length;
+    let mut relaxed = refine::refine(points_m, fit.chain.clone(), arc, &stop, weight_m);
+    let worst = relaxed.deviations_m.iter().copied().fold(0.0, f64::max);
+    // A NaN deviation keeps the position fit too.
+    let kept = worst <= tolerance_m.max(fit.error_over_length * length);
+    if !kept {
+        return fit;
+    }
+    refine::fix_roll(&mut relaxed.chain, reference);
+    StrandFit {
+        chain: relaxed.chain,
+        error_over_length: worst / length,
+        ..fit
     }
 }
 

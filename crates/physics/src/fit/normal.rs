@@ -69,8 +69,16 @@ pub struct NormalEquations {
 
 impl NormalEquations {
     /// Assembles JᵀJ and Jᵀr at `chain` with the points at places `u`
-    /// (elements) and targets `targets` (relative to the root).
-    pub fn assemble(&mut self, chain: &UniformHelixChain, u: &[f64], targets: &[DVec3]) {
+    /// (elements) and targets `targets` (relative to the root), and, with
+    /// `twist_weight_m` > 0, each element's twist penalty row
+    /// w ℓ τ_Q ([`super::refine`]).
+    pub fn assemble(
+        &mut self,
+        chain: &UniformHelixChain,
+        u: &[f64],
+        targets: &[DVec3],
+        twist_weight_m: f64,
+    ) {
         let n = chain.elements();
         let m = targets.len();
         let dim = 3 * n + 3;
@@ -137,6 +145,20 @@ impl NormalEquations {
                 }
                 self.reach.push(reach);
                 self.place_g.push(gi);
+            }
+        }
+        if twist_weight_m > 0.0 {
+            // ρ_Q = w ℓ τ_Q: ∂ρ/∂τ_Q = w ℓ, ∂ρ/∂ℓ = w τ_Q.
+            let last = dim - 1;
+            for (e, strain) in chain.strains_per_m.iter().enumerate() {
+                let (dt, dl) = (twist_weight_m * l, twist_weight_m * strain.x);
+                let rho = dt * strain.x;
+                let t = 3 * e;
+                self.a[t * dim + t] += dt * dt;
+                self.a[t * dim + last] += dt * dl;
+                self.a[last * dim + last] += dl * dl;
+                self.g[t] += dt * rho;
+                self.g[last] += dl * rho;
             }
         }
         for j in 0..dim {

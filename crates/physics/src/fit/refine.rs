@@ -112,12 +112,16 @@ pub struct EarlyStop {
 
 /// Refines `chain` (root at `points_m[0]`) to the polyline, starting the
 /// points' places at `arc_lengths_m` (e.g. chord lengths scaled to the
-/// chain's length), stopping early as `stop` allows.
+/// chain's length), stopping early as `stop` allows. With
+/// `twist_weight_m` = w > 0 the cost gains ½ Σ_Q (w ℓ τ_Q)²: each
+/// radian of an element's twist costs as much as a point w off
+/// ([`super::relax_twist`]).
 pub fn refine(
     points_m: &[DVec3],
     mut chain: UniformHelixChain,
     arc_lengths_m: &[f64],
     stop: &EarlyStop,
+    twist_weight_m: f64,
 ) -> Refined {
     let good_enough_m = stop.good_enough_m;
     let n = chain.elements();
@@ -129,7 +133,7 @@ pub fn refine(
         .map(|s| (s / l0).clamp(0.0, n as f64))
         .collect();
     u[m - 1] = n as f64;
-    let (mut cost, _) = evaluate(&chain, &u, &targets);
+    let (mut cost, _) = evaluate(&chain, &u, &targets, twist_weight_m);
     let mut lambda = 1e-3;
     let mut iterations = 0;
     let exact = 0.5 * m as f64 * (EXACT_RMS_OVER_LENGTH * l0 * n as f64).powi(2);
@@ -138,7 +142,7 @@ pub fn refine(
     let mut slow_in_a_row = 0;
     while iterations < MAX_ITERATIONS && cost > exact {
         iterations += 1;
-        normal.assemble(&chain, &u, &targets);
+        normal.assemble(&chain, &u, &targets, twist_weight_m);
         let mut accepted = None;
         for _ in 0..MAX_RETRIES {
             if !normal.solve(lambda, &mut delta) {
@@ -146,7 +150,8 @@ pub fn refine(
                 continue;
             }
             if let Some((trial, trial_u)) = apply(&chain, &u, &delta) {
-                let (trial_cost, trial_worst) = evaluate(&trial, &trial_u, &targets);
+                let (trial_cost, trial_worst) =
+                    evaluate(&trial, &trial_u, &targets, twist_weight_m);
                 if trial_cost < cost {
                     accepted = Some((trial, trial_u, trial_cost, trial_worst));
                     break;
@@ -196,14 +201,25 @@ pub fn refine(
     }
 }
 
-/// The cost ½Σ|r_i|² and the largest |r_i|, from one sweep.
-fn evaluate(chain: &UniformHelixChain, u: &[f64], targets: &[DVec3]) -> (f64, f64) {
+/// The cost ½Σ|r_i|² (+ the twist penalty ½Σ(w ℓ τ_Q)²) and the largest
+/// |r_i|, from one sweep.
+fn evaluate(
+    chain: &UniformHelixChain,
+    u: &[f64],
+    targets: &[DVec3],
+    twist_weight_m: f64,
+) -> (f64, f64) {
     let sweep = chain.sweep_with(false);
     let l = chain.element_length_m;
+    let twist: f64 = chain
+        .strains_per_m
+        .iter()
+        .map(|q| 0.5 * (twist_weight_m * l * q.x).powi(2))
+        .sum();
     u.iter()
         .zip(targets)
         .map(|(ui, t)| (chain.point_with(&sweep, ui * l, false).position_m - *t).length_squared())
-        .fold((0.0, 0.0), |(cost, worst): (f64, f64), d2| {
+        .fold((twist, 0.0), |(cost, worst): (f64, f64), d2| {
             (cost + 0.5 * d2, worst.max(d2.sqrt()))
         })
 }
