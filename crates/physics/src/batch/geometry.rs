@@ -33,6 +33,7 @@
 
 use super::lanes::Real;
 use super::vec::{M3, V3};
+use crate::geometry::helix::series_coefficients;
 
 /// Below this y = x² the coefficients come from their series (module docs).
 pub const SERIES_LIMIT_Y: f32 = 16.0;
@@ -40,24 +41,8 @@ pub const SERIES_LIMIT_Y: f32 = 16.0;
 /// f32 keeps 11, enough for its round-off up to [`SERIES_LIMIT_Y`].
 const MAX_TERMS: usize = 16;
 
-/// (−1)ⁿ/(2n + offset)! for n = 0..MAX_TERMS, in f64; each width rounds
-/// them once ([`Real::splat_f64`]).
-const fn series_coefficients(offset: u32) -> [f64; MAX_TERMS] {
-    let mut c = [0.0; MAX_TERMS];
-    let mut n = 0;
-    while n < MAX_TERMS {
-        let mut factorial = 1.0f64;
-        let mut j = 2;
-        while j <= 2 * n as u32 + offset {
-            factorial *= j as f64;
-            j += 1;
-        }
-        c[n] = (if n % 2 == 0 { 1.0 } else { -1.0 }) / factorial;
-        n += 1;
-    }
-    c
-}
-
+// The series in f64 ([`series_coefficients`]); each width rounds them
+// once ([`Real::splat_f64`]).
 const A_SERIES: [f64; MAX_TERMS] = series_coefficients(1);
 const B_SERIES: [f64; MAX_TERMS] = series_coefficients(2);
 const C_SERIES: [f64; MAX_TERMS] = series_coefficients(3);

@@ -17,8 +17,7 @@
 //! twenty terms in double precision, at a third to a half of the work.
 //! Above y = 4 it uses the closed forms, as the step does.
 
-/// Below this y the coefficients come from their series (as in the step).
-const SERIES_LIMIT_Y: f64 = 4.0;
+use crate::geometry::helix::{HelixCoefficients, SERIES_LIMIT_Y, series_coefficients};
 
 /// Most series terms (y just below 4).
 const MOST_TERMS: usize = 12;
@@ -35,26 +34,9 @@ const TERMS_BY_Y: [(f64, usize); 6] = [
     (SERIES_LIMIT_Y, MOST_TERMS),
 ];
 
-/// (−1)ⁿ/(2n + offset)! for n = 0..MOST_TERMS.
-const fn series(offset: u32) -> [f64; MOST_TERMS] {
-    let mut c = [0.0; MOST_TERMS];
-    let mut n = 0;
-    while n < MOST_TERMS {
-        let mut factorial = 1.0;
-        let mut j = 2;
-        while j <= 2 * n as u32 + offset {
-            factorial *= j as f64;
-            j += 1;
-        }
-        c[n] = if n % 2 == 0 { 1.0 } else { -1.0 } / factorial;
-        n += 1;
-    }
-    c
-}
-
-const A_SERIES: [f64; MOST_TERMS] = series(1);
-const B_SERIES: [f64; MOST_TERMS] = series(2);
-const C_SERIES: [f64; MOST_TERMS] = series(3);
+const A_SERIES: [f64; MOST_TERMS] = series_coefficients(1);
+const B_SERIES: [f64; MOST_TERMS] = series_coefficients(2);
+const C_SERIES: [f64; MOST_TERMS] = series_coefficients(3);
 
 /// How many series terms y < 4 needs.
 pub fn terms_for(y: f64) -> usize {
@@ -97,17 +79,14 @@ impl FitCoefficients {
             }
             return Self { a, b, c, b1, c1 };
         }
-        let x = y.sqrt();
-        let (sin, cos) = x.sin_cos();
-        let a = sin / x;
-        let b = (1.0 - cos) / y;
-        let c = (x - sin) / (x * y);
+        // Past the series, the step's closed forms (rare in a fit).
+        let full = HelixCoefficients::at(y);
         Self {
-            a,
-            b,
-            c,
-            b1: (a - 2.0 * b) / (2.0 * y),
-            c1: (b - 3.0 * c) / (2.0 * y),
+            a: full.a[0],
+            b: full.b[0],
+            c: full.c[0],
+            b1: full.b[1],
+            c1: full.c[1],
         }
     }
 }

@@ -21,15 +21,18 @@ use glam::{DMat3, DVec3};
 use crate::geometry::jet::Jet;
 
 /// Below this y = x² the coefficients come from their series.
-const SERIES_LIMIT_Y: f64 = 4.0;
+pub const SERIES_LIMIT_Y: f64 = 4.0;
 /// Series terms; the first neglected term is below 4²⁰/42! ≈ 1e-39.
 const TERMS: usize = 20;
 
-/// (−1)ⁿ/(2n + offset)! for n = 0..TERMS.
-const fn series_coefficients(offset: u32) -> [f64; TERMS] {
-    let mut c = [0.0; TERMS];
+/// (−1)ⁿ/(2n + offset)! for n = 0..N: the Taylor coefficients in y of A
+/// (offset 1), B (2) and C (3), in f64; every evaluation of the helix
+/// coefficients (here, the batch step's, the fit's) takes its terms from
+/// this.
+pub const fn series_coefficients<const N: usize>(offset: u32) -> [f64; N] {
+    let mut c = [0.0; N];
     let mut n = 0;
-    while n < TERMS {
+    while n < N {
         let mut factorial = 1.0;
         let mut j = 2;
         while j <= 2 * n as u32 + offset {
