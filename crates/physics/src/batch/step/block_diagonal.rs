@@ -13,6 +13,7 @@ use crate::batch::forward::forward_with;
 use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
 use crate::batch::layout::{ContactInertia, ElementData, RootMotion, StepEnv};
+use crate::batch::step::load_stiffness::UniformLoad;
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use crate::batch::vec::{M3, V3};
 
@@ -34,9 +35,19 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
     forward_with::<T, false, LOCAL, H>(model, env, root, q, v, scratch, hook, None);
     let h_secs = env.h_secs;
     let drag = hook.drag_rate_per_s();
-    blocks_tip_to_root::<T, LOCAL>(model, env, scratch, drag, q, v, None, |_, m, rhs, q, v| {
-        integrate(h_secs, q, v, m.inverse() * rhs);
-    });
+    blocks_tip_to_root::<T, LOCAL>(
+        model,
+        env,
+        scratch,
+        drag,
+        q,
+        v,
+        None,
+        None,
+        |_, m, rhs, q, v| {
+            integrate(h_secs, q, v, m.inverse() * rhs);
+        },
+    );
 }
 
 /// The tip-to-root sweep of a Block-diagonal step, after the forward sweep
@@ -44,7 +55,8 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
 /// the head's contact there, its step matrix s M_QQ + D (+ contact; s with
 /// the hook's extra drag rate `drag_rate_per_s`, 1/s) and
 /// right-hand side (with `extra_force[e]` added to its generalized force:
-/// Block-diagonal's own velocity terms, [`super::block_implicit`]), handed
+/// Block-diagonal's own velocity terms, [`super::block_implicit`]) and,
+/// with `loads`, their stiffness in the matrix ([`super::load_stiffness`]), handed
 /// to `each(e, matrix, rhs, q_e, v_e)` before the sums move on to the
 /// element before it; moments about each element's own points with
 /// `LOCAL` (the sums then move by −span from each element to the next).
@@ -61,6 +73,7 @@ pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
     q: &mut [V3<T>],
     v: &mut [V3<T>],
     extra_force: Option<&[V3<T>]>,
+    loads: Option<&UniformLoad<T>>,
     mut each: impl FnMut(usize, M3<T>, V3<T>, &mut V3<T>, &mut V3<T>),
 ) {
     let s = mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(drag_rate_per_s);
@@ -76,8 +89,14 @@ pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
             Some(extra) => terms.force + extra[e],
             None => terms.force,
         };
-        let (diagonal, rhs) = step_terms(model, env, e, force, q[e], v[e]);
+        let (diagonal, mut rhs) = step_terms(model, env, e, force, q[e], v[e]);
         let mut step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
+        if let Some(loads) = loads {
+            let h_squared = T::splat_f64(env.h_secs * env.h_secs);
+            let stiffness = loads.stiffness(el, &beyond).scale(h_squared);
+            rhs = rhs - stiffness.mul_vec(v[e]);
+            step_matrix += stiffness;
+        }
         if let Some(c) = &contact {
             step_matrix += c.project(&el.a, &el.b);
         }

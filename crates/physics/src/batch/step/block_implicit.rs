@@ -6,9 +6,11 @@
 //!
 //! The step solves (P + h G_bd) Δv = rhs, where
 //!
-//! - P = s M_bd + D (+ the head's contact) is Block-diagonal's matrix: the
-//!   diagonal blocks of the whole one, as the explicit step forms them
-//!   ([`super::block_diagonal`]), each inverted once and kept;
+//! - P = s M_bd + D (+ the head's contact) + h²K_load is Block-diagonal's
+//!   matrix: the diagonal blocks of the whole one, as the explicit step
+//!   forms them ([`super::block_diagonal`]), with the stiffness of gravity
+//!   and of the root's acceleration ([`super::load_stiffness`]), each
+//!   inverted once and kept;
 //! - rhs takes the forces of Block-diagonal's own Lagrangian: the forward
 //!   sweep's forces plus the correction F_true − F_bd
 //!   ([`crate::batch::block_terms`]);
@@ -30,6 +32,7 @@ use crate::batch::lane_model::Constants;
 use crate::batch::lanes::Real;
 use crate::batch::layout::{ElementData, RootMotion, StepEnv};
 use crate::batch::step::block_diagonal::blocks_tip_to_root;
+use crate::batch::step::load_stiffness::UniformLoad;
 use crate::batch::suffix::integrate;
 use crate::batch::vec::{M3, V3};
 use crate::batch::velocity_terms::{coefficients_of, polarisation_shift, velocity_product};
@@ -83,6 +86,10 @@ pub fn step_block_implicit<T: Real, H: SampleHook<T>>(
         q,
         v,
         Some(correction),
+        Some(&UniformLoad::new(
+            env.gravity_m_per_s2,
+            root.acceleration_m_per_s2,
+        )),
         |e, block, rhs, _, _| {
             inverse[e] = block.inverse();
             delta_v[e] = inverse[e] * rhs;

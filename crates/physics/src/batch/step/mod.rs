@@ -11,6 +11,7 @@ pub mod block_implicit;
 pub mod dense;
 pub mod exact;
 pub mod implicit;
+pub mod load_stiffness;
 
 use std::cell::RefCell;
 
