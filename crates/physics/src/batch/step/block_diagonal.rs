@@ -56,7 +56,8 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
 /// the hook's extra drag rate `drag_rate_per_s`, 1/s) and
 /// right-hand side (with `extra_force[e]` added to its generalized force:
 /// Block-diagonal's own velocity terms, [`super::block_implicit`]) and,
-/// with `loads`, their stiffness in the matrix ([`super::load_stiffness`]), handed
+/// with `loads` (`LOCAL` moments only), their stiffness in the matrix
+/// ([`super::load_stiffness`]), handed
 /// to `each(e, matrix, rhs, q_e, v_e)` before the sums move on to the
 /// element before it; moments about each element's own points with
 /// `LOCAL` (the sums then move by −span from each element to the next).
@@ -77,6 +78,13 @@ pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
     mut each: impl FnMut(usize, M3<T>, V3<T>, &mut V3<T>, &mut V3<T>),
 ) {
     let s = mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(drag_rate_per_s);
+    // The loads' stiffness reads the suffix sums about each element's end
+    // point, which only the local moments give.
+    debug_assert!(
+        LOCAL || loads.is_none(),
+        "the loads' stiffness needs LOCAL moments"
+    );
+    let h_squared = T::splat_f64(env.h_secs * env.h_secs);
     let mut beyond = Beyond::zero();
     // The implicit contact of the samples past the element, about the
     // same origin as `beyond` (crate::batch::contact); `None` until a
@@ -92,7 +100,6 @@ pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
         let (diagonal, mut rhs) = step_terms(model, env, e, force, q[e], v[e]);
         let mut step_matrix = terms.mass_block.scale(s).add_diagonal(diagonal);
         if let Some(loads) = loads {
-            let h_squared = T::splat_f64(env.h_secs * env.h_secs);
             let stiffness = loads.stiffness(el, &beyond).scale(h_squared);
             rhs = rhs - stiffness.mul_vec(v[e]);
             step_matrix += stiffness;
