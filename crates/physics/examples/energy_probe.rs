@@ -7,9 +7,7 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use helixhair_physics::frame_balance::{
-    MeasureInputs, SteppedFrame, measure, unexplained_energy_j,
-};
+use helixhair_physics::frame_balance::{MeasureInputs, SteppedFrame, unexplained_energy_j};
 use helixhair_physics::motion::HeadTrajectory;
 use helixhair_physics::{
     ElementLayout, Method, Oscillation, RigidMotion, RootPose, Strand, StrandModel, StrandParams,
@@ -75,14 +73,7 @@ fn main() {
     let h = 1.0 / 60.0;
     let mut t = 0.0;
     let motion = head.motion_at(t).carry(&root);
-    let mut last = measure(
-        &model,
-        strand.q(),
-        strand.v(),
-        &strand.kinematics(&motion),
-        &motion,
-        &inputs,
-    );
+    let mut last = strand.measure(&motion, &inputs);
     let e0 = last.energy_j;
     let mut worst_ratio: f64 = f64::NEG_INFINITY;
     let mut worst_abs: f64 = f64::NEG_INFINITY;
@@ -92,14 +83,7 @@ fn main() {
         strand.step(&motion, g, DVec3::ZERO, h);
         t += h;
         let motion = head.motion_at(t).carry(&root);
-        let now = measure(
-            &model,
-            strand.q(),
-            strand.v(),
-            &strand.kinematics(&motion),
-            &motion,
-            &inputs,
-        );
+        let now = strand.measure(&motion, &inputs);
         let gain = unexplained_energy_j(
             &last,
             &now,

@@ -14,12 +14,16 @@
 //!
 //! # How
 //!
-//! At the end of a frame, [`measure`] sums over the quadrature samples:
-//! the energy E = T + U_elastic + U_gravity, the momentum P and the angular
+//! At the end of a frame, the measure both engines share
+//! ([`crate::batch::measure`]) sums over the quadrature samples: the
+//! energy E = T + U_elastic + U_gravity, the momentum P and the angular
 //! momentum L about the root point, the external forces (gravity, air
-//! drag, the head's contact push, the external hook a brush drives,
-//! [`add_external`]) with their torque and their power, and
-//! the fastest point relative to the root's rigid motion.
+//! drag, the hair–hair model's pull, the external hook a brush drives)
+//! with their torque and their power, the fastest point relative to the
+//! root's rigid motion, and whether the head's contact acts. A frame that
+//! starts or ends in contact is judged by finiteness and speed alone
+//! ([`crate::guard`]): contact starts and stops within a frame, and its
+//! work is not known at the frame's resolution, so it is not summed.
 //!
 //! The root holds the strand with a force F and a torque τ. Newton's laws
 //! about the moving root point O give them from what was measured,
@@ -49,8 +53,8 @@
 //! Internal friction only removes energy, so for a correct step it is
 //! negative or at the estimate's error, which is small next to the
 //! frame's kinetic energy; a blow-up makes it a large positive number.
-//! With a still head and no wind every work term but the contact's is zero
-//! and the test is simply: energy must not grow.
+//! With a still head and no wind every work term is zero and the test is
+//! simply: energy must not grow.
 //!
 //! Cost: one sum over the samples of a reconstruction, O(N). The start of a
 //! frame is the end of the previous one, so a frame needs one more
@@ -59,16 +63,10 @@
 use glam::DVec3;
 
 use crate::collision::ContactInputs;
-use crate::model::StrandModel;
-use crate::motion::RigidMotion;
 use crate::settings::{Method, StepScheme};
-use crate::step::block_velocity_terms::block_kinetic_energy_j;
-use crate::step::reconstruct::Kinematics;
 
-/// What a strand's state is, measured from its reconstruction. With a
-/// collider, E includes the implicit contact springs' stored energy
-/// ½ k (skin − d)², so only the contact's damping and the moving surface
-/// do work.
+/// What a strand's state is, measured from its reconstruction
+/// ([`crate::batch::measure`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StrandMeasure {
     /// Kinetic energy T = ½ ∫ ρS |ṙ|² ds, joules (world frame).
@@ -80,7 +78,7 @@ pub struct StrandMeasure {
     /// ½ Σ_Q q̇_Qᵀ M_QQ q̇_Q, joules ([`KineticEnergy::BlockDiagonal`]);
     /// zero where not measured (the batch engine on Exact).
     pub block_kinetic_j: f64,
-    /// T + elastic + gravitational (+ contact spring) energy, joules.
+    /// T + elastic + gravitational energy, joules.
     pub energy_j: f64,
     /// T + elastic + |gravitational energy relative to the root point|,
     /// joules: the size of the terms summed, for the round-off allowance
@@ -90,18 +88,13 @@ pub struct StrandMeasure {
     pub momentum: DVec3,
     /// Angular momentum about the root point, ∫ ρS (r − O) × ṙ ds, kg·m²/s.
     pub angular_momentum: DVec3,
-    /// Gravity, drag and contact summed, N.
+    /// Gravity, drag, the hair–hair model's pull and the external hook
+    /// summed, N.
     pub external_force_n: DVec3,
     /// Their torque about the root point, N·m.
     pub external_torque_n_m: DVec3,
-    /// Power of drag and contact, ∫ f · ṙ ds, W (gravity's is inside E).
+    /// Their power but gravity's, ∫ f · ṙ ds, W (gravity's is inside E).
     pub external_power_w: f64,
-    /// The contact's share of [`StrandMeasure::external_power_w`], W: the
-    /// term whose trapezoid estimate is least sure (contact starts and ends
-    /// within a frame), see [`work_uncertainty_j`].
-    pub contact_power_w: f64,
-    /// The contact springs' stored energy, joules (inside `energy_j`).
-    pub contact_j: f64,
     /// Whether any sample touches the head (pushed by contact).
     pub in_contact: bool,
     /// The root point's velocity, m/s.
@@ -180,99 +173,18 @@ impl StrandMeasure {
     }
 }
 
-/// The environment the measure needs besides the strand.
+/// The environment the reference's measure of a strand needs besides
+/// the strand ([`crate::Strand::measure`]).
 #[derive(Clone, Copy, Debug)]
 pub struct MeasureInputs<'a> {
     /// Gravity, m/s².
     pub gravity_m_per_s2: DVec3,
     /// Air velocity, m/s.
     pub air_velocity_m_per_s: DVec3,
-    /// The head's collider, if any: the push measured is the implicit one
-    /// the f64 reference steps with ([`ContactInputs::implicit_force`]).
+    /// The head's collider, if any: a sample is in contact where the
+    /// implicit push the reference steps with acts
+    /// ([`ContactInputs::implicit_force`]).
     pub contact: Option<ContactInputs<'a>>,
-}
-
-/// Adds the external hook's force (`forces_n_per_m`, per sample, as
-/// [`crate::Strand::set_external_forces`] takes it; empty: none), its
-/// torque about the root point and its power at the state of `kin` to
-/// `out`, as the measure counts gravity's and the air's.
-pub fn add_external(out: &mut StrandMeasure, kin: &Kinematics, forces_n_per_m: &[DVec3]) {
-    for (s, f) in kin.samples.iter().zip(forces_n_per_m) {
-        let f = *f * s.weight_m;
-        out.external_force_n += f;
-        out.external_torque_n_m += s.position_m.cross(f);
-        out.external_power_w += f.dot(s.velocity_m_per_s);
-    }
-}
-
-/// Measures a strand with strains `q` and rates `v` whose reconstruction
-/// for a root moving as `root` is `kin`.
-pub fn measure(
-    model: &StrandModel,
-    q: &[DVec3],
-    v: &[DVec3],
-    kin: &Kinematics,
-    root: &RigidMotion,
-    inputs: &MeasureInputs,
-) -> StrandMeasure {
-    let rho_s = model.mass_per_length;
-    let mut out = StrandMeasure {
-        root_velocity_m_per_s: root.velocity_m_per_s,
-        root_angular_velocity_rad_per_s: root.angular_velocity_rad_per_s,
-        root_acceleration_m_per_s2: root.acceleration_m_per_s2,
-        root_angular_acceleration_rad_per_s2: root.angular_acceleration_rad_per_s2,
-        ..StrandMeasure::default()
-    };
-    let mut gravity_j = 0.0;
-    let mut relative_gravity_j = 0.0;
-    let mut contact_j = 0.0;
-    for s in &kin.samples {
-        let w = s.weight_m;
-        let r = s.position_m;
-        let v = s.velocity_m_per_s;
-        out.kinetic_j += 0.5 * w * rho_s * v.length_squared();
-        gravity_j -= w * rho_s * inputs.gravity_m_per_s2.dot(r + root.position_m);
-        relative_gravity_j -= w * rho_s * inputs.gravity_m_per_s2.dot(r);
-        out.momentum += v * (w * rho_s);
-        out.angular_momentum += r.cross(v) * (w * rho_s);
-        out.mass_kg += w * rho_s;
-        out.second_moment_kg_m2 += w * rho_s * r.length_squared();
-        let drag = -model.air_drag * (v - inputs.air_velocity_m_per_s);
-        let mut f = drag;
-        out.external_power_w += drag.dot(v) * w;
-        if let Some(contact) = &inputs.contact {
-            let world = root.position_m + r;
-            let push = contact
-                .implicit_force(world, v, rho_s)
-                .map_or(DVec3::ZERO, |c| c.force_n_per_m);
-            out.in_contact |= push != DVec3::ZERO;
-            f += push;
-            // The spring's energy is counted in E, so its power on the
-            // hair, −dU/dt = k (skin − d) v_rel·n, leaves the external work.
-            let spring = contact.implicit_energy(world, v, rho_s);
-            contact_j += spring.stored_j_per_m * w;
-            let power = push.dot(v) - spring.spring_n_per_m * spring.approach_m_per_s;
-            out.contact_power_w += power * w;
-            out.external_power_w += power * w;
-        }
-        f += rho_s * inputs.gravity_m_per_s2;
-        out.external_force_n += f * w;
-        out.external_torque_n_m += r.cross(f) * w;
-        let relative = v - root.velocity_at(r);
-        out.strain_kinetic_j += 0.5 * w * rho_s * relative.length_squared();
-        out.fastest_relative_m_per_s = out.fastest_relative_m_per_s.max(relative.length());
-    }
-    let elastic_j: f64 = q
-        .iter()
-        .zip(&model.natural)
-        .zip(&model.stiffness)
-        .map(|((q, n), k)| 0.5 * (*k * (*q - *n)).dot(*q - *n))
-        .sum();
-    out.block_kinetic_j = block_kinetic_energy_j(model, kin, v);
-    out.energy_j = out.kinetic_j + elastic_j + gravity_j + contact_j;
-    out.contact_j = contact_j;
-    out.size_j = out.kinetic_j + elastic_j + relative_gravity_j.abs() + contact_j;
-    out
 }
 
 /// A frame as the step took it: its length and the substeps it was
@@ -385,13 +297,4 @@ pub fn root_sampling_uncertainty_j(
     let (impulse, angular_impulse) = root_impulses(start, end, frame);
     let work = dv.length() * impulse.length() + dw.length() * angular_impulse.length();
     first + second + work
-}
-
-/// How unsure the balance is about the contact's work, joules: half the
-/// frame times the change of the contact's power (the difference of the
-/// two one-sided rules). Only frames without contact are judged by
-/// energy ([`StrandMeasure::in_contact`]; see [`crate::guard`]), so this
-/// is the error left from a contact that ended exactly at a frame's edge.
-pub fn work_uncertainty_j(start: &StrandMeasure, end: &StrandMeasure, dt_secs: f64) -> f64 {
-    0.5 * dt_secs * (end.contact_power_w - start.contact_power_w).abs()
 }

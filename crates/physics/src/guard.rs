@@ -6,11 +6,12 @@
 //! solver that is not passive (Block-diagonal's truncated inertia), it keeps
 //! a strand moving with a still head. Both show as energy that no force put
 //! in, so the guard **measures** each frame at its end, from a
-//! reconstruction of the state ([`crate::frame_balance`]):
+//! reconstruction of the state (one measure for both engines,
+//! [`crate::batch::measure`]; the balance, [`crate::frame_balance`]):
 //!
 //! - **finite**: every strain and strain rate is a number;
 //! - **energy**: the energy the frame gained beyond the work of the root
-//!   and of the external forces (drag, contact, the hair–hair model;
+//!   and of the external forces (drag, the hair–hair model, a brush;
 //!   summed by the step's own rule, [`crate::frame_balance`]) must stay below
 //!   [`Guard::energy_tolerance`] times the frame's kinetic energy (start
 //!   plus end), plus round-off. Frames in which any sample touches the
@@ -28,8 +29,9 @@
 //!   a bound: the old bound Σ ℓ|q̇|(L − s) read 50 m/s on coiled strands
 //!   whose fastest point moved at 1 m/s, and reset healthy hair.
 //!
-//! Recovery: the strand goes back to its state at the start of the frame
-//! and the frame is stepped again. An approximate solver (Block-diagonal,
+//! Recovery, one policy for both engines ([`retry_frame`]): the strand
+//! goes back to its state at the start of the frame and the frame is
+//! stepped again. An approximate solver (Block-diagonal,
 //! Iterative) is first replaced by Exact at the same substeps: its failure
 //! comes from the truncated inertia, not from h. Then the substeps double,
 //! up to [`Guard::max_substeps`]. A retry is judged by the same measures.
@@ -49,7 +51,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::frame_balance::{
     SteppedFrame, StrandMeasure, root_sampling_uncertainty_j, unexplained_energy_j,
-    work_uncertainty_j,
 };
 use crate::model::StrandModel;
 use crate::settings::Method;
@@ -263,15 +264,13 @@ impl Guard {
         let gained_j = unexplained_energy_j(start, end, frame);
         let allowed_j = self.energy_tolerance * (start.kinetic_j + end.kinetic_j)
             + round_off * (start.size_j + end.size_j);
-        // The uncertainties below are never negative: a gain within the
-        // allowance so far passes whatever they add (the same verdict, and
-        // most strands in most frames skip their cost).
+        // The uncertainty below is never negative: a gain within the
+        // allowance so far passes whatever it adds (the same verdict, and
+        // most strands in most frames skip its cost).
         if gained_j <= allowed_j {
             return None;
         }
-        let allowed_j = allowed_j
-            + work_uncertainty_j(start, end, frame.dt_secs)
-            + root_sampling_uncertainty_j(start, end, frame);
+        let allowed_j = allowed_j + root_sampling_uncertainty_j(start, end, frame);
         (gained_j > allowed_j).then_some(GuardCause::EnergyGain {
             gained_j,
             allowed_j,
@@ -308,14 +307,52 @@ impl ResetMemory {
         }
     }
 
-    /// Records a reset; returns whether the strand must now be pinned.
-    pub fn record_reset(&mut self, guard: &Guard) -> bool {
+    /// Records that no retry could step the strand: it is pinned
+    /// ([`GuardAction::Pinned`]) if its resets now repeat too often, else
+    /// reset ([`GuardAction::Reset`]).
+    pub fn give_up(&mut self, guard: &Guard) -> GuardAction {
         self.short_count += 1;
         self.short_frames_left = guard.hold_frames;
         self.long_count += 1;
         self.long_frames_left = guard.long_window_frames;
-        self.short_count >= guard.resets_before_pinning
+        if self.short_count >= guard.resets_before_pinning
             || self.long_count >= guard.long_resets_before_pinning
+        {
+            GuardAction::Pinned
+        } else {
+            GuardAction::Reset
+        }
+    }
+}
+
+/// The guard's one recovery of a failed frame, which both engines follow
+/// (the f64 reference strand by strand, the batch engine a batch's lanes
+/// at once, [`crate::batch`]): the frame, stepped in `own` substeps, is
+/// stepped again from its start with Exact, at the same substeps if the
+/// frame was stepped with an approximate solver (`approximate`:
+/// Block-diagonal, Iterative; its failure comes from the truncated
+/// inertia, not from h), then with twice the substeps, and twice again, up
+/// to [`Guard::max_substeps`] (or `own`, if more).
+/// `step_again(substeps, pending)` steps the strands still failing
+/// (`pending[i]`) with Exact in `substeps`, judges them by the same
+/// measures against the same start, and clears those that passed. A
+/// strand still pending at the end is given up
+/// ([`ResetMemory::give_up`]).
+pub fn retry_frame(
+    guard: &Guard,
+    own: u32,
+    approximate: bool,
+    pending: &mut [bool],
+    mut step_again: impl FnMut(u32, &mut [bool]),
+) {
+    let mut substeps = if approximate {
+        own
+    } else {
+        own.saturating_mul(2)
+    };
+    while substeps <= guard.max_substeps.max(own) && pending.contains(&true) {
+        step_again(substeps, pending);
+        substeps = substeps.saturating_mul(2);
     }
 }
 

@@ -16,7 +16,7 @@ use crate::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use crate::energy::Energies;
 use crate::error::ParamError;
 use crate::frame_balance::{KineticEnergy, MeasureInputs, SteppedFrame, StrandMeasure};
-use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState};
+use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, GuardState, retry_frame};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
@@ -422,38 +422,44 @@ fn guarded_frame(
         };
     };
     let approximate = !matches!(s.method(), Method::Dense | Method::Exact);
-    let mut substeps = if approximate {
+    if approximate {
         state.own_method.get_or_insert(s.method());
         s.set_method(Method::Exact);
-        own
-    } else {
-        own.saturating_mul(2)
-    };
-    let action = loop {
-        if substeps > guard.max_substeps.max(frame.substeps) {
-            state.substeps = 0;
-            state.hold_frames = guard.hold_frames;
-            if state.resets.record_reset(&guard) {
-                s.set_rest_pose_at_rest();
-                state.pinned = true;
-                break GuardAction::Pinned;
+    }
+    let mut passed_at = None;
+    retry_frame(
+        &guard,
+        own,
+        approximate,
+        &mut [true],
+        |substeps, pending| {
+            s.restore_checkpoint(false);
+            times.accumulate(&plain_frame(s, frame, substeps));
+            let end = end_measure(s, frame);
+            if judge(&guard, s, &start, &end, stepped(substeps)).is_none() {
+                s.set_cached_measure(Some(end));
+                pending[0] = false;
+                passed_at = Some(substeps);
             }
-            s.restore_checkpoint(true);
-            break GuardAction::Reset;
+        },
+    );
+    state.hold_frames = guard.hold_frames;
+    state.substeps = passed_at.unwrap_or(0);
+    let action = match passed_at {
+        Some(substeps) => GuardAction::Retried {
+            method: s.method(),
+            substeps,
+        },
+        None => {
+            let action = state.resets.give_up(&guard);
+            state.pinned = action == GuardAction::Pinned;
+            if state.pinned {
+                s.set_rest_pose_at_rest();
+            } else {
+                s.restore_checkpoint(true);
+            }
+            action
         }
-        s.restore_checkpoint(false);
-        times.accumulate(&plain_frame(s, frame, substeps));
-        let end = end_measure(s, frame);
-        if judge(&guard, s, &start, &end, stepped(substeps)).is_none() {
-            s.set_cached_measure(Some(end));
-            state.substeps = substeps;
-            state.hold_frames = guard.hold_frames;
-            break GuardAction::Retried {
-                method: s.method(),
-                substeps,
-            };
-        }
-        substeps = substeps.saturating_mul(2);
     };
     s.set_guard_state(state);
     FrameOutcome {

@@ -6,17 +6,18 @@ use glam::DVec3;
 
 use crate::collision::ContactInputs;
 use crate::energy::{Energies, energies};
-use crate::frame_balance::{MeasureInputs, StrandMeasure, add_external, measure};
+use crate::frame_balance::{MeasureInputs, StrandMeasure};
 use crate::guard::GuardState;
 use crate::model::StrandModel;
 use crate::motion::{RigidMotion, RootPose};
 use crate::settings::{Method, StepScheme};
 use crate::step::forces::ForceInputs;
+use crate::step::generic::measure_strand;
 use crate::step::reconstruct::{Kinematics, reconstruct};
 use crate::step::solve::Solver;
 use crate::step::{StageTimes, StepInputs, StepWorkspace, step_strand};
 use crate::volume::VolumePull;
-use crate::volume::balance::{PullWork, add_pull, pull_work};
+use crate::volume::balance::{PullWork, pull_work};
 use crate::volume::pair_points::SampleMotion;
 
 /// A Super-Helix strand clamped to a root on the head.
@@ -34,7 +35,6 @@ pub struct Strand {
     checkpoint_q: Vec<DVec3>,
     checkpoint_v: Vec<DVec3>,
     guard_state: GuardState,
-    measure_kinematics: Kinematics,
     /// The guard's measure of the current state, while it is valid.
     cached_measure: Option<StrandMeasure>,
 }
@@ -53,7 +53,6 @@ impl Strand {
             checkpoint_q: model.natural.clone(),
             checkpoint_v: vec![DVec3::ZERO; n],
             guard_state: GuardState::default(),
-            measure_kinematics: Kinematics::default(),
             cached_measure: None,
             model,
             root,
@@ -102,28 +101,24 @@ impl Strand {
     }
 
     /// The guard's measure of the current state ([`crate::frame_balance`])
-    /// for a root moving as `root`: one reconstruction.
-    pub fn measure(&mut self, root: &RigidMotion, inputs: &MeasureInputs) -> StrandMeasure {
-        reconstruct(
+    /// for a root moving as `root`: the shared measure at f64
+    /// ([`crate::step::generic::measure_strand`]).
+    pub fn measure(&self, root: &RigidMotion, inputs: &MeasureInputs) -> StrandMeasure {
+        let forces = ForceInputs {
+            root,
+            gravity_m_per_s2: inputs.gravity_m_per_s2,
+            air_velocity_m_per_s: inputs.air_velocity_m_per_s,
+            external_n_per_m: &self.external_n_per_m,
+            contact: None,
+            volume: self.volume.pull(&self.model),
+        };
+        measure_strand(
             &self.model,
             &self.q,
             &self.v,
-            root,
-            &mut self.measure_kinematics,
-        );
-        let mut out = measure(
-            &self.model,
-            &self.q,
-            &self.v,
-            &self.measure_kinematics,
-            root,
-            inputs,
-        );
-        add_external(&mut out, &self.measure_kinematics, &self.external_n_per_m);
-        if let Some(pull) = self.volume.pull(&self.model) {
-            add_pull(&mut out, &self.model, &self.measure_kinematics, root, &pull);
-        }
-        out
+            &forces,
+            inputs.contact.as_ref(),
+        )
     }
 
     /// The measure the last guarded frame ended with, if the state has not

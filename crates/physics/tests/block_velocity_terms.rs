@@ -234,12 +234,13 @@ fn block_diagonal_energy_never_grows_with_a_still_head() {
 }
 
 /// The guard's measure of Block-diagonal's own strain kinetic energy
-/// (suffix moments, O(N)) is ½ Σ q̇_Qᵀ M_QQ q̇_Q with the mass stage's
-/// diagonal blocks, at any head pose and motion (T_bd is the strain
-/// rates' alone).
+/// (suffix moments, O(N), the measure both engines share, here at f64) is
+/// ½ Σ q̇_Qᵀ M_QQ q̇_Q with the mass stage's diagonal blocks, at any head
+/// pose and motion (T_bd is the strain rates' alone).
 #[test]
 fn measured_block_kinetic_energy_is_the_diagonal_blocks() {
-    use helixhair_physics::step::block_velocity_terms::block_kinetic_energy_j;
+    use helixhair_physics::step::forces::ForceInputs;
+    use helixhair_physics::step::generic::measure_strand;
     for (seed, elements, curl) in [(31, 5, 60.0), (32, 9, 150.0), (33, 1, 0.0)] {
         let mut rng = Rng::new(seed);
         let m = model(&params(0.2, elements), 3);
@@ -253,7 +254,15 @@ fn measured_block_kinetic_energy_is_the_diagonal_blocks() {
             ..still
         };
         for root in [still, moving] {
-            let got = block_kinetic_energy_j(&m, &kinematics(&m, &q, &v, &root), &v);
+            let forces = ForceInputs {
+                root: &root,
+                gravity_m_per_s2: DVec3::ZERO,
+                air_velocity_m_per_s: DVec3::ZERO,
+                external_n_per_m: &[],
+                contact: None,
+                volume: None,
+            };
+            let got = measure_strand(&m, &q, &v, &forces, None).block_kinetic_j;
             println!("seed {seed}: T_bd {got:.6e} against {expected:.6e}");
             assert!((got - expected).abs() <= 1e-12 * expected, "seed {seed}");
         }

@@ -17,8 +17,8 @@ use common::*;
 use glam::{DMat3, DVec3};
 use helixhair_physics::batch::BatchSystem;
 use helixhair_physics::{
-    Guard, HairSystem, HeadTrajectory, NaturalShape, ResetMemory, RigidMotion, SimSettings,
-    StrandParams,
+    Guard, GuardAction, HairSystem, HeadTrajectory, NaturalShape, ResetMemory, RigidMotion,
+    SimSettings, StrandParams,
 };
 
 /// A still head for [`AbruptNod::START_SECS`] (the hair settles), then
@@ -122,7 +122,7 @@ fn a_strand_failing_every_few_seconds_is_pinned_on_its_fifth_reset() {
         for _ in 0..300 {
             memory.tick();
         }
-        if memory.record_reset(&guard) {
+        if memory.give_up(&guard) == GuardAction::Pinned {
             pinned_at = Some(reset);
             break;
         }
@@ -134,10 +134,11 @@ fn a_strand_failing_every_few_seconds_is_pinned_on_its_fifth_reset() {
         for _ in 0..3600 {
             memory.tick();
         }
-        assert!(!memory.record_reset(&guard));
+        assert_eq!(memory.give_up(&guard), GuardAction::Reset);
     }
     // Three within a second: pinned on the third.
     let mut memory = ResetMemory::default();
-    let pins: Vec<bool> = (0..3).map(|_| memory.record_reset(&guard)).collect();
-    assert_eq!(pins, [false, false, true]);
+    let actions: Vec<GuardAction> = (0..3).map(|_| memory.give_up(&guard)).collect();
+    use GuardAction::{Pinned, Reset};
+    assert_eq!(actions, [Reset, Reset, Pinned]);
 }

@@ -219,7 +219,7 @@ fn a_healthy_run_is_left_alone_and_matches_the_unguarded_one() {
 fn a_brush_push_is_work_the_guard_counts_not_energy_from_nowhere() {
     // A strong push on every sample (the external hook a brush drives:
     // twice gravity, sideways) puts real energy into the strand. The
-    // guard's balance counts the push's work (frame_balance::add_external),
+    // guard's balance counts the push's work (the measure counts the step hook's force),
     // so it must not mistake that energy for a blow-up.
     let p = hanging_curl(10);
     let root = at_rest(glam::DMat3::IDENTITY);

@@ -1,7 +1,7 @@
 //! Block-diagonal's own strain kinetic energy T_bd = ½ Σ_Q q̇_Qᵀ M_QQ q̇_Q,
-//! in lanes, for the guard's measure of a Block-diagonal frame (the f64
-//! reference's is [`crate::step::block_velocity_terms::block_kinetic_energy_j`];
-//! why the guard needs it: [`crate::frame_balance::KineticEnergy`]).
+//! for the guard's measure of a Block-diagonal frame on both engines
+//! ([`super::measure`]; why the guard needs it:
+//! [`crate::frame_balance::KineticEnergy`]).
 //!
 //! # How it works
 //!

@@ -1,54 +1,39 @@
-//! Failing safe on the fast path: the measures of [`crate::guard`], lane by
-//! lane, and a reset.
+//! Failing safe on the fast path: the guard's measure and check
+//! ([`crate::guard`]), lane by lane.
 //!
 //! # How it works
 //!
 //! After each frame, every strand (every lane of every batch) is measured
-//! as the f64 [`crate::HairSystem`] measures it ([`crate::frame_balance`]):
-//! [`measure_lanes`] sweeps the batch root to tip in f32 lanes, summing
-//! over the quadrature samples each lane's kinetic, elastic and
-//! gravitational energy, momentum, angular momentum about the root, the
-//! external forces with their torque and power (gravity, drag and the
-//! hair–hair model's pull, [`crate::batch::volume::pull`]), whether the head's contact
-//! acts at any quadrature sample, as the step applies it (a frame in
-//! contact is judged by finiteness and speed alone, so the contact's force
-//! itself is not summed), and the fastest point relative to the root's
-//! rigid motion. Each lane's sums go
-//! into a [`StrandMeasure`], and [`Guard::check`] judges the frame from
-//! the measures at its start and end: finite, true speed under the limit,
-//! no energy that no force put in (with an allowance for f32 round-off,
-//! [`F32_ENERGY_ROUND_OFF`]). The start of a frame is the end of the
-//! previous one, so a frame costs one sweep more than its steps.
+//! by the measure both engines share ([`super::measure`]), in f32 lanes:
+//! the hair–hair model's pull is the extra force it counts
+//! ([`crate::batch::volume::pull`]), and the head's contact is tested with
+//! the step's own test ([`LaneContact::touching`]) on the samples the
+//! sweep kept. [`check_lanes`] judges each lane's frame from the measures
+//! at its start and end with [`Guard::check_with_round_off`], allowing for
+//! f32 round-off ([`F32_ENERGY_ROUND_OFF`]). The start of a frame is the
+//! end of the previous one, so a frame costs one sweep more than its
+//! steps.
 //!
-//! **Recovery is a reset**: a failing strand goes back to its rest pose at
-//! rest (q = its rest strains, qⁿ unless told otherwise, as an imported
-//! sag-free strand is told its groomed shape; q̇ = 0), and reported with the check that failed and
-//! by how much ([`super::BatchSystem::last_guard_events`], the f64
-//! guard's [`crate::guard::GuardEvent`]). This path does not retry the
-//! frame with Exact and more substeps as the f64 guard does: it is the
-//! interactive path, where a frame's cost must stay predictable (a retry
-//! of a whole batch at 32 substeps would stall the frame it happens in), and
-//! lanes share their batch's arithmetic, so one strand cannot be re-stepped
-//! on its own without stepping its seven neighbours again. The f64
-//! `HairSystem` is the careful path; use it where a recovered trajectory
-//! matters more than the frame rate.
+//! A failing lane is recovered by the guard's one policy, batched
+//! ([`super::retry`]): re-stepped with Exact and more substeps, else reset
+//! to its start-of-frame shape at rest, else pinned in its rest pose
+//! ([`set_at_rest`]), each intervention reported as a
+//! [`crate::guard::GuardEvent`] ([`super::BatchSystem::last_guard_events`]).
 //!
 //! A strand that passes is not touched, so a healthy run is bit-identical
 //! with and without the guard.
 
 use std::cell::RefCell;
 
-use glam::DVec3;
-
-use super::block_kinetic::{BlockKinetic, BlockKineticBuffer};
-use super::forward::{FrameState, sweep_samples};
+use super::forward::NoContact;
 use super::lane_model::Constants;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{RootMotion, StepEnv};
+use super::measure::{LaneMeasures, MeasureInputs, MeasureScratch, Touching, measure_state};
 use super::vec::{V3, set_lane};
 use crate::batch::contact::LaneContact;
 use crate::batch::contact::near_cells::SkinTest;
-use crate::batch::volume::pull::{RootVelocity, SamplePull, add_pull_work};
+use crate::batch::volume::pull::{RootVelocity, SamplePull, WithPull};
 use crate::frame_balance::{KineticEnergy, SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardCause};
 use crate::motion::RigidMotion;
@@ -82,21 +67,17 @@ pub(super) fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
 pub const F32_ENERGY_ROUND_OFF: f64 = 1e-4;
 
 thread_local! {
-    /// Each thread's buffer of quadrature samples for [`measure_lanes`].
-    static KEPT_POINTS: RefCell<Vec<(V3<Lanes>, V3<Lanes>)>> = const { RefCell::new(Vec::new()) };
-    /// Each thread's buffer for Block-diagonal's kinetic energy.
-    static KEPT_BLOCK: RefCell<BlockKineticBuffer<Lanes>> = RefCell::new(BlockKineticBuffer::default());
+    /// Each thread's buffers for [`measure_lanes`].
+    static KEPT: RefCell<MeasureScratch<Lanes>> = RefCell::new(MeasureScratch::default());
 }
 
-/// Per lane, the guard's measure of a batch in state (`q`, `v`), its roots
-/// moving as `root` (lanes) with root points at `root_positions_m`
-/// (world), under `env`'s gravity and air, with the head's `contact` if any
-/// and the hair–hair model's `pull` if on ([`crate::batch::volume::pull`]). With
-/// `samples` (N × nodes entries), each quadrature sample's position
-/// relative to its root and world velocity is kept there as the sweep
-/// finds it: the hair–hair model's gather of the next frame starts from
-/// the state this measure ends, and takes them instead of sweeping again
-/// ([`super::volume`]).
+/// Per lane, the guard's measure ([`super::measure::measure_state`]) of a
+/// batch in state (`q`, `v`), its roots moving as `root` (lanes) and
+/// `motions` (each lane's), under `env`'s gravity and air, with the head's
+/// `contact` if any and the hair–hair model's `pull` if on
+/// ([`crate::batch::volume::pull`]). With `samples` (N × nodes entries),
+/// each quadrature sample's position relative to its root and world
+/// velocity is kept there, for the hair–hair model's next gather.
 #[expect(
     clippy::too_many_arguments,
     reason = "the batch's state, every force the balance counts, and where its samples go"
@@ -110,193 +91,49 @@ pub fn measure_lanes<'a>(
     v: &[V3<Lanes>],
     contact: Option<&SkinTest<'_>>,
     pull: Option<&SamplePull<'_>>,
-    mut samples: Option<&mut [[V3<Lanes>; 2]]>,
+    samples: Option<&mut [[V3<Lanes>; 2]]>,
     judged_by: KineticEnergy,
-) -> LaneMeasures<'a> {
+) -> LaneMeasures<'a, Lanes> {
     let rho_s = model.mass_per_length();
-    let nu = model.air_drag();
-    let g = V3::splat_f64(env.gravity_m_per_s2);
-    let air = V3::splat_f64(env.air_velocity_m_per_s);
-    let zero = Lanes::splat(0.0);
-    let (mut kinetic, mut elastic, mut power, mut fastest_squared) = (zero, zero, zero, zero);
-    let mut strain_kinetic = zero;
-    let (mut momentum, mut angular, mut force, mut torque, mut first_moment) =
-        (V3::zero(), V3::zero(), V3::zero(), V3::zero(), V3::zero());
-    let (mut mass, mut second_moment) = (zero, zero);
-    let nodes = model.node_count();
-    // Quadrature samples (relative to the root) and their velocities, for
-    // the contact's test after the sweep: kept out of the SIMD loop, whose
-    // state would otherwise be spilled for the per-lane lookups.
-    // The thread's buffer, kept: a batch's measure allocates nothing.
-    let mut points = KEPT_POINTS.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
-    points.clear();
-    let carried = RootVelocity::of(root);
-    // Block-diagonal's own kinetic energy, only where a frame is judged by it.
-    let block = (judged_by == KineticEnergy::BlockDiagonal).then(|| {
-        let buffer = KEPT_BLOCK.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
-        RefCell::new(BlockKinetic::new(FrameState::at_root(root), buffer))
+    let touching = contact.map(|test| {
+        let contact = LaneContact::new(*test, rho_s, motions.map(|m| m.position_m));
+        move |points: &[(V3<Lanes>, V3<Lanes>)]| lanes_in_contact(&contact, points)
     });
-    let sample = |e: usize, j: usize, r: V3<Lanes>, vel: V3<Lanes>| {
-        if let Some(kept) = samples.as_deref_mut() {
-            kept[e * nodes + j] = [r, vel];
-        }
-        let w_len = model.weight(j) * model.length_m(e);
-        let w_mass = w_len * rho_s;
-        if let Some(block) = &block {
-            block.borrow_mut().sample(w_mass, r, vel);
-        }
-        kinetic = (vel.dot(vel) * w_mass).mul_add(Lanes::splat(0.5), kinetic);
-        momentum = vel.scale_add(w_mass, momentum);
-        angular = r.cross(vel).scale_add(w_mass, angular);
-        first_moment = r.scale_add(w_mass, first_moment);
-        mass += w_mass;
-        second_moment = r.dot(r).mul_add(w_mass, second_moment);
-        if contact.is_some() {
-            points.push((r, vel));
-        }
-        let rel = vel - carried.at(r);
-        strain_kinetic = (rel.dot(rel) * w_mass).mul_add(Lanes::splat(0.5), strain_kinetic);
-        if let Some(pull) = pull {
-            let sums = (&mut force, &mut torque, &mut power);
-            add_pull_work(pull, e, j, r, (vel, rel), w_len, sums);
-        }
-        // Squares here, one root at the end: the root is monotone and
-        // correctly rounded, so the same bits (NaN stays NaN).
-        fastest_squared = fastest_squared.max(rel.dot(rel));
-    };
-    let element_end = |e: usize, s: &FrameState<Lanes>| {
-        let d = q[e] - model.natural(e);
-        let k = model.stiffness(e);
-        elastic += (d.x * d.x * k.x + d.y * d.y * k.y + d.z * d.z * k.z) * Lanes::splat(0.5);
-        if let Some(block) = &block {
-            block.borrow_mut().element_end(s);
-        }
-    };
-    sweep_samples(model, root, q, v, sample, element_end);
-    let block_kinetic = block.map_or(zero, |block| {
-        let (t, buffer) = block.into_inner().finish();
-        KEPT_BLOCK.with(|kept| *kept.borrow_mut() = buffer);
-        t
-    });
-    // Gravity and drag, summed from the sums above: the drag per unit
-    // length is ν (ṙ − v_air) = (ν/ρS) ρS (ṙ − v_air), so its force,
-    // torque and power over the samples are (ν/ρS) times those of the
-    // momentum sums (exact; in f32 the same up to round-off, which the
-    // balance allows, [`F32_ENERGY_ROUND_OFF`]).
-    let drag_per_mass = nu / rho_s;
-    force += g.scale(mass) - (momentum - air.scale(mass)).scale(drag_per_mass);
-    torque += first_moment.cross(g) - (angular - first_moment.cross(air)).scale(drag_per_mass);
-    power -= (kinetic + kinetic - air.dot(momentum)) * drag_per_mass;
-    let in_contact = match contact {
-        Some(contact) => lanes_in_contact(model, contact, motions, &points),
-        None => 0,
-    };
-    KEPT_POINTS.with(|kept| *kept.borrow_mut() = points);
-    LaneMeasures {
-        kinetic,
-        strain_kinetic,
-        block_kinetic,
-        elastic,
-        power,
-        mass,
-        second_moment,
-        momentum,
-        angular,
-        force,
-        torque,
-        first_moment,
-        in_contact,
+    let touching = touching.as_ref().map(|t| t as Touching<'_, Lanes>);
+    let mut scratch = KEPT.with(|kept| std::mem::take(&mut *kept.borrow_mut()));
+    let inputs = MeasureInputs {
+        env,
+        root,
         motions,
-        fastest: fastest_squared.sqrt(),
-        // The gravity the f32 step felt, rounded as it was.
-        gravity_m_per_s2: DVec3::from_array(
-            env.gravity_m_per_s2
-                .map(|g| Lanes::splat_f64(g).lane_f64(0)),
-        ),
-    }
-}
-
-/// A batch's measure as [`measure_lanes`] sums it, in lanes; each strand's
-/// [`StrandMeasure`] is read from it lane by lane ([`Self::strand`]), where
-/// it is needed, instead of all eight built and copied at once.
-#[derive(Clone, Copy, Debug)]
-pub struct LaneMeasures<'a> {
-    kinetic: Lanes,
-    strain_kinetic: Lanes,
-    block_kinetic: Lanes,
-    elastic: Lanes,
-    power: Lanes,
-    fastest: Lanes,
-    mass: Lanes,
-    second_moment: Lanes,
-    momentum: V3<Lanes>,
-    angular: V3<Lanes>,
-    force: V3<Lanes>,
-    torque: V3<Lanes>,
-    first_moment: V3<Lanes>,
-    /// Bit `lane`: whether the head's contact acts on that lane.
-    in_contact: u32,
-    motions: &'a [RigidMotion; LANES],
-    gravity_m_per_s2: DVec3,
-}
-
-impl LaneMeasures<'_> {
-    /// Lane `lane`'s measure, in f64.
-    pub fn strand(&self, lane: usize) -> StrandMeasure {
-        let x = |t: Lanes| f64::from(t.lane(lane));
-        let x3 = |t: V3<Lanes>| DVec3::new(x(t.x), x(t.y), x(t.z));
-        let motion = &self.motions[lane];
-        let gravity = self.gravity_m_per_s2;
-        let relative_gravity_j = -gravity.dot(x3(self.first_moment));
-        let gravity_j = relative_gravity_j - x(self.mass) * gravity.dot(motion.position_m);
-        let (kinetic, elastic) = (x(self.kinetic), x(self.elastic));
-        StrandMeasure {
-            kinetic_j: kinetic,
-            strain_kinetic_j: x(self.strain_kinetic),
-            block_kinetic_j: x(self.block_kinetic),
-            energy_j: kinetic + elastic + gravity_j,
-            size_j: kinetic + elastic + relative_gravity_j.abs(),
-            momentum: x3(self.momentum),
-            angular_momentum: x3(self.angular),
-            external_force_n: x3(self.force),
-            external_torque_n_m: x3(self.torque),
-            external_power_w: x(self.power),
-            contact_power_w: 0.0,
-            contact_j: 0.0,
-            in_contact: self.in_contact & (1 << lane) != 0,
-            root_velocity_m_per_s: motion.velocity_m_per_s,
-            root_angular_velocity_rad_per_s: motion.angular_velocity_rad_per_s,
-            root_acceleration_m_per_s2: motion.acceleration_m_per_s2,
-            root_angular_acceleration_rad_per_s2: motion.angular_acceleration_rad_per_s2,
-            mass_kg: x(self.mass),
-            second_moment_kg_m2: x(self.second_moment),
-            fastest_relative_m_per_s: x(self.fastest),
+        touching,
+        judged_by,
+    };
+    let measured = match pull {
+        Some(pull) => {
+            let forces = WithPull {
+                inner: NoContact,
+                pull: *pull,
+                root: RootVelocity::of(root),
+            };
+            measure_state(model, q, v, &inputs, &forces, samples, &mut scratch)
         }
-    }
+        None => measure_state(model, q, v, &inputs, &NoContact, samples, &mut scratch),
+    };
+    KEPT.with(|kept| *kept.borrow_mut() = scratch);
+    measured
 }
 
-/// Per lane (bit `lane` of the mask), whether the head's contact acts at
-/// any quadrature sample of a batch whose samples (relative to each lane's
-/// root) and velocities are `points`: the step's own test
-/// ([`LaneContact::touching`]).
+/// Per lane (bit `lane` of the mask), whether the head's `contact` acts
+/// at any of a batch's samples (relative to each lane's root) moving as
+/// `points` say: the step's own test ([`LaneContact::touching`]).
 ///
 /// Only "is there contact" is found, not the force: a frame that starts or
 /// ends in contact is judged by finiteness and true speed alone
 /// ([`Guard::check_with_round_off`]), so the contact's work never enters a
 /// verdict. A lane stops being tested at its first point in contact, and
 /// the sweep at the point where every lane is.
-fn lanes_in_contact(
-    model: &impl Constants<Lanes>,
-    test: &SkinTest<'_>,
-    motions: &[RigidMotion; LANES],
-    points: &[(V3<Lanes>, V3<Lanes>)],
-) -> u32 {
+fn lanes_in_contact(contact: &LaneContact<'_>, points: &[(V3<Lanes>, V3<Lanes>)]) -> u32 {
     const ALL: u32 = (1 << LANES) - 1;
-    let contact = LaneContact::new(
-        *test,
-        model.mass_per_length(),
-        motions.map(|m| m.position_m),
-    );
     let mut found = 0;
     for (point_m, velocity_m_per_s) in points {
         found |= contact.touching(*point_m, *velocity_m_per_s, ALL & !found, |_, _| {});
@@ -323,7 +160,7 @@ pub fn check_lanes(
     v: &[V3<Lanes>],
     measures: &mut [StrandMeasure; LANES],
     retry_from: &mut [StrandMeasure; LANES],
-    end: &LaneMeasures<'_>,
+    end: &LaneMeasures<'_, Lanes>,
     frame: SteppedFrame,
     judged_by: KineticEnergy,
 ) -> [Option<GuardCause>; LANES] {

@@ -120,6 +120,7 @@ pub mod guard;
 pub mod lane_model;
 pub mod lanes;
 pub mod layout;
+pub mod measure;
 mod retry;
 pub mod step;
 pub mod suffix;

@@ -1,5 +1,5 @@
-//! The batch guard's recovery: the f64 guard's policy ([`crate::guard`]),
-//! batched.
+//! The batch guard's recovery: the guard's one policy
+//! ([`crate::guard::retry_frame`]), batched.
 //!
 //! # How it works
 //!
@@ -10,7 +10,7 @@
 //! [`Guard::max_substeps`]. A retry is judged by the same measures, against
 //! the same start. If none passes, the strand goes back to its
 //! start-of-frame shape at rest; resets that repeat pin it
-//! ([`crate::guard::ResetMemory`]), held at rest in its rest pose.
+//! ([`crate::guard::ResetMemory::give_up`]), held at rest in its rest pose.
 //!
 //! Lanes share their batch's arithmetic, so a retry steps the whole batch
 //! (eight strands) from its checkpoint ([`Group::save_checkpoint`]) and
@@ -37,7 +37,7 @@ use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, carried};
 use crate::collision::{ContactSettings, SignedDistanceField};
 use crate::frame_balance::{KineticEnergy, SteppedFrame, StrandMeasure};
-use crate::guard::{Guard, GuardAction};
+use crate::guard::{Guard, GuardAction, retry_frame};
 use crate::motion::{HeadTrajectory, RootPose};
 use crate::settings::Method;
 
@@ -127,96 +127,94 @@ fn retry_batch(
         .and_then(|(volume, group)| volume.pull(group, index));
     // What the frame left, which the lanes that passed keep.
     let (mut kept_q, mut kept_v) = (q.to_vec(), v.to_vec());
-    let mut pending: [bool; LANES] = std::array::from_fn(|lane| standing.failed[lane].is_some());
-    let mut substeps = if standing.stepped_own && inputs.kinds.own.is_block_diagonal() {
-        frame.substeps
-    } else {
-        frame.substeps.saturating_mul(2)
-    };
+    let approximate = standing.stepped_own && inputs.kinds.own.is_block_diagonal();
     let end_secs = inputs.start_secs + frame.dt_secs;
     let end_motion = inputs.head.motion_at(end_secs);
     let frame_h_secs = frame.dt_secs / f64::from(frame.substeps.max(1));
     let mut retried = false;
-    while substeps <= guard.max_substeps.max(frame.substeps) && pending.contains(&true) {
-        q.copy_from_slice(start.0);
-        v.copy_from_slice(start.1);
-        let h_secs = frame.dt_secs / f64::from(substeps);
-        let env = StepEnv {
-            h_secs,
-            ..inputs.env
-        };
-        for i in 0..substeps {
-            let motion = inputs
-                .head
-                .motion_at(inputs.start_secs + f64::from(i) * h_secs);
-            let contact = SkinTest::of_head(inputs.collider, inputs.contact, &motion, h_secs);
-            let kind = inputs.kinds.retry;
-            step_one_batch(
-                model, &env, &motion, roots, kind, contact, pull, q, v, scratch,
-            );
-        }
-        for (lane, _) in standing.lanes.iter().enumerate().filter(|(_, s)| s.pinned) {
-            set_at_rest(q, v, lane, lane_of(rest_q, lane));
-        }
-        let motions = carried(&end_motion, roots);
-        let root = RootMotion::<Lanes>::gather(&motions);
-        let contact = SkinTest::of_head(inputs.collider, inputs.contact, &end_motion, frame_h_secs);
-        let end = measure_lanes(
-            model,
-            &env,
-            &root,
-            &motions,
-            q,
-            v,
-            contact.as_ref(),
-            pull.as_ref(),
-            None,
-            inputs.measured,
-        );
-        let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
-        let stepped = SteppedFrame {
-            dt_secs: frame.dt_secs,
-            substeps,
-        };
-        for lane in 0..LANES {
-            if !pending[lane] {
-                continue;
-            }
-            let to = end.strand(lane);
-            let from = &standing.retry_from[lane];
-            let passed = finite_q[lane]
-                && finite_v[lane]
-                && guard
-                    .check_with_round_off(&[], &[], from, &to, stepped, F32_ENERGY_ROUND_OFF)
-                    .is_none();
-            if passed {
-                set_lane(&mut kept_q, lane, lane_of(q, lane));
-                set_lane(&mut kept_v, lane, lane_of(v, lane));
-                measures[lane] = to;
-                set_action(
-                    standing,
-                    lane,
-                    GuardAction::Retried {
-                        method: Method::Exact,
-                        substeps,
-                    },
+    let mut pending: [bool; LANES] = std::array::from_fn(|lane| standing.failed[lane].is_some());
+    retry_frame(
+        guard,
+        frame.substeps,
+        approximate,
+        &mut pending,
+        |substeps, pending| {
+            q.copy_from_slice(start.0);
+            v.copy_from_slice(start.1);
+            let h_secs = frame.dt_secs / f64::from(substeps);
+            let env = StepEnv {
+                h_secs,
+                ..inputs.env
+            };
+            for i in 0..substeps {
+                let motion = inputs
+                    .head
+                    .motion_at(inputs.start_secs + f64::from(i) * h_secs);
+                let contact = SkinTest::of_head(inputs.collider, inputs.contact, &motion, h_secs);
+                let kind = inputs.kinds.retry;
+                step_one_batch(
+                    model, &env, &motion, roots, kind, contact, pull, q, v, scratch,
                 );
-                pending[lane] = false;
-                retried = true;
             }
-        }
-        substeps = substeps.saturating_mul(2);
-    }
+            for (lane, _) in standing.lanes.iter().enumerate().filter(|(_, s)| s.pinned) {
+                set_at_rest(q, v, lane, lane_of(rest_q, lane));
+            }
+            let motions = carried(&end_motion, roots);
+            let root = RootMotion::<Lanes>::gather(&motions);
+            let contact =
+                SkinTest::of_head(inputs.collider, inputs.contact, &end_motion, frame_h_secs);
+            let end = measure_lanes(
+                model,
+                &env,
+                &root,
+                &motions,
+                q,
+                v,
+                contact.as_ref(),
+                pull.as_ref(),
+                None,
+                inputs.measured,
+            );
+            let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
+            let stepped = SteppedFrame {
+                dt_secs: frame.dt_secs,
+                substeps,
+            };
+            for lane in 0..LANES {
+                if !pending[lane] {
+                    continue;
+                }
+                let to = end.strand(lane);
+                let from = &standing.retry_from[lane];
+                let passed = finite_q[lane]
+                    && finite_v[lane]
+                    && guard
+                        .check_with_round_off(&[], &[], from, &to, stepped, F32_ENERGY_ROUND_OFF)
+                        .is_none();
+                if passed {
+                    set_lane(&mut kept_q, lane, lane_of(q, lane));
+                    set_lane(&mut kept_v, lane, lane_of(v, lane));
+                    measures[lane] = to;
+                    set_action(
+                        standing,
+                        lane,
+                        GuardAction::Retried {
+                            method: Method::Exact,
+                            substeps,
+                        },
+                    );
+                    pending[lane] = false;
+                    retried = true;
+                }
+            }
+        },
+    );
     for lane in (0..LANES).filter(|&lane| pending[lane]) {
-        let resets = &mut standing.lanes[lane];
-        resets.pinned = resets.resets.record_reset(guard);
-        let action = if resets.pinned {
-            set_at_rest(&mut kept_q, &mut kept_v, lane, lane_of(rest_q, lane));
-            GuardAction::Pinned
-        } else {
-            set_at_rest(&mut kept_q, &mut kept_v, lane, lane_of(start.0, lane));
-            GuardAction::Reset
-        };
+        let memory = &mut standing.lanes[lane];
+        let action = memory.resets.give_up(guard);
+        memory.pinned = action == GuardAction::Pinned;
+        let shape = if memory.pinned { rest_q } else { start.0 };
+        set_at_rest(&mut kept_q, &mut kept_v, lane, lane_of(shape, lane));
         set_action(standing, lane, action);
     }
     q.copy_from_slice(&kept_q);

@@ -170,18 +170,6 @@ struct SurfacePoint {
     approach_m_per_s: f64,
 }
 
-/// What a sample's implicit contact means for the energy balance
-/// ([`crate::frame_balance`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ContactEnergy {
-    /// The spring's stored energy per unit length, ½ k (skin − d)², J/m.
-    pub stored_j_per_m: f64,
-    /// The spring force's magnitude k (skin − d), N/m.
-    pub spring_n_per_m: f64,
-    /// The sample's velocity relative to the surface along the normal, m/s.
-    pub approach_m_per_s: f64,
-}
-
 /// A sample's implicit contact for one step (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImplicitContact {
@@ -195,25 +183,6 @@ pub struct ImplicitContact {
 }
 
 impl ContactInputs<'_> {
-    /// The implicit spring's stored energy at a sample (zero out of the
-    /// skin), with what the energy balance needs to take the spring's
-    /// power out of the contact's work.
-    pub fn implicit_energy(&self, p_m: DVec3, v_m_per_s: DVec3, rho_s: f64) -> ContactEnergy {
-        let s = &self.settings;
-        match self.surface(p_m, v_m_per_s) {
-            Some(surface) if surface.distance_m < s.skin_m => {
-                let k = s.implicit_stiffness_ratio * rho_s / (self.h_secs * self.h_secs);
-                let depth = s.skin_m - surface.distance_m;
-                ContactEnergy {
-                    stored_j_per_m: 0.5 * k * depth * depth,
-                    spring_n_per_m: k * depth,
-                    approach_m_per_s: surface.approach_m_per_s,
-                }
-            }
-            _ => ContactEnergy::default(),
-        }
-    }
-
     /// The implicit contact of a sample at world position `p_m` moving at
     /// `v_m_per_s`, for a strand of mass per length `rho_s`; `None` out of
     /// contact.

@@ -56,7 +56,7 @@
 //! f64, `tests/block_terms.rs`) in both engines, velocity-implicit with the
 //! correction's derivative by polarisation
 //! ([`crate::batch::step::block_implicit`]). The guard judges
-//! Block-diagonal by T_bd + V ([`block_kinetic_energy_j`]).
+//! Block-diagonal by T_bd + V ([`crate::batch::block_kinetic`]).
 //!
 //! Cost: O(N). The sums over Ω_Q beyond element Q are polynomials of
 //! degree two in r and ṙ, so five suffix moments of the samples, taken tip
@@ -197,40 +197,6 @@ impl BlockVelocityTerms {
         }
         self.forces = forces;
     }
-}
-
-/// Block-diagonal's own strain kinetic energy T_bd = ½ Σ_Q q̇_Qᵀ M_QQ q̇_Q
-/// (joules) for rates `v` at the shape of `kin`: each element's rate
-/// alone, moving its own samples by J_Q q̇_Q and everything beyond it
-/// rigidly by α_Q + β_Q × r (α_Q = A_Q q̇_Q, β_Q = B_Q q̇_Q). The sum over
-/// the samples beyond Q is a quadratic in r, so three suffix moments (Σ m,
-/// Σ m r, Σ m r rᵀ) taken tip to root give it in O(N):
-/// Σ m |α + β × r|² = m|α|² + 2 α·(β × Σ m r) + |β|² tr(Σ m r rᵀ) − βᵀ(Σ m r rᵀ)β.
-///
-/// With a still head, T_bd + V is what Block-diagonal's dynamics
-/// conserves (module docs), so it is what the guard judges a
-/// Block-diagonal step by ([`crate::frame_balance::KineticEnergy`]).
-pub fn block_kinetic_energy_j(model: &StrandModel, kin: &Kinematics, v: &[DVec3]) -> f64 {
-    let points = model.quadrature.len();
-    let rho_s = model.mass_per_length;
-    let (mut m, mut first, mut second) = (0.0, DVec3::ZERO, DMat3::ZERO);
-    let mut twice_t = 0.0;
-    for q in (0..v.len()).rev() {
-        let jac = &kin.elements[q];
-        let (alpha, beta) = (jac.a * v[q], jac.b * v[q]);
-        twice_t += m * alpha.length_squared()
-            + 2.0 * alpha.dot(beta.cross(first))
-            + beta.length_squared() * (second.x_axis.x + second.y_axis.y + second.z_axis.z)
-            - beta.dot(second * beta);
-        for s in &kin.samples[q * points..(q + 1) * points] {
-            let w = rho_s * s.weight_m;
-            twice_t += w * (s.jacobian * v[q]).length_squared();
-            m += w;
-            first += s.position_m * w;
-            second += outer(s.position_m, s.position_m) * w;
-        }
-    }
-    0.5 * twice_t
 }
 
 /// J̇ˢ q̇ at every sample: the acceleration quadratic in the strain rates,

@@ -24,16 +24,23 @@
 //! law and the same numbers as the batch engine's hooks. The strains and
 //! rates are copied into the generic code's vectors and back: two copies
 //! of 3N numbers, nothing next to the step's sweeps.
+//!
+//! The guard's measure of a strand ([`measure_strand`]) is the shared
+//! measure ([`crate::batch::measure`]) at f64 with the same hook: the
+//! force it counts is the force the step applied.
 
 use glam::DVec3;
 
 use crate::batch::forward::SampleHook;
 use crate::batch::layout::{ElementData, RootMotion, StepEnv};
+use crate::batch::measure::{MeasureInputs, MeasureScratch, Touching, measure_state};
 use crate::batch::step::block_diagonal::step_block_diagonal_with;
 use crate::batch::step::block_implicit::step_block_implicit;
 use crate::batch::step::exact::{Elimination, step_exact_with};
 use crate::batch::step::implicit::{Krylov, step_exact_implicit};
 use crate::batch::vec::V3;
+use crate::collision::ContactInputs;
+use crate::frame_balance::{KineticEnergy, StrandMeasure};
 use crate::model::StrandModel;
 use crate::settings::{Method, StepScheme};
 use crate::step::StepInputs;
@@ -132,6 +139,54 @@ pub fn step_generic(
     }
     copy_into(gq, q, |g| DVec3::new(g.x, g.y, g.z));
     copy_into(gv, v, |g| DVec3::new(g.x, g.y, g.z));
+}
+
+/// The guard's measure of a strand of `model` in state (`q`, `v`) under
+/// `forces` (root, gravity, air, the external hook and the hair–hair
+/// model's pull; its contact is not read), in contact where `contact`'s
+/// implicit push acts. Block-diagonal's own kinetic energy is always
+/// summed: the strand may be judged by it whatever it steps with now.
+pub fn measure_strand(
+    model: &StrandModel,
+    q: &[DVec3],
+    v: &[DVec3],
+    forces: &ForceInputs,
+    contact: Option<&ContactInputs>,
+) -> StrandMeasure {
+    let gq: Vec<V3<f64>> = q.iter().map(|d| v3(*d)).collect();
+    let gv: Vec<V3<f64>> = v.iter().map(|d| v3(*d)).collect();
+    let env = StepEnv {
+        h_secs: 0.0,
+        gravity_m_per_s2: forces.gravity_m_per_s2.to_array(),
+        air_velocity_m_per_s: forces.air_velocity_m_per_s.to_array(),
+    };
+    let motions = std::slice::from_ref(forces.root);
+    let root = RootMotion::<f64>::gather(motions);
+    let hook = ReferenceSamples {
+        forces,
+        h_secs: 0.0,
+        nodes: model.quadrature.len(),
+        mass_per_length: model.mass_per_length,
+    };
+    let (origin, rho_s) = (forces.root.position_m, model.mass_per_length);
+    let touching = contact.map(|contact| {
+        move |points: &[(V3<f64>, V3<f64>)]| {
+            u32::from(points.iter().any(|(r, velocity)| {
+                contact
+                    .implicit_force(origin + dvec(*r), dvec(*velocity), rho_s)
+                    .is_some_and(|push| push.force_n_per_m != DVec3::ZERO)
+            }))
+        }
+    });
+    let inputs = MeasureInputs {
+        env: &env,
+        root: &root,
+        motions,
+        touching: touching.as_ref().map(|t| t as Touching<'_, f64>),
+        judged_by: KineticEnergy::BlockDiagonal,
+    };
+    let mut scratch = MeasureScratch::default();
+    measure_state(model, &gq, &gv, &inputs, &hook, None, &mut scratch).strand(0)
 }
 
 /// `to[i] = convert(from[i])`: the strains and rates between the

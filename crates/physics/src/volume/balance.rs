@@ -11,38 +11,17 @@
 //! its sum, its torque about the root point and its power ∫ f · ṙ ds, with
 //! the frame's frozen grid velocity (relative to the head) and push: the
 //! very force the step applies at that state
-//! ([`VolumePull::force_n_per_m`]).
+//! ([`VolumePull::force_n_per_m`]), through the step's sample hook
+//! ([`crate::batch::measure`]). This module keeps a reused measure true
+//! when the pull changes ([`PullWork`]).
 
 use glam::DVec3;
 
 use crate::frame_balance::StrandMeasure;
-use crate::model::StrandModel;
 use crate::motion::RigidMotion;
-use crate::step::reconstruct::Kinematics;
 
 use super::friction::VolumePull;
 use super::pair_points::SampleMotion;
-
-/// Adds `pull`'s force, torque and power at the state of `kin`
-/// (reconstructed for a root moving as `root`) to `out`.
-pub fn add_pull(
-    out: &mut StrandMeasure,
-    model: &StrandModel,
-    kin: &Kinematics,
-    root: &RigidMotion,
-    pull: &VolumePull,
-) {
-    for (i, s) in kin.samples.iter().enumerate() {
-        let v = s.velocity_m_per_s;
-        // The whole force at this state: its known part plus −μρS J q̇,
-        // J q̇ = ṙ − ṙ_carried.
-        let carried = root.velocity_at(s.position_m);
-        let f = pull.force_n_per_m(i, v, carried, model.mass_per_length) * s.weight_m;
-        out.external_force_n += f;
-        out.external_torque_n_m += s.position_m.cross(f);
-        out.external_power_w += f.dot(v);
-    }
-}
 
 /// A pull's force (N), torque about the root point (N·m) and power (W)
 /// on one strand at one state: its part of the measure's external terms.
