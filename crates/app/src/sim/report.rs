@@ -315,10 +315,12 @@ impl SimReport {
         if let Some(guard) = self.guard.as_ref().filter(|g| g.block_handed_to_exact > 0) {
             let _ = writeln!(
                 out,
-                "  Block-diagonal could not hold this style at dt {} s x {} substep(s): the guard \
-                 stepped {} strand-frame(s) with Exact instead, and that is what they show (more \
-                 substeps may let Block-diagonal hold it)",
-                self.dt_secs, self.substeps, guard.block_handed_to_exact
+                "  Block-diagonal could not hold this style at a {:.1} ms frame in {} substep(s): \
+                 the guard stepped {} strand-frame(s) with Exact instead, and that is what they \
+                 show (more substeps may let Block-diagonal hold it)",
+                self.dt_secs * 1e3,
+                self.substeps,
+                guard.block_handed_to_exact
             );
         }
         out
