@@ -851,6 +851,40 @@ fn every_example_comes_through_a_head_shake_at_60_hz_with_one_substep() {
     assert!(text.contains("nod, shake, turn, jerk"), "{text}");
 }
 
+/// Issue 33: the seed's method at 60 Hz with one substep. Block-diagonal
+/// (its own velocity terms, θ = 0.6, docs/physics.md section 6) holds
+/// every example style under the shake on both engines with no guard
+/// event (with Newton's θ = 1 the wavy style drew 6 on either); under the
+/// jerk no strand is reset or pinned (`sim` exits 1 if one is) and the
+/// hair hangs afterwards: every tip below its root.
+#[test]
+fn block_diagonal_holds_the_examples_at_60_hz_with_one_substep() {
+    for style in example_styles() {
+        let style = style.as_str();
+        for engine in ["reference", "batch"] {
+            for clip in ["shake", "jerk"] {
+                let args = [
+                    "--style", style, "--engine", engine, "--method", "block", "--play", clip,
+                    "--steps", "300",
+                ];
+                let report = sim_json("block-one-substep", &args);
+                if clip == "shake" {
+                    assert_eq!(
+                        report["guard"]["event_count"], 0,
+                        "{style} {engine} {clip}: {}",
+                        report["guard"]
+                    );
+                }
+                for strand in report["strands"].as_array().expect("strands") {
+                    let points = triples(&strand["points_m"]);
+                    let (root, tip) = (points[0], points[points.len() - 1]);
+                    assert!(tip[1] < root[1], "{style} {engine} {clip}: {strand}");
+                }
+            }
+        }
+    }
+}
+
 /// The soak study runs only when named; a short batch-engine soak writes
 /// its table and charts, and every sample is finite with no guard loss (a
 /// still-healthy full head under the first clips of the schedule).
