@@ -263,10 +263,16 @@ fn root_impulses(
 /// a frame `frame` from `start` to `end` beyond what the balance
 /// sees, joules.
 ///
-/// The step takes the root's acceleration at the start of each substep and
-/// holds it over the substep; the hair's rates are relative to the root. If
-/// the true root velocity at the frame's end differs from the one the step
-/// assumed, δv = v_end − (v_start + a_start·dt) and δω likewise, every
+/// A step that took the root's acceleration at the start of each substep
+/// and held it over the substep would get the root's velocity at the
+/// frame's end wrong; the step takes the acceleration averaged over each
+/// substep instead ([`crate::HeadTrajectory::step_motion_at`]), which
+/// removes that error at each substep's end, and this allowance, derived
+/// for the held acceleration, is kept as a bound on what the frame-level
+/// rule can miss where the acceleration changes within the frame. The
+/// hair's rates are relative to the root. If
+/// the true root velocity at the frame's end differs from the one a held
+/// acceleration gives, δv = v_end − (v_start + a_start·dt) and δω likewise, every
 /// sample's world velocity is off by δu = δv + δω × r, and so is the
 /// kinetic energy, by up to |δv·P| + |δω·L| + ½ ∫ ρS |δu|² ds ≤ |δv·P| +
 /// |δω·L| + m|δv|² + |δω|² ∫ ρS |r|² ds. The same δ is what the trapezoid

@@ -19,8 +19,8 @@
 //!   frame, and its work is not known at the frame's resolution. With a
 //!   still head and no wind this is
 //!   "energy must not grow"; with head motion, "not faster than the root's
-//!   work allows", give or take what the step's holding of the root's
-//!   acceleration over a step can add where that acceleration jumps
+//!   work allows", give or take what the frame-level rule can miss where
+//!   the root's acceleration changes within the frame
 //!   ([`crate::frame_balance::root_sampling_uncertainty_j`]). Measured on healthy frames (Exact and Dense, a 30 cm
 //!   strand under a head shake at 1/60 s): at most 2% of the kinetic
 //!   energy, the estimate's error on the root's work;

@@ -209,7 +209,9 @@ impl HairSystem {
     }
 
     /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
-    /// along `head`. Root motion is sampled at the start of each substep.
+    /// along `head`. Each substep takes the root's pose and velocities at
+    /// its start and its accelerations averaged over it
+    /// ([`HeadTrajectory::step_motion_at`]).
     /// With the guard on, a strand that fails its checks is stepped again.
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
         if let Some(volume) = &mut self.volume {
@@ -305,7 +307,7 @@ fn plain_frame(s: &mut Strand, frame: &FrameInputs<'_>, substeps: u32) -> StageT
     let mut t = frame.start_secs;
     let mut times = StageTimes::default();
     for _ in 0..substeps {
-        let motion = frame.head.motion_at(t);
+        let motion = frame.head.step_motion_at(t, h);
         let contact = frame.collider.map(|collider| ContactInputs {
             collider,
             head: &motion,

@@ -108,6 +108,33 @@ impl RigidMotion {
 pub trait HeadTrajectory: Sync {
     /// The head's motion at time `t_secs`.
     fn motion_at(&self, t_secs: f64) -> RigidMotion;
+
+    /// The head's motion as a step of `h_secs` from `t_secs` takes it: the
+    /// pose and velocities at the step's start, and the accelerations that
+    /// carry those velocities to the step's end, (v(t + h) − v(t))/h and
+    /// likewise for the turn.
+    ///
+    /// Why the mean and not the start's: the step moves the hair's rates
+    /// by h times the accelerations it is given, relative to the root, so
+    /// with the start's acceleration held the root's velocity at the
+    /// step's end is off by the acceleration's change over the step, and
+    /// the hair's world momentum with it. Where the acceleration turns
+    /// within a step (the jerk clip's, at 60 Hz with one substep) that
+    /// put energy into the hair: Block-diagonal, which answers a load
+    /// faster than the true strand, drew the guard twice on the wavy
+    /// example; with the mean, on no example under any clip, on either
+    /// engine (docs/physics.md section 6).
+    fn step_motion_at(&self, t_secs: f64, h_secs: f64) -> RigidMotion {
+        let start = self.motion_at(t_secs);
+        let end = self.motion_at(t_secs + h_secs);
+        RigidMotion {
+            acceleration_m_per_s2: (end.velocity_m_per_s - start.velocity_m_per_s) / h_secs,
+            angular_acceleration_rad_per_s2: (end.angular_velocity_rad_per_s
+                - start.angular_velocity_rad_per_s)
+                / h_secs,
+            ..start
+        }
+    }
 }
 
 /// A head that never moves.

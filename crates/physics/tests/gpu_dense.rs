@@ -242,7 +242,9 @@ fn f32_dense_step_matches_the_f64_dense_reference() {
                 strand.set_state(&q, &v);
             }
             let head = shake();
-            let motion = head.motion_at(0.0);
+            // The step's motion: accelerations averaged over the step.
+            let dt_secs = reference.settings().dt_secs;
+            let motion = head.step_motion_at(0.0, dt_secs);
             let f32_steps: Vec<Vec<DVec3>> = (0..roots.len())
                 .map(|i| f32_dense_step(&reference, i, &motion))
                 .collect();

@@ -149,7 +149,7 @@ fn retry_batch(
             for i in 0..substeps {
                 let motion = inputs
                     .head
-                    .motion_at(inputs.start_secs + f64::from(i) * h_secs);
+                    .step_motion_at(inputs.start_secs + f64::from(i) * h_secs, h_secs);
                 let contact = SkinTest::of_head(inputs.collider, inputs.contact, &motion, h_secs);
                 let kind = inputs.kinds.retry;
                 step_one_batch(

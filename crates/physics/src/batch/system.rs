@@ -277,8 +277,10 @@ impl BatchSystem {
     }
 
     /// Advances one frame of `dt_secs` in `substeps` steps, the head moving
-    /// along `head`, root motion sampled at the start of each substep. With
-    /// the guard on, strands that fail its checks are reset at rest.
+    /// along `head`; each substep takes the roots' pose and velocities at
+    /// its start and their accelerations averaged over it
+    /// ([`HeadTrajectory::step_motion_at`]). With the guard on, strands
+    /// that fail its checks are recovered by its policy ([`super::retry`]).
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
         let h = self.settings.substep_secs();
         let env = StepEnv {
@@ -314,7 +316,7 @@ impl BatchSystem {
             }
         }
         for substep in 0..self.settings.substeps {
-            let motion = head.motion_at(self.time_secs);
+            let motion = head.step_motion_at(self.time_secs, h);
             let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
             let end_secs = self.time_secs + h;
             // The guard judges the frame in its last substep's pass.
