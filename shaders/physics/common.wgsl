@@ -4,35 +4,10 @@
 // Rust twin; the CPU twins of the kernels call the Rust versions, and the
 // parity tests compare the two.
 
-struct Params {
-    strand_count: u32,
-    elements: u32,
-    points: u32,
-    _pad0: u32,
-    h_secs: f32,
-    mass_per_length: f32,
-    air_drag: f32,
-    mass_scale: f32,
-    gravity_m_per_s2: vec4<f32>,
-    air_velocity_m_per_s: vec4<f32>,
-    nodes: array<vec4<f32>, 2>,
-    weights: array<vec4<f32>, 2>,
-    head_rotation: mat3x3<f32>,
-    head_angular_velocity: vec4<f32>,
-    head_angular_acceleration: vec4<f32>,
-    head_velocity: vec4<f32>,
-    head_acceleration: vec4<f32>,
-}
-
 // Per-element constants: (K, ℓ) and (qⁿ, γℓ).
 struct ElementConst {
     stiffness_length: vec4<f32>,
     natural_friction: vec4<f32>,
-}
-
-struct RootPose {
-    position_m: vec4<f32>,
-    head_from_root: mat3x3<f32>,
 }
 
 struct Frame {
@@ -101,26 +76,69 @@ fn inverse3(mm: mat3x3<f32>) -> mat3x3<f32> {
 }
 
 // Series of A (offset 1), B (2), C (3): (−1)ⁿ/(2n + offset)!, 11 terms
-// (the batch geometry's: series below y = 16, see batch/geometry.rs).
-fn series_term(offset: u32, n: u32) -> f32 {
-    var f = 1.0;
-    for (var j = 2u; j <= 2u * n + offset; j++) {
-        f *= f32(j);
-    }
-    return select(1.0, -1.0, n % 2u == 1u) / f;
+// (the batch geometry's: series below y = 16, see batch/geometry.rs), each
+// the f64 coefficient rounded once to f32, as the CPU's splat_f64 does.
+const A_SERIES = array<f32, 11>(
+    1.0,
+    -0.1666666716337204,
+    0.008333333767950535,
+    -0.00019841270113829523,
+    2.7557318844628753e-06,
+    -2.5052107943679403e-08,
+    1.6059044372074283e-10,
+    -7.647163609812713e-13,
+    2.8114573589663704e-15,
+    -8.220635078476521e-18,
+    1.9572941524685808e-20,
+);
+const B_SERIES = array<f32, 11>(
+    0.5,
+    -0.0416666679084301,
+    0.0013888889225199819,
+    -2.4801587642286904e-05,
+    2.755731998149713e-07,
+    -2.0876755879584152e-09,
+    1.147074536050896e-11,
+    -4.7794772561329454e-14,
+    1.5619206814541513e-16,
+    -4.110317590937049e-19,
+    8.896790959566848e-22,
+);
+const C_SERIES = array<f32, 11>(
+    0.1666666716337204,
+    -0.008333333767950535,
+    0.00019841270113829523,
+    -2.7557318844628753e-06,
+    2.5052107943679403e-08,
+    -1.6059044372074283e-10,
+    7.647163609812713e-13,
+    -2.8114573589663704e-15,
+    8.220635078476521e-18,
+    -1.9572941524685808e-20,
+    3.868170297964731e-23,
+);
+
+// One Horner step on (p, p′, p″/2): batch/geometry.rs horner's loop body.
+fn horner_step(s: vec3<f32>, y: f32, c: f32) -> vec3<f32> {
+    return vec3<f32>(fma(s.x, y, c), fma(s.y, y, s.x), fma(s.z, y, s.y));
 }
 
-fn horner(offset: u32, y: f32) -> vec3<f32> {
-    var p = series_term(offset, 10u);
-    var dp = 0.0;
-    var half_ddp = 0.0;
-    for (var i = 0; i < 10; i++) {
-        let n = u32(9 - i);
-        half_ddp = half_ddp * y + dp;
-        dp = dp * y + p;
-        p = p * y + series_term(offset, n);
-    }
-    return vec3<f32>(p, dp, 2.0 * half_ddp);
+// f(y), f′(y), f″(y) of the series c, written out: no loop, since
+// lavapipe bounds the loop iterations of a whole invocation (65,535 in
+// all), and the engine's step evaluates the series at every sample.
+fn horner(c: array<f32, 11>, y: f32) -> vec3<f32> {
+    var s = vec3<f32>(c[10], 0.0, 0.0);
+    s = horner_step(s, y, c[9]);
+    s = horner_step(s, y, c[8]);
+    s = horner_step(s, y, c[7]);
+    s = horner_step(s, y, c[6]);
+    s = horner_step(s, y, c[5]);
+    s = horner_step(s, y, c[4]);
+    s = horner_step(s, y, c[3]);
+    s = horner_step(s, y, c[2]);
+    s = horner_step(s, y, c[1]);
+    s = horner_step(s, y, c[0]);
+    return vec3<f32>(s.x, s.y, 2.0 * s.z);
 }
 
 struct Coefficients {
@@ -133,10 +151,10 @@ fn coefficients(y_in: f32, with_a: bool) -> Coefficients {
     var co: Coefficients;
     if y_in < SERIES_LIMIT_Y {
         if with_a {
-            co.a = horner(1u, y_in);
+            co.a = horner(A_SERIES, y_in);
         }
-        co.b = horner(2u, y_in);
-        co.c = horner(3u, y_in);
+        co.b = horner(B_SERIES, y_in);
+        co.c = horner(C_SERIES, y_in);
         return co;
     }
     let y = y_in;
@@ -321,75 +339,6 @@ fn weight(i: u32) -> f32 {
     return params.weights[i / 4u][i % 4u];
 }
 
-// Own sums of element e from its start state; with_uv also sums U and V
-// (returned in the last two outputs; zero otherwise).
-struct OwnSums {
-    own: Own,
-    u: mat3x3<f32>,
-    v: mat3x3<f32>,
-}
-
-fn own_sums(e: u32, s: FrameState, k: vec3<f32>, k_dot: vec3<f32>, with_uv: bool) -> OwnSums {
-    // As batch::forward::own_sums: products with G = R J in the element's
-    // frame (GᵀG = JᵀJ, GᵀF = Jᵀ RᵀF), R applied once per element.
-    let length_m = elements_const[e].stiffness_length.w;
-    let rho_s = params.mass_per_length;
-    let nu = params.air_drag;
-    let g = params.gravity_m_per_s2.xyz;
-    let air = params.air_velocity_m_per_s.xyz;
-    var out: OwnSums;
-    let zero3 = mat3x3<f32>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
-    out.own.mass_block = zero3;
-    out.own.inertia = zero3;
-    out.u = zero3;
-    out.v = zero3;
-    var local_force = vec3<f32>(0.0);
-    var u_local = zero3;
-    var v_local = zero3;
-    for (var i = 0u; i < params.points; i++) {
-        let lp = local_point(node(i) * length_m, k, k_dot);
-        let rva = carry(s, lp.h, lp.h_dot, lp.h_ddot);
-        let r = rva[0];
-        let w_len = weight(i) * length_m;
-        let w_mass = w_len * rho_s;
-        let force = ((g - rva[2]) * rho_s - (rva[1] - air) * nu) * w_len;
-        let jac = lp.jacobian;
-        local_force += transpose(jac) * (transpose(s.frame) * force);
-        out.own.force_sum += vec4<f32>(force, 0.0);
-        out.own.torque_sum += vec4<f32>(cross(r, force), 0.0);
-        out.own.mass_block += transpose(jac * w_mass) * jac;
-        out.own.moment += vec4<f32>(r * w_mass, w_mass);
-        let r_w = r * w_mass;
-        out.own.inertia += add_diagonal(outer(r_w, r) * -1.0, vec3<f32>(dot(r_w, r)));
-        if with_uv {
-            let jac_w = jac * w_mass;
-            u_local += jac_w;
-            v_local += cross_cols(lp.h, jac_w);
-        }
-    }
-    out.own.force = vec4<f32>(local_force, 0.0);
-    if with_uv {
-        out.u = s.frame * u_local;
-        out.v = cross_cols(s.p, out.u) + s.frame * v_local;
-    }
-    return out;
-}
-
-fn root_state(strand: u32) -> FrameState {
-    let pose = roots[strand];
-    let offset = params.head_rotation * pose.position_m.xyz;
-    let w = params.head_angular_velocity.xyz;
-    let alpha = params.head_angular_acceleration.xyz;
-    var s: FrameState;
-    s.frame = params.head_rotation * pose.head_from_root;
-    s.w = w;
-    s.alpha = alpha;
-    s.p = vec3<f32>(0.0);
-    s.pv = params.head_velocity.xyz + cross(w, offset);
-    s.pa = params.head_acceleration.xyz + cross(alpha, offset) + cross(w, cross(w, offset));
-    return s;
-}
-
 struct ElementTerms {
     x_beyond: mat3x3<f32>,
     y_beyond: mat3x3<f32>,
@@ -404,18 +353,6 @@ fn element_terms(jac: Jacobians, own: Own, beyond: Beyond) -> ElementTerms {
     t.mass_block = own.mass_block + transpose(jac.a) * t.x_beyond + transpose(jac.b) * t.y_beyond;
     t.force = own.force.xyz + transpose(jac.a) * beyond.force.xyz + transpose(jac.b) * beyond.torque.xyz;
     return t;
-}
-
-// (D, rhs) of element e: D = hγℓ + h²K, rhs = h[Q − K(q − qⁿ) − (γℓ + hK)q̇].
-fn step_terms(e: u32, force: vec3<f32>, q: vec3<f32>, v: vec3<f32>) -> mat2x3<f32> {
-    let h = params.h_secs;
-    let k = elements_const[e].stiffness_length.xyz;
-    let natural = elements_const[e].natural_friction.xyz;
-    let friction = elements_const[e].natural_friction.w;
-    let diagonal = vec3<f32>(h * friction) + k * (h * h);
-    let damping = vec3<f32>(friction) + k * h;
-    let rhs = (force - k * (q - natural) - damping * v) * h;
-    return mat2x3<f32>(diagonal, rhs);
 }
 
 fn add_beyond(b: ptr<function, Beyond>, own: Own) {
@@ -442,4 +379,21 @@ fn zero_beyond() -> Beyond {
     var b: Beyond;
     b.inertia = mat3x3<f32>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
     return b;
+}
+
+// The frame of a root at `position_m` (head coordinates) with frame
+// `head_from_root`, carried by the head moving as the kernel's uniforms
+// say (RigidMotion::carry, as batch FrameState::at_root takes it).
+fn carried_root(position_m: vec3<f32>, head_from_root: mat3x3<f32>) -> FrameState {
+    let offset = params.head_rotation * position_m;
+    let w = params.head_angular_velocity.xyz;
+    let alpha = params.head_angular_acceleration.xyz;
+    var s: FrameState;
+    s.frame = params.head_rotation * head_from_root;
+    s.w = w;
+    s.alpha = alpha;
+    s.p = vec3<f32>(0.0);
+    s.pv = params.head_velocity.xyz + cross(w, offset);
+    s.pa = params.head_acceleration.xyz + cross(alpha, offset) + cross(w, cross(w, offset));
+    return s;
 }

@@ -9,20 +9,25 @@ use helixhair_physics::Method;
 use helixhair_physics::gpu::dense_kernels::{
     DENSE_WORKGROUP, DENSE_WORKGROUP_BYTES, MAX_DENSE_ELEMENTS,
 };
+use helixhair_physics::gpu::engine::{KRYLOV_SLOTS, engine_source};
 use helixhair_physics::gpu::kernels::kernel_source;
 use helixhair_physics::gpu::layout::*;
 use wgpu::naga;
 
 fn module(method: Method) -> naga::Module {
     let source = kernel_source(method).expect("a kernel exists");
-    let module = naga::front::wgsl::parse_str(&source)
-        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+    validated(&source, &format!("{method:?}"))
+}
+
+fn validated(source: &str, name: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::empty(),
     )
     .validate(&module)
-    .unwrap_or_else(|e| panic!("{method:?}: {e:?}"));
+    .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
     module
 }
 
@@ -145,4 +150,41 @@ fn kernels_validate_and_host_structs_match_the_shaders() {
     let bytes = bytemuck::bytes_of(&params);
     let back: ParamsGpu = bytemuck::pod_read_unaligned(bytes);
     assert_eq!(back, params);
+}
+
+#[test]
+fn the_engine_kernel_validates_and_its_host_structs_match() {
+    let engine = validated(&engine_source(), "engine");
+    check!(&engine, "Params", EngineParamsGpu, [
+        strand_count => "strand_count", points => "points", iterations => "iterations",
+        has_collider => "has_collider", h_secs => "h_secs", gmres_tolerance => "gmres_tolerance",
+        skin_m => "skin_m", implicit_stiffness_ratio => "implicit_stiffness_ratio",
+        max_acceleration_m_per_s2 => "max_acceleration_m_per_s2", field_cell_m => "field_cell_m",
+        field_dims => "field_dims", field_origin_m => "field_origin_m",
+        gravity_m_per_s2 => "gravity_m_per_s2", air_velocity_m_per_s => "air_velocity_m_per_s",
+        nodes => "nodes", weights => "weights", head_rotation => "head_rotation",
+        head_position_m => "head_position_m", head_angular_velocity => "head_angular_velocity",
+        head_angular_acceleration => "head_angular_acceleration",
+        head_velocity => "head_velocity", head_acceleration => "head_acceleration",
+    ]);
+    check!(&engine, "Strand", StrandGpu, [
+        first => "first", elements => "elements", mass_per_length => "mass_per_length",
+        air_drag => "air_drag", position_m => "position_m", head_from_root => "head_from_root",
+    ]);
+    check!(&engine, "ElementConst", ElementConstGpu, [
+        stiffness_length => "stiffness_length", natural_friction => "natural_friction",
+    ]);
+    check!(&engine, "ElementData", ElementDataGpu, [
+        a => "a", b => "b", own_mass_block => "own_mass_block", inertia => "inertia",
+        u => "u", v => "v", contact => "contact", own_force => "own_force", moment => "moment",
+        force_sum => "force_sum", torque_sum => "torque_sum", span => "span",
+    ]);
+    check!(&engine, "Elimination", EliminationGpu, [
+        w_top => "w_top", w_bottom => "w_bottom", s_inv => "s_inv", rhs => "rhs",
+    ]);
+    assert_eq!(constant_u32(&engine, "KRYLOV_SLOTS") as usize, KRYLOV_SLOTS);
+    assert_eq!(
+        constant_u32(&engine, "MAX_GMRES") as usize,
+        helixhair_physics::gmres::MAX_GMRES
+    );
 }

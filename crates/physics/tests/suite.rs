@@ -23,6 +23,7 @@ mod failure_modes;
 mod fit;
 mod geometry;
 mod gpu_dense;
+mod gpu_engine;
 mod gpu_layout;
 mod gpu_parity;
 mod guard_acceleration_jump;

@@ -34,6 +34,10 @@ use crate::settings::{Method, SimSettings};
 
 /// `shaders/physics/common.wgsl`: structs and the arithmetic shared by the kernels.
 pub const COMMON_WGSL: &str = include_str!("../../../../shaders/physics/common.wgsl");
+/// `shaders/physics/group.wgsl`: the uniform group's parameters, roots and
+/// own sums, which the kernels of [`GpuSystem`] share (the engine's step,
+/// [`super::engine`], reads each strand's own constants instead).
+pub const GROUP_WGSL: &str = include_str!("../../../../shaders/physics/group.wgsl");
 /// `shaders/physics/chain.wgsl`: the bindings and the `stage_frames` stage
 /// that Block-diagonal and Dense share (each sets `LOCAL_MOMENTS`).
 pub const CHAIN_WGSL: &str = include_str!("../../../../shaders/physics/chain.wgsl");
@@ -44,13 +48,15 @@ pub const BLOCK_DIAGONAL_WGSL: &str =
 /// `shaders/physics/exact.wgsl`: the one-invocation-per-strand Exact step.
 pub const EXACT_WGSL: &str = include_str!("../../../../shaders/physics/exact.wgsl");
 
-/// The full source of a kernel module: the common part, the shared frame
-/// chain where the kernel uses it (Exact fuses its own), then the kernel.
+/// The full source of a kernel module: the common part, the uniform
+/// group's, the shared frame chain where the kernel uses it (Exact fuses its own), then the kernel.
 pub fn kernel_source(method: Method) -> Option<String> {
     let source = match method {
-        Method::BlockDiagonal => format!("{COMMON_WGSL}\n{CHAIN_WGSL}\n{BLOCK_DIAGONAL_WGSL}"),
-        Method::Exact => format!("{COMMON_WGSL}\n{EXACT_WGSL}"),
-        Method::Dense => format!("{COMMON_WGSL}\n{CHAIN_WGSL}\n{DENSE_WGSL}"),
+        Method::BlockDiagonal => {
+            format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{BLOCK_DIAGONAL_WGSL}")
+        }
+        Method::Exact => format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{EXACT_WGSL}"),
+        Method::Dense => format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{DENSE_WGSL}"),
         _ => return None,
     };
     Some(source)
@@ -215,27 +221,6 @@ impl GpuSystem {
                 }))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
-        for b in 1..=8 {
-            entries.push(entry(
-                b,
-                wgpu::BufferBindingType::Storage { read_only: b <= 2 },
-            ));
-        }
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("physics"),
-            entries: &entries,
-        });
         let buffers: Vec<&wgpu::Buffer> = [
             &params_buffer,
             &elements_buffer,
@@ -246,24 +231,7 @@ impl GpuSystem {
         .into_iter()
         .chain(scratch.iter())
         .collect();
-        let bind_entries: Vec<wgpu::BindGroupEntry> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("physics"),
-            layout: &layout,
-            entries: &bind_entries,
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("physics"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        let (bind_group, pipeline_layout) = bind_all(device, "physics", &buffers, |b| b <= 2);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(settings.method.name()),
             source: wgpu::ShaderSource::Wgsl(Cow::Owned(source)),
@@ -430,49 +398,112 @@ impl GpuSystem {
 
     /// Waits for every submitted step to finish (for timing).
     pub fn wait(&self) -> Result<(), GpuError> {
-        self.ctx
-            .device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        // A lost device or a failed operation (recorded by the context, not
-        // panicked on) fails the wait, so no state read after it is trusted.
-        self.ctx.check()?;
-        Ok(())
+        wait(&self.ctx)
     }
 
     /// Reads (q, q̇) back: one vec4 per element, strand-major. For tests and
     /// tools, not the frame loop.
     pub fn read_state(&self) -> Result<GpuState, GpuError> {
-        Ok((self.read(&self.q_buffer)?, self.read(&self.v_buffer)?))
+        Ok((
+            read_vec4(&self.ctx, &self.q_buffer)?,
+            read_vec4(&self.ctx, &self.v_buffer)?,
+        ))
     }
+}
 
-    fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<[f32; 4]>, GpuError> {
-        let device = &self.ctx.device;
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: buffer.size(),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut encoder = device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
-        self.ctx.queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (sender, receiver) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = sender.send(r);
-        });
-        self.wait()?;
-        receiver
-            .recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let view = slice
-            .get_mapped_range()
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let data = bytemuck::cast_slice(&view).to_vec();
-        drop(view);
-        staging.unmap();
-        Ok(data)
-    }
+/// Waits for every submission on `ctx` to finish; a lost device or a failed
+/// operation (recorded by the context, not panicked on) fails the wait, so
+/// no state read after it is trusted.
+pub(crate) fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    ctx.check()?;
+    Ok(())
+}
+
+/// Copies `buffer` (vec4s of f32) back to the CPU through a staging buffer.
+pub(crate) fn read_vec4(
+    ctx: &GpuContext,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    let device = &ctx.device;
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: buffer.size(),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+    ctx.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = sender.send(r);
+    });
+    wait(ctx)?;
+    receiver
+        .recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let view = slice
+        .get_mapped_range()
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let data = bytemuck::cast_slice(&view).to_vec();
+    drop(view);
+    staging.unmap();
+    Ok(data)
+}
+
+/// The bind group of a kernel whose binding 0 is a uniform buffer and
+/// bindings 1.. storage buffers (read-only where `read_only(binding)`),
+/// `buffers` in binding order, with the pipeline layout of that one group.
+pub(crate) fn bind_all(
+    device: &wgpu::Device,
+    label: &str,
+    buffers: &[&wgpu::Buffer],
+    read_only: impl Fn(u32) -> bool,
+) -> (wgpu::BindGroup, wgpu::PipelineLayout) {
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..buffers.len() as u32)
+        .map(|binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: if binding == 0 {
+                    wgpu::BufferBindingType::Uniform
+                } else {
+                    wgpu::BufferBindingType::Storage {
+                        read_only: read_only(binding),
+                    }
+                },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        })
+        .collect();
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &entries,
+    });
+    let bind_entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &layout,
+        entries: &bind_entries,
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    (bind_group, pipeline_layout)
 }

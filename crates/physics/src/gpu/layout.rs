@@ -171,6 +171,113 @@ pub struct DenseOwnGpu {
     pub v: Mat3Gpu,
 }
 
+/// Uniforms of one step of the GPU engine (WGSL `Params` of
+/// `shaders/physics/engine.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct EngineParamsGpu {
+    /// Number of strands.
+    pub strand_count: u32,
+    /// Quadrature points per element (≤ 8).
+    pub points: u32,
+    /// Most GMRES iterations (0: the velocity-explicit answer).
+    pub iterations: u32,
+    /// 1 with a head collider, else 0.
+    pub has_collider: u32,
+    /// Step h, seconds.
+    pub h_secs: f32,
+    /// GMRES's stopping fraction of |rhs| ([`crate::gmres::GMRES_TOLERANCE`]).
+    pub gmres_tolerance: f32,
+    /// Contact skin, m.
+    pub skin_m: f32,
+    /// α of the implicit contact.
+    pub implicit_stiffness_ratio: f32,
+    /// Cap on the contact acceleration, m/s².
+    pub max_acceleration_m_per_s2: f32,
+    /// The field's grid spacing, m.
+    pub field_cell_m: f32,
+    /// Padding.
+    pub pad: [f32; 2],
+    /// The field's grid points along x, y, z (w unused).
+    pub field_dims: [u32; 4],
+    /// The field's grid point (0, 0, 0), head coordinates, m.
+    pub field_origin_m: [f32; 4],
+    /// Gravity, m/s² (w unused).
+    pub gravity_m_per_s2: [f32; 4],
+    /// Air velocity, m/s (w unused).
+    pub air_velocity_m_per_s: [f32; 4],
+    /// Quadrature nodes, 4 per vec4.
+    pub nodes: [[f32; 4]; 2],
+    /// Quadrature weights, 4 per vec4.
+    pub weights: [[f32; 4]; 2],
+    /// Head rotation, world from head.
+    pub head_rotation: Mat3Gpu,
+    /// Head origin, world, m.
+    pub head_position_m: [f32; 4],
+    /// Head angular velocity, rad/s.
+    pub head_angular_velocity: [f32; 4],
+    /// Head angular acceleration, rad/s².
+    pub head_angular_acceleration: [f32; 4],
+    /// Velocity of the head origin, m/s.
+    pub head_velocity: [f32; 4],
+    /// Acceleration of the head origin, m/s².
+    pub head_acceleration: [f32; 4],
+}
+
+/// One strand of the GPU engine (WGSL `Strand`): where its elements lie in
+/// the per-element buffers, its own ρS and ν, and its root.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct StrandGpu {
+    /// Its first element's index in every per-element buffer.
+    pub first: u32,
+    /// Its element count N.
+    pub elements: u32,
+    /// Padding.
+    pub pad0: [u32; 2],
+    /// ρS, kg/m.
+    pub mass_per_length: f32,
+    /// ν, N·s/m².
+    pub air_drag: f32,
+    /// Padding.
+    pub pad1: [f32; 2],
+    /// Root point in head coordinates, m.
+    pub position_m: [f32; 4],
+    /// Root frame in head coordinates.
+    pub head_from_root: Mat3Gpu,
+}
+
+/// What the engine's sweep 1 leaves per element (WGSL `ElementData`, the
+/// twin of [`crate::batch::layout::ElementData`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ElementDataGpu {
+    /// A_Q, about the element's end point.
+    pub a: Mat3Gpu,
+    /// B_Q.
+    pub b: Mat3Gpu,
+    /// D_Q.
+    pub own_mass_block: Mat3Gpu,
+    /// Own inertia about the element's start point.
+    pub inertia: Mat3Gpu,
+    /// U_Q.
+    pub u: Mat3Gpu,
+    /// V_Q.
+    pub v: Mat3Gpu,
+    /// The contact's point inertias, four 3×3 blocks.
+    pub contact: [Mat3Gpu; 4],
+    /// Σ GᵀF.
+    pub own_force: [f32; 4],
+    /// (first moment, mass).
+    pub moment: [f32; 4],
+    /// Σ wF.
+    pub force_sum: [f32; 4],
+    /// Σ w r×F.
+    pub torque_sum: [f32; 4],
+    /// End point minus start point; w is 1 where a sample touched.
+    pub span: [f32; 4],
+}
+
 /// Compile-time sizes, equal to the WGSL sizes the layout test reflects.
 pub mod size_asserts {
     use super::*;
@@ -184,6 +291,9 @@ pub mod size_asserts {
     const _: () = assert!(std::mem::size_of::<OffDiagonalGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<EliminationGpu>() == 160);
     const _: () = assert!(std::mem::size_of::<DenseOwnGpu>() == 256);
+    const _: () = assert!(std::mem::size_of::<EngineParamsGpu>() == 304);
+    const _: () = assert!(std::mem::size_of::<StrandGpu>() == 96);
+    const _: () = assert!(std::mem::size_of::<ElementDataGpu>() == 560);
 }
 
 /// A vec3 padded to a WGSL vec4.

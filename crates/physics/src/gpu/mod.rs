@@ -7,13 +7,19 @@
 //!   [`Stepper::prefer_gpu`] does it with a message).
 //! - [`layout`]: host structs of the WGSL structs, checked against the
 //!   shaders by `tests/gpu_layout.rs`.
-//! - [`kernels`]: [`GpuSystem`], buffers, pipelines and the step.
+//! - [`engine`]: [`GpuEngine`], the CPU engines' one Exact step
+//!   (velocity-implicit with GMRES, the head's implicit contact, each
+//!   strand's own constants) on the GPU; [`engine_twin`] its CPU twin, the
+//!   batch engine's step at f32 one strand wide.
+//! - [`kernels`]: [`GpuSystem`], buffers, pipelines and the step of the
+//!   velocity-explicit kernels (one strand's constants shared by all).
 //! - [`dense_kernels`]: the Dense kernel's stages, buffers and limits (a
 //!   workgroup per strand factoring its 3N×3N step matrix).
 //! - [`twin`]: the CPU twins, one per WGSL entry point, same names;
 //!   [`dense_twin`] those of the Dense kernel.
 //!
 //! The WGSL lives in the top-level `shaders/physics/` folder (`common.wgsl`,
+//! `engine.wgsl`, `group.wgsl` (what the kernels of [`GpuSystem`] share),
 //! `chain.wgsl` (the frame chain Block-diagonal and Dense share),
 //! `block_diagonal.wgsl`, `exact.wgsl`, `dense.wgsl`; the renderer's shaders are the
 //! files directly in `shaders/`), included with `include_str!`.
@@ -22,11 +28,14 @@
 
 pub mod dense_kernels;
 pub mod dense_twin;
+pub mod engine;
+pub mod engine_twin;
 pub mod error;
 pub mod kernels;
 pub mod layout;
 pub mod twin;
 
+pub use engine::GpuEngine;
 pub use error::GpuError;
 pub use helixhair_gpu::GpuContext;
 pub use kernels::GpuSystem;

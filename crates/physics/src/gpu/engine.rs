@@ -1,0 +1,363 @@
+//! [`GpuEngine`]: strands stepped on the GPU by the CPU engines' one Exact
+//! step, velocity-implicit with its GMRES, the head's implicit contact at
+//! every quadrature sample, and each strand's own constants and element
+//! count (an imported groom's strands differ in all of them).
+//!
+//! # How it works
+//!
+//! `shaders/physics/engine.wgsl` runs one invocation per strand: sweep 1
+//! (root to tip: kinematics, forces, the contact's terms), sweep 2 (tip to
+//! root: the articulated-inertia elimination), sweep 3 (Δv₀ = P⁻¹ rhs), then
+//! GMRES on (P + hG) Δv = rhs, each iteration one more solve with the
+//! stored elimination and one product G z by polarisation, and
+//! integration. Every function there keeps the name of its Rust original
+//! (`batch/forward.rs`, `batch/step/exact.rs`, `batch/velocity_terms.rs`,
+//! `gmres.rs`); the CPU twin ([`super::engine_twin`]) is that Rust code
+//! at f32, one strand wide, so the parity tests compare the kernel with
+//! the batch engine's own arithmetic.
+//!
+//! Buffers: the strands' table ([`StrandGpu`]), the per-element constants,
+//! q and q̇ (one vec4 per element, strand after strand, each strand's
+//! elements contiguous from [`StrandGpu::first`]), the sweep's element
+//! data and elimination, GMRES's vectors (22 vec4 per element: room for
+//! the most iterations a step may take, [`crate::gmres::MAX_GMRES`]) and
+//! the collider's distances. Each substep writes the uniforms (the head's
+//! motion over the step, [`HeadTrajectory::step_motion_at`], as the CPU
+//! engines take it) and dispatches one stage; nothing is read back in the
+//! frame loop.
+//!
+//! What the CPU engines have and this does not yet: the guard, the
+//! hair–hair model, Block-diagonal and Dense (which [`super::GpuSystem`]
+//! steps velocity-explicit, for one shared strand's constants).
+
+use std::borrow::Cow;
+use std::ops::Range;
+
+use helixhair_gpu::upload_buffer;
+
+use super::kernels::{COMMON_WGSL, GpuState, bind_all, read_vec4, wait};
+use super::layout::{
+    ElementConstGpu, ElementDataGpu, EliminationGpu, EngineParamsGpu, Mat3Gpu, StrandGpu,
+};
+use super::{GpuContext, GpuError};
+use crate::batch::layout::BatchModel;
+use crate::collision::SignedDistanceField;
+use crate::gmres::GMRES_TOLERANCE;
+use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
+use crate::settings::{Method, SimSettings, StepScheme};
+
+/// `shaders/physics/engine.wgsl`: the engine's step, after `common.wgsl`.
+pub const ENGINE_WGSL: &str = include_str!("../../../../shaders/physics/engine.wgsl");
+
+/// GMRES's vectors per element in the `krylov` buffer (WGSL `KRYLOV_SLOTS`).
+pub const KRYLOV_SLOTS: usize = 22;
+
+const WORKGROUP: u32 = 64;
+
+/// The full source of the engine's kernel module.
+pub fn engine_source() -> String {
+    format!("{COMMON_WGSL}\n{ENGINE_WGSL}")
+}
+
+fn f4(v: glam::DVec3) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, 0.0]
+}
+
+fn mat(m: glam::DMat3) -> Mat3Gpu {
+    [f4(m.x_axis), f4(m.y_axis), f4(m.z_axis)]
+}
+
+/// Strands stepped on the GPU by the one Exact step (module docs).
+#[derive(Debug)]
+pub struct GpuEngine {
+    ctx: GpuContext,
+    settings: SimSettings,
+    params: EngineParamsGpu,
+    strands: Vec<StrandGpu>,
+    params_buffer: wgpu::Buffer,
+    q_buffer: wgpu::Buffer,
+    v_buffer: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    pipeline: wgpu::ComputePipeline,
+    time_secs: f64,
+}
+
+impl GpuEngine {
+    /// Uploads one strand per root, `models[i]` rooted at `roots[i]`, at
+    /// rest in its natural shape, with the head `collider` (head
+    /// coordinates) if any. `settings.method` must be Exact; the scheme
+    /// sets GMRES's iterations (none for velocity-explicit).
+    pub fn new(
+        ctx: GpuContext,
+        settings: &SimSettings,
+        models: &[BatchModel],
+        roots: &[RootPose],
+        collider: Option<&SignedDistanceField>,
+    ) -> Result<Self, GpuError> {
+        settings.validate()?;
+        if settings.method != Method::Exact {
+            return Err(GpuError::UnsupportedMethod(settings.method.label()));
+        }
+        assert_eq!(models.len(), roots.len(), "one model per root");
+        let mut strands = Vec::with_capacity(roots.len());
+        let mut elements = Vec::new();
+        let mut natural = Vec::new();
+        for (model, root) in models.iter().zip(roots) {
+            strands.push(StrandGpu {
+                first: elements.len() as u32,
+                elements: model.elements() as u32,
+                pad0: [0; 2],
+                mass_per_length: model.mass_per_length,
+                air_drag: model.air_drag,
+                pad1: [0.0; 2],
+                position_m: f4(root.position_m),
+                head_from_root: mat(root.head_from_root),
+            });
+            for e in 0..model.elements() {
+                let [kx, ky, kz] = model.stiffness[e];
+                let [nx, ny, nz] = model.natural[e];
+                elements.push(ElementConstGpu {
+                    stiffness_length: [kx, ky, kz, model.lengths_m[e]],
+                    natural_friction: [nx, ny, nz, model.friction[e]],
+                });
+                natural.push([nx, ny, nz, 0.0]);
+            }
+        }
+        let mut nodes = [[0.0; 4]; 2];
+        let mut weights = [[0.0; 4]; 2];
+        if let Some(model) = models.first() {
+            for (i, (x, w)) in model.nodes.iter().zip(&model.weights).enumerate() {
+                nodes[i / 4][i % 4] = *x;
+                weights[i / 4][i % 4] = *w;
+            }
+        }
+        let contact = settings.contact;
+        let (field_dims, field_origin_m, field_cell_m, distances) = match collider {
+            Some(field) => (
+                [
+                    field.dims[0] as u32,
+                    field.dims[1] as u32,
+                    field.dims[2] as u32,
+                    0,
+                ],
+                f4(field.origin_m),
+                field.cell_m as f32,
+                field.distance_m.iter().map(|&d| d as f32).collect(),
+            ),
+            None => ([2, 2, 2, 0], [0.0; 4], 1.0, vec![0.0f32]),
+        };
+        let params = EngineParamsGpu {
+            strand_count: roots.len() as u32,
+            points: models.first().map_or(0, |m| m.nodes.len()) as u32,
+            iterations: match settings.scheme {
+                StepScheme::VelocityImplicit { corrections } => corrections,
+                StepScheme::VelocityExplicit => 0,
+            },
+            has_collider: u32::from(collider.is_some()),
+            h_secs: settings.substep_secs() as f32,
+            gmres_tolerance: GMRES_TOLERANCE as f32,
+            skin_m: contact.skin_m as f32,
+            implicit_stiffness_ratio: contact.implicit_stiffness_ratio as f32,
+            max_acceleration_m_per_s2: contact.max_acceleration_m_per_s2 as f32,
+            field_cell_m,
+            pad: [0.0; 2],
+            field_dims,
+            field_origin_m,
+            gravity_m_per_s2: f4(settings.gravity_m_per_s2),
+            air_velocity_m_per_s: f4(settings.air_velocity_m_per_s),
+            nodes,
+            weights,
+            ..bytemuck::Zeroable::zeroed()
+        };
+        let count = elements.len().max(1);
+        let zero = vec![[0.0f32; 4]; natural.len()];
+        let device = &ctx.device;
+        let limit = ctx.limits.max_storage_buffer_binding_size;
+        let storage = wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC;
+        let check = |what: &'static str, bytes: u64| -> Result<(), GpuError> {
+            if bytes > limit {
+                return Err(GpuError::TooLarge {
+                    what,
+                    bytes,
+                    limit_bytes: limit,
+                });
+            }
+            Ok(())
+        };
+        let init = |label: &'static str, bytes: &[u8], usage| -> Result<wgpu::Buffer, GpuError> {
+            check(label, bytes.len() as u64)?;
+            Ok(upload_buffer(device, &ctx.queue, label, bytes, usage))
+        };
+        let empty = |label: &'static str, bytes: usize| -> Result<wgpu::Buffer, GpuError> {
+            check(label, bytes as u64)?;
+            Ok(device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes as u64,
+                usage: storage,
+                mapped_at_creation: false,
+            }))
+        };
+        let params_buffer = init(
+            "engine params",
+            bytemuck::bytes_of(&params),
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        )?;
+        let one_strand: [StrandGpu; 1] = [bytemuck::Zeroable::zeroed()];
+        let strands_bytes: &[u8] = if strands.is_empty() {
+            bytemuck::cast_slice(&one_strand)
+        } else {
+            bytemuck::cast_slice(&strands)
+        };
+        let one_element = [bytemuck::Zeroable::zeroed()];
+        let elements_of: &[ElementConstGpu] = if elements.is_empty() {
+            &one_element
+        } else {
+            &elements
+        };
+        let vec4s = |x: &[[f32; 4]]| -> Vec<[f32; 4]> {
+            if x.is_empty() {
+                vec![[0.0; 4]]
+            } else {
+                x.to_vec()
+            }
+        };
+        let strands_buffer = init("strands", strands_bytes, storage)?;
+        let elements_buffer = init("elements", bytemuck::cast_slice(elements_of), storage)?;
+        let q_buffer = init("q", bytemuck::cast_slice(&vec4s(&natural)), storage)?;
+        let v_buffer = init("v", bytemuck::cast_slice(&vec4s(&zero)), storage)?;
+        let scratch = empty("element data", count * size_of::<ElementDataGpu>())?;
+        let elimination = empty("elimination", count * size_of::<EliminationGpu>())?;
+        let krylov = empty("krylov", count * KRYLOV_SLOTS * 16)?;
+        let field = init("field", bytemuck::cast_slice(&distances), storage)?;
+        let buffers = [
+            &params_buffer,
+            &strands_buffer,
+            &elements_buffer,
+            &q_buffer,
+            &v_buffer,
+            &scratch,
+            &elimination,
+            &krylov,
+            &field,
+        ];
+        let (bind_group, pipeline_layout) =
+            bind_all(device, "engine", &buffers, |b| matches!(b, 1 | 2 | 8));
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("engine"),
+            source: wgpu::ShaderSource::Wgsl(Cow::Owned(engine_source())),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("stage_step"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("stage_step"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        ctx.check()?;
+        Ok(Self {
+            ctx,
+            settings: settings.clone(),
+            params,
+            strands,
+            params_buffer,
+            q_buffer,
+            v_buffer,
+            bind_group,
+            pipeline,
+            time_secs: 0.0,
+        })
+    }
+
+    /// The uniforms of a step taken while the head moves as `head`.
+    pub fn params_at(&self, head: &RigidMotion) -> EngineParamsGpu {
+        EngineParamsGpu {
+            head_rotation: mat(head.world_from_body),
+            head_position_m: f4(head.position_m),
+            head_angular_velocity: f4(head.angular_velocity_rad_per_s),
+            head_angular_acceleration: f4(head.angular_acceleration_rad_per_s2),
+            head_velocity: f4(head.velocity_m_per_s),
+            head_acceleration: f4(head.acceleration_m_per_s2),
+            ..self.params
+        }
+    }
+
+    /// The adapter's name.
+    pub fn adapter_name(&self) -> &str {
+        &self.ctx.adapter_name
+    }
+
+    /// Simulated time in seconds.
+    pub fn time_secs(&self) -> f64 {
+        self.time_secs
+    }
+
+    /// Number of strands.
+    pub fn strand_count(&self) -> usize {
+        self.strands.len()
+    }
+
+    /// Strand `index`'s elements in the state vectors [`Self::read_state`]
+    /// returns (panics if out of range).
+    pub fn elements_of(&self, index: usize) -> Range<usize> {
+        let s = &self.strands[index];
+        s.first as usize..(s.first + s.elements) as usize
+    }
+
+    /// The state buffers (q, q̇), one vec4 per element, strand after strand.
+    pub fn state_buffers(&self) -> (&wgpu::Buffer, &wgpu::Buffer) {
+        (&self.q_buffer, &self.v_buffer)
+    }
+
+    /// Uploads a state (one vec4 per element, strand after strand).
+    pub fn set_state(&self, q: &[[f32; 4]], v: &[[f32; 4]]) {
+        let queue = &self.ctx.queue;
+        queue.write_buffer(&self.q_buffer, 0, bytemuck::cast_slice(q));
+        queue.write_buffer(&self.v_buffer, 0, bytemuck::cast_slice(v));
+    }
+
+    /// Advances one frame: `substeps` submissions of the step, each with
+    /// the head's motion over it. No readback.
+    pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        let h = self.settings.substep_secs();
+        let groups = (self.strands.len() as u32).div_ceil(WORKGROUP).max(1);
+        let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
+        for _ in 0..self.settings.substeps {
+            let params = self.params_at(&head.step_motion_at(self.time_secs, h));
+            let queue = &self.ctx.queue;
+            queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
+            let mut encoder =
+                self.ctx
+                    .device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                        label: Some("engine step"),
+                    });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("engine step"),
+                    timestamp_writes: None,
+                });
+                pass.set_bind_group(0, &self.bind_group, &[]);
+                pass.set_pipeline(&self.pipeline);
+                pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
+            }
+            queue.submit([encoder.finish()]);
+            self.time_secs += h;
+        }
+    }
+
+    /// Waits for every submitted step to finish (for timing).
+    pub fn wait(&self) -> Result<(), GpuError> {
+        wait(&self.ctx)
+    }
+
+    /// Reads (q, q̇) back: one vec4 per element, strand after strand.
+    pub fn read_state(&self) -> Result<GpuState, GpuError> {
+        Ok((
+            read_vec4(&self.ctx, &self.q_buffer)?,
+            read_vec4(&self.ctx, &self.v_buffer)?,
+        ))
+    }
+}
