@@ -12,7 +12,9 @@
 use glam::{DVec3, Vec3};
 use helixhair_gpu::context_or_skip;
 use helixhair_physics::gpu::GpuSystem;
-use helixhair_physics::{Method, RigidMotion, RootPose, SimSettings, StrandParams};
+use helixhair_physics::{
+    Engine, EngineKind, Method, Oscillation, RigidMotion, RootPose, SimSettings, StrandParams,
+};
 use helixhair_render::head_generate::default_head;
 use helixhair_render::{
     HairStrands, Light, OffscreenRenderer, OrbitCamera, RenderSettings, Scene, StrandBuffers,
@@ -44,6 +46,48 @@ fn the_gpu_engine_reports_a_lost_device_instead_of_panicking() {
         .expect_err("a destroyed device cannot read back");
     let message = error.to_string();
     assert!(message.contains("stopped working"), "{message}");
+}
+
+/// `EngineKind::Gpu` whose device is lost mid-run steps the frame again
+/// on the CPU batch engine from its start, says so, and goes on there.
+#[test]
+fn the_gpu_engine_kind_steps_on_the_cpu_after_losing_its_device() {
+    if context_or_skip("lost device: the GPU engine kind").is_none() {
+        return;
+    }
+    let roots: Vec<RootPose> = (0..12)
+        .map(|i| {
+            let a = f64::from(i) * 0.5;
+            let p = DVec3::new(0.1 * a.cos(), 0.05, 0.1 * a.sin());
+            RootPose::from_direction(p, p, DVec3::Y)
+        })
+        .collect();
+    let mut engine = Engine::new(EngineKind::Gpu, SimSettings::default()).expect("settings");
+    engine
+        .add_group(&StrandParams::default(), &roots)
+        .expect("valid parameters");
+    let shake = Oscillation {
+        axis: DVec3::Y,
+        amplitude_rad: 0.5,
+        frequency_hz: 1.5,
+    };
+    engine.step_frame(&shake);
+    let note = engine.gpu_note().expect("a GPU engine").to_owned();
+    assert!(note.starts_with("physics on the GPU"), "{note}");
+    let device = engine.gpu_side().and_then(|side| side.device());
+    device.expect("a working device").context().device.destroy();
+    for _ in 0..4 {
+        engine.step_frame(&shake);
+    }
+    let note = engine.gpu_note().expect("a GPU engine");
+    assert!(note.contains("the GPU was lost"), "{note}");
+    assert!(
+        note.contains("the CPU batch engine steps the hair"),
+        "{note}"
+    );
+    assert!(engine.is_finite());
+    let frames = engine.time_secs() / engine.settings().dt_secs;
+    assert!((frames - 5.0).abs() < 1e-9, "{frames} frames stepped");
 }
 
 #[test]

@@ -39,6 +39,39 @@ fn render_says_there_is_no_adapter_and_exits_with_status_1() {
     assert!(!out.exists(), "no picture without an adapter");
 }
 
+#[test]
+fn sim_on_the_gpu_engine_falls_back_to_the_cpu_batch_engine_and_says_why() {
+    let report = scratch_dir("no-adapter-sim").join("report.json");
+    let output = Command::new(helixhair_bin())
+        .args([
+            "sim",
+            "--style",
+            "assets/styles/curly.ron",
+            "--engine",
+            "gpu",
+        ])
+        .args(["--play", "shake", "--steps", "30", "--json"])
+        .arg(&report)
+        .current_dir(workspace_root())
+        .envs(HIDDEN_ADAPTER_ENV)
+        .output()
+        .expect("helixhair starts");
+    let text = describe(&output);
+    assert!(output.status.success(), "{text}");
+    assert!(!text.contains("panicked"), "{text}");
+    assert!(text.contains("no graphics adapter found"), "{text}");
+    assert!(
+        text.contains("the CPU batch engine steps the hair"),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).expect("the report")).expect("JSON");
+    assert_eq!(json["engine"], "gpu");
+    assert_eq!(json["steps"], 30);
+    let gpu = json["gpu"].as_str().expect("the GPU note");
+    assert!(gpu.contains("no graphics adapter found"), "{gpu}");
+}
+
 /// The child's half: with the adapter hidden, the GPU engine falls back.
 fn fall_back_without_an_adapter() {
     let roots: Vec<RootPose> = (0..10)

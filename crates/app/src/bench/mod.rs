@@ -190,7 +190,7 @@ pub fn run_bench(args: &BenchArgs, log: &mut dyn Write) -> anyhow::Result<()> {
             Study::VolumeCost => volume::cost::cost(&mut ctx),
             Study::Soak => {
                 let engines = if args.soak_engines.is_empty() {
-                    &EngineKind::ALL[..]
+                    &EngineKind::CPU[..]
                 } else {
                     &args.soak_engines
                 };

@@ -236,45 +236,47 @@ fn check_engine_options(
     let allowed = EngineKind::BATCH_METHODS.map(|m| format!("`{}`", m.label()));
     let allowed = allowed.join(" or ");
     let method = settings.method.label();
+    let engine = kind.label();
+    let style_engine = format!("{kind:?}");
     let (options, message) = if !kind.runs(settings.method) {
         match (overrides.engine, overrides.method) {
             (Some(_), Some(_)) => (
-                format!("--engine batch --method {method}"),
+                format!("--engine {engine} --method {method}"),
                 format!(
-                    "the batch engine runs the {allowed} solver only; \
+                    "the {engine} engine runs the {allowed} solver only; \
                      use --method exact or block, or --engine reference"
                 ),
             ),
             (Some(_), None) => (
-                "--engine batch".to_owned(),
+                format!("--engine {engine}"),
                 format!(
-                    "the style's `sim.method` is `{method}`, which the batch engine cannot run \
+                    "the style's `sim.method` is `{method}`, which the {engine} engine cannot run \
                      (it runs {allowed}); add --method exact or --method block"
                 ),
             ),
             (None, Some(_)) => (
                 format!("--method {method}"),
                 format!(
-                    "the style's `engine` is `Batch`, which runs the {allowed} solver only; \
+                    "the style's `engine` is `{style_engine}`, which runs the {allowed} solver only; \
                      add --engine reference to use `{method}`"
                 ),
             ),
             // A style built in code (a loaded one is validated).
             (None, None) => (
-                "style field `engine: Batch`".to_owned(),
-                format!("the batch engine runs {allowed} only, not `sim.method` `{method}`"),
+                format!("style field `engine: {style_engine}`"),
+                format!("the {engine} engine runs {allowed} only, not `sim.method` `{method}`"),
             ),
         }
     } else if accuracy_target.is_some() {
         let option = if overrides.engine.is_some() {
-            "--engine batch"
+            format!("--engine {engine}")
         } else if overrides.accuracy_target.is_some() {
-            "--accuracy"
+            "--accuracy".to_owned()
         } else {
-            "style field `engine: Batch`"
+            format!("style field `engine: {style_engine}`")
         };
         (
-            option.to_owned(),
+            option,
             "an accuracy target chooses a solver per group, which only the reference engine \
              runs; drop the target, or use --engine reference"
                 .to_owned(),

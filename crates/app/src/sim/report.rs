@@ -34,8 +34,12 @@ pub struct SimReport {
     /// The style's `name`.
     pub style_name: String,
     /// The engine that ran ([`helixhair_physics::engine::EngineKind::label`]):
-    /// `reference` or `batch`.
+    /// `reference`, `batch` or `gpu`.
     pub engine: &'static str,
+    /// With the GPU engine, what stepped the frames, in words ("physics
+    /// on the GPU (adapter)", or why the CPU batch engine stepped them);
+    /// `None` (JSON `null`) on the other engines.
+    pub gpu: Option<String>,
     /// Solver, as `--method` spells it ([`helixhair_physics::Method::label`]:
     /// `exact`, `iterative:4`, …).
     pub method: String,
@@ -219,6 +223,7 @@ impl SimReport {
             style_path: style_path.to_owned(),
             style_name: style_name.to_owned(),
             engine: engine.kind().label(),
+            gpu: engine.gpu_note().map(str::to_owned),
             method: settings.method.label(),
             dt_secs: settings.dt_secs,
             substeps: settings.substeps,
@@ -269,6 +274,9 @@ impl SimReport {
             self.dt_secs,
             self.substeps
         );
+        if let Some(gpu) = &self.gpu {
+            let _ = writeln!(out, "  {gpu}");
+        }
         let _ = writeln!(
             out,
             "  {} step{} = {:.4} s simulated in {:.4} s wall (per step: median {:.3} ms, mean {:.3} ms)",

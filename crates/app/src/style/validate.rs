@@ -75,21 +75,24 @@ impl Style {
 /// that asks it for more is refused at its `engine` field.
 fn check_engine(style: &Style) -> Result<(), StyleIssue> {
     let engine = FieldPath::root().field("engine");
-    if style.engine == EngineKind::Batch && !EngineKind::Batch.runs(style.sim.method) {
+    let kind = style.engine.label();
+    if !style.engine.runs(style.sim.method) {
         return Err(invalid(
             engine,
             format!(
-                "the batch engine runs `sim.method` `Exact` or `BlockDiagonal` only, not `{}`; \
+                "the {kind} engine runs `sim.method` `Exact` or `BlockDiagonal` only, not `{}`; \
                  pick one of those, or `engine: Reference` for every solver",
                 method_spelling(style.sim.method)
             ),
         ));
     }
-    if style.engine == EngineKind::Batch && style.accuracy_target.is_some() {
+    if style.engine != EngineKind::Reference && style.accuracy_target.is_some() {
         return Err(invalid(
             engine,
-            "the batch engine cannot run an `accuracy_target` (it may choose any solver per \
-             group); remove the target, or use `engine: Reference`",
+            format!(
+                "the {kind} engine cannot run an `accuracy_target` (it may choose any solver \
+                 per group); remove the target, or use `engine: Reference`"
+            ),
         ));
     }
     Ok(())

@@ -333,7 +333,9 @@ impl Group {
     /// One substep of every batch, the head moving as `motion`; with
     /// `check` (the frame's last substep, guard on), each batch is then
     /// measured and judged at once ([`judge_batch`]) and
-    /// [`Self::record_check`] records what failed.
+    /// [`Self::record_check`] records what failed. Without `advance`, the
+    /// state as it stands (stepped elsewhere:
+    /// [`super::BatchSystem::step_frame_offloaded`]) is only judged.
     #[expect(
         clippy::too_many_arguments,
         reason = "the substep's head, forces and kind, the frame's check, and how to run"
@@ -347,6 +349,7 @@ impl Group {
         pulls: Option<(&BatchVolume, usize)>,
         check: Option<&FrameCheck<'_>>,
         parallel: bool,
+        advance: bool,
     ) {
         let n = self.n;
         // Kept samples from the last frame describe the state no more.
@@ -359,9 +362,11 @@ impl Group {
         )| {
             let kind = kinds.of(standing);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            step_one_batch(
-                model, env, motion, roots, kind, contact, pull, q, v, scratch,
-            );
+            if advance {
+                step_one_batch(
+                    model, env, motion, roots, kind, contact, pull, q, v, scratch,
+                );
+            }
             if let Some(check) = check {
                 let rest_q = &rest_q[b * n..(b + 1) * n];
                 let batch = BatchState {

@@ -92,6 +92,9 @@
 //!   with what failed and by how much ([`BatchSystem::last_guard_events`]),
 //!   and a strand that keeps failing is pinned
 //!   ([`crate::guard::ResetMemory`]).
+//! - **Offload** (`offload.rs`): [`BatchSystem::step_frame_offloaded`]
+//!   hands a frame's substeps to a [`SubstepOffload`] (the GPU engine)
+//!   and judges and recovers the state it hands back with the guard above.
 //!
 //! The quadrature is the settings' (`SimSettings::quadrature_points`), so a
 //! comparison with the f64 reference is like with like. External forces
@@ -121,6 +124,7 @@ pub mod lane_model;
 pub mod lanes;
 pub mod layout;
 pub mod measure;
+mod offload;
 mod retry;
 pub mod step;
 pub mod suffix;
@@ -131,4 +135,5 @@ pub mod volume;
 
 pub use lane_model::{Constants, LaneModel};
 pub use lanes::{LANES, Lanes, Real};
+pub use offload::{FlatState, SubstepOffload};
 pub use system::{BatchSystem, LaneUse, MemoryUse};

@@ -41,6 +41,7 @@ use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings};
 use crate::volume::InteractionSettings;
+
 /// Bytes of memory the batch path holds, for the throughput study.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MemoryUse {
@@ -53,23 +54,23 @@ pub struct MemoryUse {
 /// Many strands stepped in f32 lanes; see the [module docs](super).
 #[derive(Clone, Debug)]
 pub struct BatchSystem {
-    settings: SimSettings,
-    groups: Vec<Group>,
+    pub(super) settings: SimSettings,
+    pub(super) groups: Vec<Group>,
     /// Per strand index: its group and slot.
-    slots: Vec<(usize, usize)>,
-    time_secs: f64,
+    pub(super) slots: Vec<(usize, usize)>,
+    pub(super) time_secs: f64,
     head: RigidMotion,
-    parallel: bool,
-    collider: Option<(Arc<SignedDistanceField>, NearCells)>,
-    guard: Option<Guard>,
+    pub(super) parallel: bool,
+    pub(super) collider: Option<(Arc<SignedDistanceField>, NearCells)>,
+    pub(super) guard: Option<Guard>,
     last_resets: Vec<usize>,
     last_pins: Vec<usize>,
-    last_events: Vec<GuardEvent>,
+    pub(super) last_events: Vec<GuardEvent>,
     reset_count: usize,
     /// Every intervention since the system was built.
     event_count: usize,
     /// The hair–hair model, when on ([`super::volume`]).
-    volume: Option<BatchVolume>,
+    pub(super) volume: Option<BatchVolume>,
 }
 
 impl BatchSystem {
@@ -282,39 +283,15 @@ impl BatchSystem {
     /// ([`HeadTrajectory::step_motion_at`]). With the guard on, strands
     /// that fail its checks are recovered by its policy ([`super::retry`]).
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
-        let h = self.settings.substep_secs();
-        let env = StepEnv {
-            h_secs: h,
-            gravity_m_per_s2: self.settings.gravity_m_per_s2.to_array(),
-            air_velocity_m_per_s: self.settings.air_velocity_m_per_s.to_array(),
-        };
-        let kinds = StepKinds {
-            own: BatchStep::of(&self.settings),
-            retry: BatchStep::retry_of(&self.settings),
-        };
-        let kinetic = KineticEnergy::of(self.settings.method, self.settings.scheme);
+        let (env, kinds, kinetic) = self.frame_setup();
+        let h = env.h_secs;
         let start_secs = self.time_secs;
         if let Some(volume) = &mut self.volume {
             let views: Vec<GroupView<'_>> = self.groups.iter().map(Group::view).collect();
             volume.prepare(&views, &head.motion_at(start_secs), self.parallel);
         }
+        self.start_frame(head, &env, kinetic);
         let volume = self.volume.as_ref();
-        if self.guard.is_some() {
-            let motion = head.motion_at(start_secs);
-            let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
-            for (i, group) in self.groups.iter_mut().enumerate() {
-                group.save_checkpoint();
-                if !group.measured {
-                    let pulls = volume.map(|v| (v, i));
-                    let contact = contact.as_ref();
-                    group.measure(&motion, &env, contact, pulls, kinetic, self.parallel);
-                } else if let Some(volume) = volume {
-                    // The model's pull is new each frame: the reused
-                    // measure counts its work instead of the old one's.
-                    volume.exchange_start_work(i, &mut group.measures);
-                }
-            }
-        }
         for substep in 0..self.settings.substeps {
             let motion = head.step_motion_at(self.time_secs, h);
             let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
@@ -336,10 +313,84 @@ impl BatchSystem {
             for (i, group) in self.groups.iter_mut().enumerate() {
                 let pulls = volume.map(|v| (v, i));
                 let check = check.as_ref();
-                group.step(&motion, &env, kinds, contact, pulls, check, self.parallel);
+                group.step(
+                    &motion,
+                    &env,
+                    kinds,
+                    contact,
+                    pulls,
+                    check,
+                    self.parallel,
+                    true,
+                );
             }
             self.time_secs = end_secs;
         }
+        self.end_frame(head, start_secs, env, kinds, kinetic);
+    }
+
+    /// What every substep of a frame takes: the step's environment, the
+    /// kinds of step (own and retry) and the kinetic energy the guard
+    /// measures.
+    pub(super) fn frame_setup(&self) -> (StepEnv, StepKinds, KineticEnergy) {
+        let env = StepEnv {
+            h_secs: self.settings.substep_secs(),
+            gravity_m_per_s2: self.settings.gravity_m_per_s2.to_array(),
+            air_velocity_m_per_s: self.settings.air_velocity_m_per_s.to_array(),
+        };
+        let kinds = StepKinds {
+            own: BatchStep::of(&self.settings),
+            retry: BatchStep::retry_of(&self.settings),
+        };
+        (
+            env,
+            kinds,
+            KineticEnergy::of(self.settings.method, self.settings.scheme),
+        )
+    }
+
+    /// With the guard on, keeps each group's state as the frame's start
+    /// (where a retry starts from) and measures what the last frame's end
+    /// did not.
+    pub(super) fn start_frame(
+        &mut self,
+        head: &dyn HeadTrajectory,
+        env: &StepEnv,
+        kinetic: KineticEnergy,
+    ) {
+        if self.guard.is_none() {
+            return;
+        }
+        let h = env.h_secs;
+        let motion = head.motion_at(self.time_secs);
+        let volume = self.volume.as_ref();
+        let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
+        for (i, group) in self.groups.iter_mut().enumerate() {
+            group.save_checkpoint();
+            if !group.measured {
+                let pulls = volume.map(|v| (v, i));
+                let contact = contact.as_ref();
+                group.measure(&motion, env, contact, pulls, kinetic, self.parallel);
+            } else if let Some(volume) = volume {
+                // The model's pull is new each frame: the reused
+                // measure counts its work instead of the old one's.
+                volume.exchange_start_work(i, &mut group.measures);
+            }
+        }
+    }
+
+    /// The frame's end: the head's pose, and with the guard on, the
+    /// recovery of what its check found ([`super::retry`]) and the record
+    /// of it.
+    pub(super) fn end_frame(
+        &mut self,
+        head: &dyn HeadTrajectory,
+        start_secs: f64,
+        env: StepEnv,
+        kinds: StepKinds,
+        kinetic: KineticEnergy,
+    ) {
+        let volume = self.volume.as_ref();
         self.head = head.motion_at(self.time_secs);
         self.last_resets.clear();
         self.last_pins.clear();

@@ -44,8 +44,10 @@
 //! stiffness and damping in the step matrix; Block-diagonal keeps its
 //! diagonal blocks, on both engines).
 
+pub mod gpu_side;
 pub mod rest_contact;
 
+pub use gpu_side::GpuSide;
 pub use rest_contact::RestContact;
 
 use std::ops::Range;
@@ -73,21 +75,31 @@ pub enum EngineKind {
     /// The f32 SIMD [`BatchSystem`] on all cores: Exact or Block-diagonal
     /// only, many times the reference's throughput (`docs/benchmarks.md`).
     Batch,
+    /// The batch engine with its substeps taken on the GPU
+    /// ([`GpuSide`]): Exact, the head collider and the guard; where the
+    /// GPU cannot (no adapter, Block-diagonal, the hair–hair model) the
+    /// CPU batch engine steps and [`Engine::gpu_note`] says why.
+    Gpu,
 }
 
 impl EngineKind {
-    /// Both engines, the default first.
-    pub const ALL: [EngineKind; 2] = [EngineKind::Reference, EngineKind::Batch];
+    /// Every engine, the default first.
+    pub const ALL: [EngineKind; 3] = [EngineKind::Reference, EngineKind::Batch, EngineKind::Gpu];
+
+    /// The engines on the CPU, which the benchmarks compare (the GPU
+    /// engine's figures are the throughput study's).
+    pub const CPU: [EngineKind; 2] = [EngineKind::Reference, EngineKind::Batch];
 
     /// The solvers the batch engine runs.
     pub const BATCH_METHODS: [Method; 2] = [Method::Exact, Method::BlockDiagonal];
 
-    /// The name `--engine` takes and the JSON report writes: `reference`
-    /// or `batch`.
+    /// The name `--engine` takes and the JSON report writes: `reference`,
+    /// `batch` or `gpu`.
     pub fn label(self) -> &'static str {
         match self {
             Self::Reference => "reference",
             Self::Batch => "batch",
+            Self::Gpu => "gpu",
         }
     }
 
@@ -100,7 +112,7 @@ impl EngineKind {
     pub fn runs(self, method: Method) -> bool {
         match self {
             Self::Reference => true,
-            Self::Batch => Self::BATCH_METHODS.contains(&method),
+            Self::Batch | Self::Gpu => Self::BATCH_METHODS.contains(&method),
         }
     }
 }
@@ -117,6 +129,8 @@ pub enum Engine {
         /// Per strand, in index order: its model (shared within a group)
         /// and its root, for geometry and energies in f64.
         strands: Vec<(Arc<StrandModel>, RootPose)>,
+        /// With [`EngineKind::Gpu`], the device that takes the substeps.
+        gpu: Option<GpuSide>,
     },
 }
 
@@ -126,9 +140,10 @@ impl Engine {
     pub fn new(kind: EngineKind, settings: SimSettings) -> Result<Self, ParamError> {
         Ok(match kind {
             EngineKind::Reference => Self::Reference(HairSystem::new(settings)?),
-            EngineKind::Batch => Self::Batch {
+            EngineKind::Batch | EngineKind::Gpu => Self::Batch {
                 system: BatchSystem::new(settings)?,
                 strands: Vec::new(),
+                gpu: (kind == EngineKind::Gpu).then(GpuSide::new),
             },
         })
     }
@@ -137,7 +152,8 @@ impl Engine {
     pub fn kind(&self) -> EngineKind {
         match self {
             Self::Reference(_) => EngineKind::Reference,
-            Self::Batch { .. } => EngineKind::Batch,
+            Self::Batch { gpu: None, .. } => EngineKind::Batch,
+            Self::Batch { gpu: Some(_), .. } => EngineKind::Gpu,
         }
     }
 
@@ -150,13 +166,20 @@ impl Engine {
     ) -> Result<Range<usize>, ParamError> {
         match self {
             Self::Reference(system) => system.add_group(params, roots),
-            Self::Batch { system, strands } => {
+            Self::Batch {
+                system,
+                strands,
+                gpu,
+            } => {
                 let model = Arc::new(StrandModel::new(
                     params,
                     system.settings().quadrature_points,
                 )?);
                 let range = system.add_strands(&BatchModel::new(&model), roots);
                 strands.extend(roots.iter().map(|r| (model.clone(), *r)));
+                if let Some(gpu) = gpu {
+                    gpu.invalidate();
+                }
                 Ok(range)
             }
         }
@@ -190,7 +213,12 @@ impl Engine {
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
         match self {
             Self::Reference(system) => system.set_contact_settings(settings),
-            Self::Batch { system, .. } => system.set_contact_settings(settings),
+            Self::Batch { system, gpu, .. } => {
+                system.set_contact_settings(settings);
+                if let Some(gpu) = gpu {
+                    gpu.invalidate();
+                }
+            }
         }
     }
 
@@ -219,7 +247,12 @@ impl Engine {
     pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
         match self {
             Self::Reference(system) => system.set_collider(collider),
-            Self::Batch { system, .. } => system.set_collider(collider),
+            Self::Batch { system, gpu, .. } => {
+                system.set_collider(collider);
+                if let Some(gpu) = gpu {
+                    gpu.invalidate();
+                }
+            }
         }
     }
 
@@ -257,7 +290,12 @@ impl Engine {
     pub fn set_interaction(&mut self, settings: InteractionSettings) -> Result<(), ParamError> {
         match self {
             Self::Reference(system) => system.set_interaction(settings),
-            Self::Batch { system, .. } => system.set_interaction(settings),
+            Self::Batch { system, gpu, .. } => {
+                if let Some(gpu) = gpu {
+                    gpu.invalidate();
+                }
+                system.set_interaction(settings)
+            }
         }
     }
 
@@ -286,7 +324,29 @@ impl Engine {
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
         match self {
             Self::Reference(system) => system.step_frame(head),
+            Self::Batch {
+                system,
+                strands,
+                gpu: Some(gpu),
+            } => gpu.step_frame(system, strands, head),
             Self::Batch { system, .. } => system.step_frame(head),
+        }
+    }
+
+    /// The GPU engine's device side, with [`EngineKind::Gpu`].
+    pub fn gpu_side(&self) -> Option<&GpuSide> {
+        match self {
+            Self::Batch { gpu, .. } => gpu.as_ref(),
+            Self::Reference(_) => None,
+        }
+    }
+
+    /// With [`EngineKind::Gpu`], what steps the frames, in words: "physics
+    /// on the GPU (adapter)", or why the CPU batch engine steps them.
+    pub fn gpu_note(&self) -> Option<&str> {
+        match self {
+            Self::Batch { gpu: Some(gpu), .. } => Some(gpu.note()),
+            _ => None,
         }
     }
 
@@ -382,7 +442,12 @@ impl Engine {
     pub fn set_state(&mut self, index: usize, q: &[DVec3], v: &[DVec3]) {
         match self {
             Self::Reference(system) => system.strands_mut()[index].set_state(q, v),
-            Self::Batch { system, .. } => system.set_state(index, q, v),
+            Self::Batch { system, gpu, .. } => {
+                system.set_state(index, q, v);
+                if let Some(gpu) = gpu {
+                    gpu.state_changed();
+                }
+            }
         }
     }
 
@@ -437,7 +502,9 @@ impl Engine {
     pub fn energies(&self) -> Energies {
         match self {
             Self::Reference(system) => system.energies(),
-            Self::Batch { system, strands } => {
+            Self::Batch {
+                system, strands, ..
+            } => {
                 let gravity = system.settings().gravity_m_per_s2;
                 let mut total = Energies::default();
                 for (i, (model, root)) in strands.iter().enumerate() {

@@ -40,6 +40,7 @@ use super::layout::{
     ElementConstGpu, ElementDataGpu, EliminationGpu, EngineParamsGpu, Mat3Gpu, StrandGpu,
 };
 use super::{GpuContext, GpuError};
+use crate::batch::SubstepOffload;
 use crate::batch::layout::BatchModel;
 use crate::collision::SignedDistanceField;
 use crate::gmres::GMRES_TOLERANCE;
@@ -284,6 +285,11 @@ impl GpuEngine {
         }
     }
 
+    /// The device it runs on.
+    pub fn context(&self) -> &GpuContext {
+        &self.ctx
+    }
+
     /// The adapter's name.
     pub fn adapter_name(&self) -> &str {
         &self.ctx.adapter_name
@@ -322,30 +328,36 @@ impl GpuEngine {
     /// the head's motion over it. No readback.
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
         let h = self.settings.substep_secs();
+        for _ in 0..self.settings.substeps {
+            self.substep(&head.step_motion_at(self.time_secs, h));
+        }
+    }
+
+    /// Submits one step of every strand with the head moving as `motion`
+    /// over it.
+    pub fn substep(&mut self, motion: &RigidMotion) {
         let groups = (self.strands.len() as u32).div_ceil(WORKGROUP).max(1);
         let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
-        for _ in 0..self.settings.substeps {
-            let params = self.params_at(&head.step_motion_at(self.time_secs, h));
-            let queue = &self.ctx.queue;
-            queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
-            let mut encoder =
-                self.ctx
-                    .device
-                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                        label: Some("engine step"),
-                    });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("engine step"),
-                    timestamp_writes: None,
-                });
-                pass.set_bind_group(0, &self.bind_group, &[]);
-                pass.set_pipeline(&self.pipeline);
-                pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
-            }
-            queue.submit([encoder.finish()]);
-            self.time_secs += h;
+        let params = self.params_at(motion);
+        let queue = &self.ctx.queue;
+        queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
+        let mut encoder = self
+            .ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("engine step"),
+            });
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("engine step"),
+                timestamp_writes: None,
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.set_pipeline(&self.pipeline);
+            pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
         }
+        queue.submit([encoder.finish()]);
+        self.time_secs += self.settings.substep_secs();
     }
 
     /// Waits for every submitted step to finish (for timing).
@@ -359,5 +371,19 @@ impl GpuEngine {
             read_vec4(&self.ctx, &self.q_buffer)?,
             read_vec4(&self.ctx, &self.v_buffer)?,
         ))
+    }
+}
+
+impl SubstepOffload for GpuEngine {
+    fn upload(&mut self, q: &[[f32; 4]], v: &[[f32; 4]]) {
+        self.set_state(q, v);
+    }
+
+    fn substep(&mut self, motion: &RigidMotion) {
+        GpuEngine::substep(self, motion);
+    }
+
+    fn download(&mut self) -> Result<GpuState, String> {
+        self.read_state().map_err(|e| e.to_string())
     }
 }

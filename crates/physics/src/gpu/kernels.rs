@@ -65,7 +65,7 @@ pub fn kernel_source(method: Method) -> Option<String> {
 const WORKGROUP: u32 = 64;
 
 /// A state read back: (q, q̇), one vec4 per element, strand-major.
-pub type GpuState = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+pub type GpuState = crate::batch::FlatState;
 
 fn f4(v: glam::DVec3) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, 0.0]

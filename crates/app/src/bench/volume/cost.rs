@@ -87,7 +87,7 @@ pub fn cost(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
     for _ in 0..runs {
         let mut k = 0;
         for groom in &grooms {
-            for engine in EngineKind::ALL {
+            for engine in EngineKind::CPU {
                 for guard in [true, false] {
                     for on in [false, true] {
                         let timed = frames_timed(ctx.quick, engine);
@@ -130,9 +130,9 @@ pub fn cost(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
 fn frames_timed(quick: bool, engine: EngineKind) -> usize {
     match (quick, engine) {
         (true, EngineKind::Reference) => 2,
-        (true, EngineKind::Batch) => 3,
+        (true, EngineKind::Batch | EngineKind::Gpu) => 3,
         (false, EngineKind::Reference) => 9,
-        (false, EngineKind::Batch) => 45,
+        (false, EngineKind::Batch | EngineKind::Gpu) => 45,
     }
 }
 
@@ -209,7 +209,7 @@ fn draw(ctx: &BenchContext<'_>, rows: &[CostRow]) -> anyhow::Result<()> {
             .find(|r| r.engine == engine && r.strands == strands && r.interaction == on && r.guard)
     };
     let mut series = Vec::new();
-    for (i, engine) in EngineKind::ALL.iter().map(|e| e.label()).enumerate() {
+    for (i, engine) in EngineKind::CPU.iter().map(|e| e.label()).enumerate() {
         let sizes = rows
             .iter()
             .filter(|r| r.engine == engine && r.interaction && r.guard);

@@ -35,7 +35,7 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
         "physics {} per frame",
         ms(r.mean_physics_secs(AVERAGE_FRAMES))
     ));
-    let batch = app.sim().kind() == EngineKind::Batch;
+    let batch = app.sim().kind() != EngineKind::Reference;
     if batch {
         ui.label(format!("stages: {NOT_ON_BATCH} (its stages are fused)"));
     } else if let Some(s) = r.last().and_then(|last| last.stages) {
@@ -62,11 +62,13 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
         app.sim().engine().strand_count(),
         app.sim().engine().element_count()
     ));
-    ui.label(format!(
-        "engine: {} ({})",
-        app.sim().kind().label(),
-        if batch { "f32 SIMD, all cores" } else { "f64" }
-    ));
+    let engine = app.sim().engine();
+    let how = match engine.gpu_note() {
+        Some(note) => note.to_owned(),
+        None if batch => "f32 SIMD, all cores".to_owned(),
+        None => "f64".to_owned(),
+    };
+    ui.label(format!("engine: {} ({how})", app.sim().kind().label()));
     ui.separator();
     let history: Vec<&PhysicsSample> = r.history().collect();
     if batch {

@@ -146,7 +146,8 @@ fn scaled(
     scaled_slider(ui, notes, label, value, track(label), scale, look);
 }
 
-/// The engine combo: reference (f64, every solver) or batch (f32 SIMD).
+/// The engine combo: reference (f64, every solver), batch (f32 SIMD) or
+/// GPU (the batch engine's substeps on the GPU).
 fn engine_selector(ui: &mut Ui, style: &mut Style) {
     let before = style.engine;
     egui::ComboBox::from_label("engine")
@@ -160,6 +161,10 @@ fn engine_selector(ui: &mut Ui, style: &mut Style) {
                         }
                         EngineKind::Batch => {
                             "f32 SIMD on all cores: Exact or Block-diagonal, thousands of strands"
+                        }
+                        EngineKind::Gpu => {
+                            "the batch engine with Exact's substeps on the GPU; the CPU steps \
+                             what the GPU cannot (the status line says why)"
                         }
                     });
             }
@@ -177,7 +182,7 @@ pub fn select_engine(style: &mut Style, engine: EngineKind) {
     if !engine.runs(style.sim.method) {
         style.sim.method = Method::Exact;
     }
-    if engine == EngineKind::Batch {
+    if engine != EngineKind::Reference {
         style.accuracy_target = None;
     }
 }

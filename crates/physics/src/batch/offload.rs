@@ -1,0 +1,134 @@
+//! The batch engine's frame with its substeps taken elsewhere
+//! ([`SubstepOffload`]: the GPU engine, `gpu::GpuEngine`): the batch system
+//! keeps the constants, roots and a copy of the state, measures the
+//! frame's start, hands the substeps over, takes the state back once and
+//! judges and recovers the frame's end with its own guard, as
+//! [`BatchSystem::step_frame`] does its own.
+
+use super::group::FrameCheck;
+use super::lanes::LANES;
+use super::system::BatchSystem;
+use super::vec::{lane_of, set_lane};
+use crate::batch::contact::SkinTest;
+use crate::frame_balance::SteppedFrame;
+use crate::motion::{HeadTrajectory, RigidMotion};
+
+/// Every strand's (q, q̇), strand after strand in index order, one
+/// `[f32; 4]` per element (w unused).
+pub type FlatState = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+
+/// What advances every strand of a [`BatchSystem`] by one substep in its
+/// own memory (the GPU engine, `gpu::GpuEngine`), the state laid out
+/// strand after strand in index order, one `[f32; 4]` per element (w
+/// unused): see [`BatchSystem::step_frame_offloaded`].
+pub trait SubstepOffload {
+    /// Takes every strand's state (q, q̇).
+    fn upload(&mut self, q: &[[f32; 4]], v: &[[f32; 4]]);
+    /// Advances every strand one substep with the head moving as `motion`
+    /// over it ([`HeadTrajectory::step_motion_at`]).
+    fn substep(&mut self, motion: &RigidMotion);
+    /// Every strand's state (q, q̇), or why it could not be read.
+    fn download(&mut self) -> Result<FlatState, String>;
+}
+
+impl BatchSystem {
+    /// [`Self::step_frame`] with the substeps taken by `offload` in its own
+    /// memory: with `upload`, this system's state goes there first; the
+    /// guard measures the frame's start here, `offload` steps the
+    /// substeps, the result comes back and is judged and recovered here
+    /// as [`Self::step_frame`] judges and recovers its own (retries on the
+    /// CPU). Returns whether the guard changed a strand after the
+    /// download, so that the next frame must upload; an error if the state
+    /// could not be read back (this system's state is then the frame's
+    /// start, and its clock has not moved). Without the hair–hair model
+    /// only (panics otherwise: the caller steps such a system itself).
+    pub fn step_frame_offloaded(
+        &mut self,
+        head: &dyn HeadTrajectory,
+        offload: &mut dyn SubstepOffload,
+        upload: bool,
+    ) -> Result<bool, String> {
+        assert!(
+            self.volume.is_none(),
+            "the offloaded frame has no hair–hair model"
+        );
+        let (env, kinds, kinetic) = self.frame_setup();
+        let h = env.h_secs;
+        let start_secs = self.time_secs;
+        if upload {
+            let (q, v) = self.state_flat();
+            offload.upload(&q, &v);
+        }
+        for substep in 0..self.settings.substeps {
+            offload.substep(&head.step_motion_at(start_secs + substep as f64 * h, h));
+        }
+        // The start's measure (on the CPU) while the GPU steps.
+        self.start_frame(head, &env, kinetic);
+        let (q, v) = offload.download()?;
+        self.set_state_flat(&q, &v);
+        self.time_secs = start_secs + self.settings.substeps as f64 * h;
+        if let Some(guard) = &self.guard {
+            let motion = head.motion_at(self.time_secs);
+            let check = FrameCheck {
+                guard,
+                motion: &motion,
+                contact: SkinTest::of_head(&self.collider, self.settings.contact, &motion, h),
+                frame: SteppedFrame {
+                    dt_secs: self.settings.dt_secs,
+                    substeps: self.settings.substeps,
+                },
+                kinetic,
+            };
+            for group in &mut self.groups {
+                group.step(
+                    &motion,
+                    &env,
+                    kinds,
+                    None,
+                    None,
+                    Some(&check),
+                    self.parallel,
+                    false,
+                );
+            }
+        }
+        self.end_frame(head, start_secs, env, kinds, kinetic);
+        Ok(!self.last_events.is_empty())
+    }
+
+    /// Every strand's (q, q̇) in index order, one `[f32; 4]` per element
+    /// (w zero): the layout [`SubstepOffload`] takes.
+    pub fn state_flat(&self) -> FlatState {
+        let (mut q, mut v) = (Vec::new(), Vec::new());
+        for &(g, slot) in &self.slots {
+            let g = &self.groups[g];
+            let (batch, lane) = (slot / LANES, slot % LANES);
+            let range = batch * g.n..(batch + 1) * g.n;
+            for (out, values) in [(&mut q, &g.q), (&mut v, &g.v)] {
+                out.extend(lane_of(&values[range.clone()], lane).map(|[x, y, z]| [x, y, z, 0.0]));
+            }
+        }
+        (q, v)
+    }
+
+    /// Sets every strand's (q, q̇) from [`Self::state_flat`]'s layout
+    /// (panics if the lengths differ from the element count).
+    pub fn set_state_flat(&mut self, q: &[[f32; 4]], v: &[[f32; 4]]) {
+        let count = self.element_count();
+        assert!(
+            q.len() == count && v.len() == count,
+            "state length must be {count}"
+        );
+        let mut first = 0;
+        for &(g, slot) in &self.slots {
+            let g = &mut self.groups[g];
+            let (n, batch, lane) = (g.n, slot / LANES, slot % LANES);
+            g.measured = false;
+            for (dst, src) in [(&mut g.q, q), (&mut g.v, v)] {
+                let values = src[first..first + n].iter().map(|&[x, y, z, _]| [x, y, z]);
+                set_lane(&mut dst[batch * n..(batch + 1) * n], lane, values);
+            }
+            first += n;
+        }
+    }
+}
