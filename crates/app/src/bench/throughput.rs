@@ -3,8 +3,10 @@
 //!
 //! Paths: the f64 reference (`HairSystem`, one thread; up to 1,000
 //! strands, it is slow), the f32 batch path (`BatchSystem`) on one thread
-//! and on all threads, and the GPU kernels (`GpuSystem`) on whatever adapter
-//! the environment gives; without one the GPU rows are skipped with the
+//! and on all threads, and the GPU on whatever adapter the environment
+//! gives (Exact: the GPU engine's step, `GpuEngine`, velocity-implicit as
+//! the batch rows; Block-diagonal and Dense: the velocity-explicit
+//! kernels of `GpuSystem`); without one the GPU rows are skipped with the
 //! reason. Methods: Block-diagonal, Exact and Dense. `BatchSystem` has no
 //! Dense, so Dense's `f32-batch-1-thread` rows time
 //! `batch::dense::step_dense` over the same lane batches on one thread
@@ -24,7 +26,8 @@ use helixhair_physics::batch::layout::{BatchModel, ElementData, RootMotion, Step
 use helixhair_physics::batch::step::dense::{DenseScratch, step_dense};
 use helixhair_physics::batch::vec::V3;
 use helixhair_physics::batch::{BatchSystem, LANES, Lanes};
-use helixhair_physics::gpu::{GpuContext, GpuSystem};
+use helixhair_physics::gpu::kernels::GpuState;
+use helixhair_physics::gpu::{GpuContext, GpuEngine, GpuSystem};
 use helixhair_physics::{
     HairSystem, Method, RigidMotion, RootPose, SimSettings, StrandModel, StrandParams,
 };
@@ -234,27 +237,11 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
                             sys.is_finite(),
                         );
                     }
-                    let gpu = match &gpu_context {
-                        Ok(c) => GpuSystem::new(c.clone(), &settings, &params, &roots)
-                            .map_err(anyhow::Error::from),
-                        Err(e) => Err(anyhow::anyhow!("{e}")),
-                    };
-                    match gpu {
-                        Ok(mut g) => {
-                            let r = rate(
-                                || {
-                                    g.step_frame(&head);
-                                    let _ = g.wait();
-                                },
-                                work,
-                            );
-                            let finite = g
-                                .read_state()
-                                .map(|(q, v)| q.iter().chain(&v).flatten().all(|x| x.is_finite()))
-                                .unwrap_or(false);
-                            let adapter = g.adapter_name().to_owned();
-                            push("gpu", adapter, r, g.bytes_per_strand() as f64, finite);
-                        }
+                    let context = gpu_context.as_ref().map_err(|e| anyhow::anyhow!("{e}"));
+                    let row = context
+                        .and_then(|c| gpu_row(c.clone(), &settings, &params, &roots, &head, work));
+                    match row {
+                        Ok((r, bytes, finite, adapter)) => push("gpu", adapter, r, bytes, finite),
                         Err(e) => writeln!(ctx.log, "   gpu, {count} strands, N = {n}: {e}")?,
                     }
                 }
@@ -264,6 +251,57 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
     write_csv(&ctx.file("throughput.csv"), &rows)?;
     report_budget(ctx, &rows)?;
     draw(ctx, &rows, elements[0])
+}
+
+/// The GPU row of one case: (element-steps per second, bytes per strand,
+/// finite, adapter). Exact runs the GPU engine's step (`GpuEngine`: the
+/// CPU engines' velocity-implicit step, as the batch rows run it, without
+/// the guard); Block-diagonal and Dense the velocity-explicit kernels of
+/// `GpuSystem`.
+fn gpu_row(
+    context: GpuContext,
+    settings: &SimSettings,
+    params: &StrandParams,
+    roots: &[RootPose],
+    head: &RigidMotion,
+    work: f64,
+) -> anyhow::Result<(f64, f64, bool, String)> {
+    let finite = |(q, v): GpuState| q.iter().chain(&v).flatten().all(|x| x.is_finite());
+    if settings.method == Method::Exact {
+        let model = BatchModel::new(&StrandModel::new(params, settings.quadrature_points)?);
+        let models = vec![model; roots.len()];
+        let mut g = GpuEngine::new(context, settings, &models, roots, None)?;
+        let r = rate(
+            || {
+                g.step_frame(head);
+                let _ = g.wait();
+            },
+            work,
+        );
+        let bytes = g.bytes_per_strand();
+        Ok((
+            r,
+            bytes,
+            finite(g.read_state()?),
+            g.adapter_name().to_owned(),
+        ))
+    } else {
+        let mut g = GpuSystem::new(context, settings, params, roots)?;
+        let r = rate(
+            || {
+                g.step_frame(head);
+                let _ = g.wait();
+            },
+            work,
+        );
+        let bytes = g.bytes_per_strand() as f64;
+        Ok((
+            r,
+            bytes,
+            finite(g.read_state()?),
+            g.adapter_name().to_owned(),
+        ))
+    }
 }
 
 /// Logs, per path, method, N and quadrature, the best rate and the largest

@@ -305,6 +305,20 @@ impl GpuEngine {
         self.strands.len()
     }
 
+    /// Bytes of GPU memory per strand: every per-element buffer (constants,
+    /// state, element data, elimination, GMRES's vectors) and the strand's
+    /// table entry, averaged over the strands.
+    pub fn bytes_per_strand(&self) -> f64 {
+        let elements: usize = self.strands.iter().map(|s| s.elements as usize).sum();
+        let per_element = size_of::<ElementConstGpu>()
+            + 2 * 16
+            + size_of::<ElementDataGpu>()
+            + size_of::<EliminationGpu>()
+            + KRYLOV_SLOTS * 16;
+        let strands = self.strands.len().max(1);
+        (elements * per_element + strands * size_of::<StrandGpu>()) as f64 / strands as f64
+    }
+
     /// Strand `index`'s elements in the state vectors [`Self::read_state`]
     /// returns (panics if out of range).
     pub fn elements_of(&self, index: usize) -> Range<usize> {
