@@ -4,7 +4,6 @@
 //! work, writing to the streams it is given so that tests can drive it.
 
 pub mod camera_arg;
-pub mod engine_arg;
 pub mod render;
 
 use std::io::Write;
@@ -20,7 +19,6 @@ use helixhair_render::head_generate::default_head;
 
 #[cfg(feature = "bench")]
 use crate::bench::{BenchArgs, run_bench};
-use crate::cli::engine_arg::{parse_engine, parse_interaction};
 use crate::export::command::{SimExport, SimExportArgs, run_export, terminal_progress};
 use crate::head::groom::{head_collider, needs_head};
 use crate::head::of_style::OwnHead;
@@ -28,6 +26,7 @@ use crate::json_report::{summary_stream, write_json_report};
 use crate::motion::clip::Clip;
 use crate::motion::playback::{Playback, parse_play};
 use crate::sim::build::SimOverrides;
+use crate::sim::engine_arg::{parse_engine, parse_interaction};
 use crate::sim::frame_stepper::FrameStepper;
 use crate::sim::headless::HeadlessSim;
 use crate::sim::report::{SimReport, refuse_lost_strands};
@@ -105,8 +104,10 @@ pub struct SimArgs {
     #[arg(long, value_name = "FILE")]
     pub style: PathBuf,
     /// Physics engine, instead of the style's `engine`: reference (f64,
-    /// every solver, stability guard) or batch (f32 SIMD on all cores,
-    /// exact or block only).
+    /// every solver, stability guard), batch (f32 SIMD on all cores,
+    /// exact or block only) or gpu (the batch engine with Exact's substeps
+    /// on the GPU; the CPU steps what the GPU cannot, and the summary says
+    /// why).
     #[arg(long, value_name = "ENGINE", value_parser = parse_engine)]
     pub engine: Option<EngineKind>,
     /// Solver, instead of the style's: exact, dense, block, block-own or

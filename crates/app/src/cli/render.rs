@@ -78,12 +78,13 @@ pub struct RenderArgs {
     /// where it is.
     #[arg(long, value_name = "CLIP|FILE", value_parser = crate::motion::playback::parse_play)]
     pub play: Option<crate::motion::playback::Playback>,
-    /// Physics engine, instead of the style's `engine`: reference or batch.
-    #[arg(long, value_name = "ENGINE", value_parser = crate::cli::engine_arg::parse_engine)]
+    /// Physics engine, instead of the style's `engine`: reference, batch
+    /// or gpu.
+    #[arg(long, value_name = "ENGINE", value_parser = crate::sim::engine_arg::parse_engine)]
     pub engine: Option<helixhair_physics::engine::EngineKind>,
     /// Hair–hair interaction (docs/volume.md) on or off, instead of the
     /// style's `sim.interaction.enabled`; either engine.
-    #[arg(long, value_name = "on|off", value_parser = crate::cli::engine_arg::parse_interaction)]
+    #[arg(long, value_name = "on|off", value_parser = crate::sim::engine_arg::parse_interaction)]
     pub interaction: Option<bool>,
 }
 
@@ -280,6 +281,9 @@ pub fn run_render(args: &RenderArgs, stdout: &mut dyn Write) -> anyhow::Result<(
             args.out.display().to_string()
         },
     )?;
+    if let Some(note) = sim.engine().gpu_note() {
+        writeln!(stdout, "  {note}")?;
+    }
     let handed = sim.handed_to_exact();
     if handed > 0 {
         writeln!(

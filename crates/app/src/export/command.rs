@@ -87,6 +87,10 @@ pub struct ExportArgs {
     /// default head.
     #[arg(long, value_name = "OBJ")]
     pub head: Option<PathBuf>,
+    /// Physics engine, instead of the style's `engine`: reference, batch
+    /// or gpu.
+    #[arg(long, value_name = "ENGINE", value_parser = crate::sim::engine_arg::parse_engine)]
+    pub engine: Option<helixhair_physics::engine::EngineKind>,
     /// The file to write: .usda, .usdc, .usd, .usdz, .abc, .hair, .tfx or
     /// .obj.
     #[arg(long, value_name = "FILE")]
@@ -278,7 +282,11 @@ pub fn run_export(args: &ExportArgs, stdout: &mut dyn Write) -> anyhow::Result<(
     };
     check_writable(&args.out)?;
     // Style and head errors already name the file, line and field.
-    let (groom, mut sim) = grown_sim(&args.style, args.head.as_deref(), SimOverrides::default())?;
+    let overrides = SimOverrides {
+        engine: args.engine,
+        ..SimOverrides::default()
+    };
+    let (groom, mut sim) = grown_sim(&args.style, args.head.as_deref(), overrides)?;
     if let Some(playback) = playback {
         sim.play_motion(playback);
     }
@@ -301,5 +309,8 @@ pub fn run_export(args: &ExportArgs, stdout: &mut dyn Write) -> anyhow::Result<(
         crate::sim::report::frames_simulated(steps, wall_secs.iter().sum()),
         outcome.summary()
     )?;
+    if let Some(note) = sim.engine().gpu_note() {
+        writeln!(stdout, "  {note}")?;
+    }
     Ok(())
 }

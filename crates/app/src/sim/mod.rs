@@ -15,6 +15,7 @@
 pub mod auto_choice;
 pub mod build;
 pub mod carry;
+pub mod engine_arg;
 pub mod error_model;
 pub mod frame_stepper;
 pub mod grown;

@@ -1,4 +1,4 @@
-//! The engine options `sim` and `render` share: `--engine` and
+//! The engine options `sim`, `render` and `export` share: `--engine` and
 //! `--interaction`, parsed as the physics crate spells them.
 
 use helixhair_physics::engine::EngineKind;
