@@ -98,6 +98,10 @@ pub struct AppState {
     pub(in crate::window::state) quit: bool,
     /// What the stability guard did since the last edit, in words.
     pub(in crate::window::state) guard: GuardStatus,
+    /// The GPU engine's last note ([`helixhair_physics::Engine::gpu_note`])
+    /// as posted: a new one that is not "on the GPU" (a fallback) goes to
+    /// the status line once.
+    gpu_note_seen: Option<String>,
     /// The brush: tool, settings, the stroke under way, the recording.
     pub(in crate::window::state) brush: BrushState,
     /// The message as last seen and the style it was posted on: once the
@@ -153,6 +157,7 @@ impl AppState {
             leaving: None,
             quit: false,
             guard: GuardStatus::default(),
+            gpu_note_seen: None,
             brush: BrushState::default(),
             message_posted: (None, None),
         })
@@ -327,6 +332,14 @@ impl AppState {
             .record_physics(sample, self.sim.guard_events(), &label);
         let guard = self.sim.guard_frame();
         self.guard.record(self.doc.style(), &guard);
+        if let Some(note) = self.sim.engine().gpu_note()
+            && self.gpu_note_seen.as_deref() != Some(note)
+        {
+            if !note.starts_with("physics on the GPU") {
+                self.message = Some(format!("GPU engine: {note}."));
+            }
+            self.gpu_note_seen = Some(note.to_owned());
+        }
         if let Some((right, m)) = &self.compare {
             let events = right.guard_events().to_vec();
             self.readouts
