@@ -32,7 +32,7 @@ fn the_gpu_engine_reports_a_lost_device_instead_of_panicking() {
         })
         .collect();
     let settings = SimSettings {
-        method: Method::Exact,
+        method: Method::BlockDiagonal,
         ..SimSettings::default()
     };
     let mut system = GpuSystem::new(gpu.clone(), &settings, &StrandParams::default(), &roots)

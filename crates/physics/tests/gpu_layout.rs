@@ -82,9 +82,8 @@ macro_rules! check {
 #[test]
 fn kernels_validate_and_host_structs_match_the_shaders() {
     let block = module(Method::BlockDiagonal);
-    let exact = module(Method::Exact);
     let dense = module(Method::Dense);
-    for m in [&block, &exact, &dense] {
+    for m in [&block, &dense] {
         check!(m, "Params", ParamsGpu, [
             strand_count => "strand_count", elements => "elements", points => "points",
             h_secs => "h_secs", mass_per_length => "mass_per_length", air_drag => "air_drag",
@@ -112,10 +111,6 @@ fn kernels_validate_and_host_structs_match_the_shaders() {
             inertia => "inertia", moment => "moment", force => "force", torque => "torque",
         ]);
     }
-    check!(&exact, "OffDiagonal", OffDiagonalGpu, [u => "u", v => "v"]);
-    check!(&exact, "Elimination", EliminationGpu, [
-        w_top => "w_top", w_bottom => "w_bottom", s_inv => "s_inv", rhs => "rhs",
-    ]);
     check!(&dense, "DenseOwn", DenseOwnGpu, [own => "own", u => "u", v => "v"]);
     // The Dense kernel's workgroup and array sizes are the host's.
     assert_eq!(constant_u32(&dense, "DENSE_WORKGROUP"), DENSE_WORKGROUP);

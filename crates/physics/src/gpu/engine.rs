@@ -97,7 +97,10 @@ impl GpuEngine {
     ) -> Result<Self, GpuError> {
         settings.validate()?;
         if settings.method != Method::Exact {
-            return Err(GpuError::UnsupportedMethod(settings.method.label()));
+            return Err(GpuError::UnsupportedMethod {
+                method: settings.method.label(),
+                runs: "`exact` (Block-diagonal and Dense run on `GpuSystem`)",
+            });
         }
         assert_eq!(models.len(), roots.len(), "one model per root");
         let mut strands = Vec::with_capacity(roots.len());

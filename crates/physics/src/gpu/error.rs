@@ -18,9 +18,14 @@ pub enum GpuError {
     /// CPU ([`super::Stepper::prefer_gpu`] does).
     #[error(transparent)]
     Device(#[from] DeviceError),
-    /// A method the kernels do not implement.
-    #[error("the GPU path runs `block`, `exact` and `dense`, not `{0}`")]
-    UnsupportedMethod(String),
+    /// A method this GPU path does not run.
+    #[error("this GPU path runs {runs}, not `{method}`")]
+    UnsupportedMethod {
+        /// The method asked for.
+        method: String,
+        /// What it runs.
+        runs: &'static str,
+    },
     /// A parameter out of range.
     #[error(transparent)]
     Param(#[from] ParamError),

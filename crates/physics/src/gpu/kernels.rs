@@ -1,17 +1,18 @@
-//! [`GpuSystem`]: one group of strands stepped by the WGSL kernels in
-//! `shaders/physics/` (`common.wgsl` + `block_diagonal.wgsl`, `exact.wgsl`
-//! or `dense.wgsl`).
+//! [`GpuSystem`]: one group of strands stepped by the velocity-explicit
+//! WGSL kernels in `shaders/physics/` (`common.wgsl` + `group.wgsl` +
+//! `block_diagonal.wgsl` or `dense.wgsl`), Block-diagonal and Dense. Exact
+//! runs on the GPU engine's step ([`super::engine`]).
 //!
 //! How it works. The state (q, q̇ as vec4 per element) and the per-element
 //! scratch live in storage buffers; each substep writes the uniforms (step,
 //! gravity, the head's motion at that instant) and submits the stage
 //! dispatches: Block-diagonal `stage_frames` (per strand), `stage_elements`
 //! (per element), `stage_suffix` (per strand), `stage_solve` (per element);
-//! Exact `stage_exact` (per strand); Dense `stage_frames`, `stage_elements`
+//! Dense `stage_frames`, `stage_elements`
 //! and `stage_dense` (a workgroup per strand, see [`super::dense_kernels`]).
 //! Nothing is read back in the frame loop: [`GpuSystem::read_state`] exists
 //! for tests and tools, and a renderer binds [`GpuSystem::frames_buffer`]
-//! (Block-diagonal and Dense) directly:
+//! directly:
 //! its `point_m` members are the element boundary points relative to each
 //! root, so a vertex or compute pass can build the strand polylines on the
 //! GPU (see `docs/gpu.md`).
@@ -23,8 +24,7 @@ use helixhair_gpu::upload_buffer;
 use super::dense_kernels::{self, DENSE_WGSL};
 use super::layout::Span;
 use super::layout::{
-    BeyondGpu, ElementConstGpu, EliminationGpu, FrameGpu, JacobiansGpu, OffDiagonalGpu, OwnGpu,
-    ParamsGpu, RootPoseGpu,
+    BeyondGpu, ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu,
 };
 use super::{GpuContext, GpuError};
 use crate::model::StrandModel;
@@ -45,8 +45,6 @@ pub const CHAIN_WGSL: &str = include_str!("../../../../shaders/physics/chain.wgs
 /// the chain.
 pub const BLOCK_DIAGONAL_WGSL: &str =
     include_str!("../../../../shaders/physics/block_diagonal.wgsl");
-/// `shaders/physics/exact.wgsl`: the one-invocation-per-strand Exact step.
-pub const EXACT_WGSL: &str = include_str!("../../../../shaders/physics/exact.wgsl");
 
 /// The full source of a kernel module: the common part, the uniform
 /// group's, the shared frame chain where the kernel uses it (Exact fuses its own), then the kernel.
@@ -55,7 +53,6 @@ pub fn kernel_source(method: Method) -> Option<String> {
         Method::BlockDiagonal => {
             format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{BLOCK_DIAGONAL_WGSL}")
         }
-        Method::Exact => format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{EXACT_WGSL}"),
         Method::Dense => format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{DENSE_WGSL}"),
         _ => return None,
     };
@@ -102,8 +99,10 @@ impl GpuSystem {
         roots: &[RootPose],
     ) -> Result<Self, GpuError> {
         settings.validate()?;
-        let source = kernel_source(settings.method)
-            .ok_or_else(|| GpuError::UnsupportedMethod(settings.method.label()))?;
+        let source = kernel_source(settings.method).ok_or_else(|| GpuError::UnsupportedMethod {
+            method: settings.method.label(),
+            runs: "`block` and `dense` (Exact runs on the GPU engine, `GpuEngine`)",
+        })?;
         let model = StrandModel::new(params, settings.quadrature_points)?;
         let n = model.elements();
         if settings.method == Method::Dense {
@@ -188,12 +187,6 @@ impl GpuSystem {
         let q_buffer = init("q", bytemuck::cast_slice(&natural), storage)?;
         let v_buffer = init("v", bytemuck::cast_slice(&zero), storage)?;
         let scratch_sizes: [(&'static str, usize); 4] = match settings.method {
-            Method::Exact => [
-                ("jacobians", size_of::<JacobiansGpu>()),
-                ("own", size_of::<OwnGpu>()),
-                ("off_diagonal", size_of::<OffDiagonalGpu>()),
-                ("elimination", size_of::<EliminationGpu>()),
-            ],
             Method::Dense => dense_kernels::scratch_sizes(n),
             _ => [
                 ("frames", size_of::<FrameGpu>()),
@@ -237,7 +230,6 @@ impl GpuSystem {
             source: wgpu::ShaderSource::Wgsl(Cow::Owned(source)),
         });
         let entry_points: &[(&str, Span)] = match settings.method {
-            Method::Exact => &[("stage_exact", Span::PerStrand)],
             Method::Dense => &dense_kernels::STAGES,
             _ => &[
                 ("stage_frames", Span::PerStrand),
@@ -330,11 +322,10 @@ impl GpuSystem {
         per_element * self.elements.len() + size_of::<RootPoseGpu>()
     }
 
-    /// The frame state buffer of Block-diagonal and Dense (binding 5: one
-    /// [`FrameGpu`] per element, strand-major), for a renderer to read
-    /// points from on the GPU; `None` for Exact.
-    pub fn frames_buffer(&self) -> Option<&wgpu::Buffer> {
-        (self.settings.method != Method::Exact).then(|| &self.scratch[0])
+    /// The frame state buffer (binding 5: one [`FrameGpu`] per element,
+    /// strand-major), for a renderer to read points from on the GPU.
+    pub fn frames_buffer(&self) -> &wgpu::Buffer {
+        &self.scratch[0]
     }
 
     /// The state buffers (q, q̇), one vec4 per element, strand-major.

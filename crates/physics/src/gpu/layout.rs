@@ -135,17 +135,8 @@ pub struct BeyondGpu {
     pub torque: [f32; 4],
 }
 
-/// U_Q and V_Q (WGSL `OffDiagonal`, Exact only).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct OffDiagonalGpu {
-    /// U_Q.
-    pub u: Mat3Gpu,
-    /// V_Q.
-    pub v: Mat3Gpu,
-}
-
-/// What Exact's elimination keeps per element (WGSL `Elimination`).
+/// What Exact's elimination keeps per element (WGSL `Elimination` of
+/// `engine.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct EliminationGpu {
@@ -288,7 +279,6 @@ pub mod size_asserts {
     const _: () = assert!(std::mem::size_of::<JacobiansGpu>() == 112);
     const _: () = assert!(std::mem::size_of::<OwnGpu>() == 160);
     const _: () = assert!(std::mem::size_of::<BeyondGpu>() == 96);
-    const _: () = assert!(std::mem::size_of::<OffDiagonalGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<EliminationGpu>() == 160);
     const _: () = assert!(std::mem::size_of::<DenseOwnGpu>() == 256);
     const _: () = assert!(std::mem::size_of::<EngineParamsGpu>() == 304);

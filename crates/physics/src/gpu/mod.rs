@@ -1,5 +1,6 @@
-//! The GPU path (cargo feature `gpu`): Block-diagonal, Exact and Dense
-//! steps as wgpu compute kernels, with a CPU twin for every kernel stage.
+//! The GPU path (cargo feature `gpu`): the GPU engine's Exact step and
+//! the Block-diagonal and Dense kernels as wgpu compute shaders, with a
+//! CPU twin for every kernel stage.
 //!
 //! - [`GpuContext`]: the headless device, from `helixhair-gpu` (the one
 //!   device setup of the workspace); [`error`]: [`GpuError`] (no adapter
@@ -21,7 +22,7 @@
 //! The WGSL lives in the top-level `shaders/physics/` folder (`common.wgsl`,
 //! `engine.wgsl`, `group.wgsl` (what the kernels of [`GpuSystem`] share),
 //! `chain.wgsl` (the frame chain Block-diagonal and Dense share),
-//! `block_diagonal.wgsl`, `exact.wgsl`, `dense.wgsl`; the renderer's shaders are the
+//! `block_diagonal.wgsl`, `dense.wgsl`; the renderer's shaders are the
 //! files directly in `shaders/`), included with `include_str!`.
 //! `docs/gpu.md` explains the stage split and how a renderer reads the
 //! state without a readback.
@@ -46,8 +47,10 @@ use crate::motion::{HeadTrajectory, RootPose};
 use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings};
 
-/// A group of strands on the GPU, or on the CPU batch path when no GPU is
-/// available.
+/// A group of strands on the kernels of [`GpuSystem`] (Block-diagonal or
+/// Dense), or on the CPU batch path when they cannot run (no adapter,
+/// Dense past its element limit, Exact: which runs on the GPU engine,
+/// `engine: Gpu`, [`crate::engine::GpuSide`]).
 #[derive(Debug)]
 pub enum Stepper {
     /// Stepped by the kernels.

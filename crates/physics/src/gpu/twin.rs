@@ -4,10 +4,8 @@
 //! ([`crate::batch`], at width 1). The parity tests run a step both ways and
 //! compare; a twin is also the reference when a kernel is changed.
 
-use crate::batch::forward::NoContact;
 use crate::batch::forward::{FrameState, advance_local, own_sums, root_jacobian};
-use crate::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
-use crate::batch::step::exact::{Elimination, step_exact_with};
+use crate::batch::layout::{BatchModel, ElementData, StepEnv};
 use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use crate::batch::vec::V3;
 
@@ -261,48 +259,5 @@ pub fn stage_solve(
         integrate(env.h_secs, &mut qi, &mut vi, step_matrix.inverse() * rhs);
         q[i] = v4(qi);
         v[i] = v4(vi);
-    }
-}
-
-/// Twin of `stage_exact`: per strand, the three sweeps of
-/// [`crate::batch::step::exact`]. The kernel keeps its per-element intermediates
-/// in bindings 5–8; the twin keeps them in local scratch.
-pub fn stage_exact(
-    params: &ParamsGpu,
-    elements: &[ElementConstGpu],
-    roots: &[RootPoseGpu],
-    q: &mut [[f32; 4]],
-    v: &mut [[f32; 4]],
-) {
-    let (model, env) = model_of(params, elements);
-    let n = params.elements as usize;
-    let mut scratch = vec![ElementData::<f32>::zero(); n];
-    let mut elimination = vec![Elimination::<f32>::zero(); n];
-    for (strand, pose) in roots.iter().enumerate() {
-        let s = root_state(params, pose);
-        let root = RootMotion {
-            world_from_root: s.frame,
-            angular_velocity_rad_per_s: s.angular_velocity,
-            angular_acceleration_rad_per_s2: s.angular_acceleration,
-            velocity_m_per_s: s.point_velocity,
-            acceleration_m_per_s2: s.point_acceleration,
-        };
-        let range = strand * n..(strand + 1) * n;
-        let mut qs: Vec<V3<f32>> = q[range.clone()].iter().map(|x| v3(*x)).collect();
-        let mut vs: Vec<V3<f32>> = v[range.clone()].iter().map(|x| v3(*x)).collect();
-        step_exact_with::<f32, true, _>(
-            &model,
-            &env,
-            &root,
-            &mut qs,
-            &mut vs,
-            &mut scratch,
-            &mut elimination,
-            &NoContact,
-        );
-        for (k, i) in range.enumerate() {
-            q[i] = v4(qs[k]);
-            v[i] = v4(vs[k]);
-        }
     }
 }
