@@ -35,7 +35,7 @@ use std::ops::Range;
 
 use helixhair_gpu::upload_buffer;
 
-use super::kernels::{COMMON_WGSL, GpuState, bind_all, read_vec4, wait};
+use super::kernels::{COMMON_WGSL, GpuState, bind_all, read_vec4, submit_step, wait};
 use super::layout::{
     ElementConstGpu, ElementDataGpu, EliminationGpu, EngineParamsGpu, Mat3Gpu, StrandGpu,
 };
@@ -356,24 +356,12 @@ impl GpuEngine {
         let groups = (self.strands.len() as u32).div_ceil(WORKGROUP).max(1);
         let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
         let params = self.params_at(motion);
-        let queue = &self.ctx.queue;
-        queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
-        let mut encoder = self
-            .ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("engine step"),
-            });
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("engine step"),
-                timestamp_writes: None,
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.set_pipeline(&self.pipeline);
-            pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
-        }
-        queue.submit([encoder.finish()]);
+        submit_step(
+            &self.ctx,
+            (&self.params_buffer, bytemuck::bytes_of(&params)),
+            &self.bind_group,
+            &[(&self.pipeline, (x, groups.div_ceil(x)))],
+        );
         self.time_secs += self.settings.substep_secs();
     }
 

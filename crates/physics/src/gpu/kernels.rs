@@ -361,28 +361,17 @@ impl GpuSystem {
         let h = self.settings.substep_secs();
         for _ in 0..self.settings.substeps {
             let params = self.params_at(&head.motion_at(self.time_secs));
-            self.ctx
-                .queue
-                .write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
-            let mut encoder =
-                self.ctx
-                    .device
-                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                        label: Some("step"),
-                    });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("step"),
-                    timestamp_writes: None,
-                });
-                pass.set_bind_group(0, &self.bind_group, &[]);
-                for (pipeline, span) in &self.stages {
-                    let (x, y) = self.dispatch_size(*span);
-                    pass.set_pipeline(pipeline);
-                    pass.dispatch_workgroups(x, y, 1);
-                }
-            }
-            self.ctx.queue.submit([encoder.finish()]);
+            let stages: Vec<_> = self
+                .stages
+                .iter()
+                .map(|(pipeline, span)| (pipeline, self.dispatch_size(*span)))
+                .collect();
+            submit_step(
+                &self.ctx,
+                (&self.params_buffer, bytemuck::bytes_of(&params)),
+                &self.bind_group,
+                &stages,
+            );
             self.time_secs += h;
         }
     }
@@ -497,4 +486,33 @@ pub(crate) fn bind_all(
         immediate_size: 0,
     });
     (bind_group, pipeline_layout)
+}
+
+/// Writes a step's uniforms (`buffer`, `bytes`) and submits one compute
+/// pass of `stages` (each pipeline with its workgroup counts along x and
+/// y) over `bind_group`. Nothing waits.
+pub(crate) fn submit_step(
+    ctx: &GpuContext,
+    (buffer, bytes): (&wgpu::Buffer, &[u8]),
+    bind_group: &wgpu::BindGroup,
+    stages: &[(&wgpu::ComputePipeline, (u32, u32))],
+) {
+    ctx.queue.write_buffer(buffer, 0, bytes);
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("step"),
+        });
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("step"),
+            timestamp_writes: None,
+        });
+        pass.set_bind_group(0, bind_group, &[]);
+        for (pipeline, (x, y)) in stages {
+            pass.set_pipeline(pipeline);
+            pass.dispatch_workgroups(*x, *y, 1);
+        }
+    }
+    ctx.queue.submit([encoder.finish()]);
 }
