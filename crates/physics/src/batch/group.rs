@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use super::contact::{LaneContact, SkinTest};
+use super::contact::{LaneContact, NearCells, SkinTest};
 use super::forward::NoContact;
 use super::guard::{check_lanes, measure_lanes, set_at_rest};
 use super::lane_model::LaneModel;
@@ -16,9 +16,11 @@ use super::vec::{V3, lane_of, set_lane};
 use super::volume::{BatchVolume, GroupView, KeptSamples, carried};
 use crate::batch::step::{BatchStep, Scratch, step_pulled};
 use crate::batch::volume::pull::SamplePull;
+use crate::collision::SignedDistanceField;
 use crate::frame_balance::{KineticEnergy, SteppedFrame, StrandMeasure};
 use crate::guard::{Guard, GuardAction, GuardCause, GuardEvent, ResetMemory};
 use crate::motion::{RigidMotion, RootPose};
+use crate::settings::SimSettings;
 
 /// Strands of one element count, in batches of [`LANES`] (see the module
 /// docs' "Packing").
@@ -127,6 +129,30 @@ pub(super) struct FrameCheck<'a> {
     pub(super) frame: SteppedFrame,
     /// The energy the frame's step conserves, which it is judged by.
     pub(super) kinetic: KineticEnergy,
+}
+
+impl<'a> FrameCheck<'a> {
+    /// The check of a frame of `settings` (its step, substeps and contact)
+    /// ending with the head as `motion`, judged by `kinetic`.
+    pub(super) fn new(
+        guard: &'a Guard,
+        motion: &'a RigidMotion,
+        collider: &'a Option<(Arc<SignedDistanceField>, NearCells)>,
+        settings: &SimSettings,
+        kinetic: KineticEnergy,
+    ) -> Self {
+        let h = settings.substep_secs();
+        Self {
+            guard,
+            motion,
+            contact: SkinTest::of_head(collider, settings.contact, motion, h),
+            frame: SteppedFrame {
+                dt_secs: settings.dt_secs,
+                substeps: settings.substeps,
+            },
+            kinetic,
+        }
+    }
 }
 
 /// One batch's state, roots and constants, read only, with where its

@@ -9,8 +9,6 @@ use super::group::FrameCheck;
 use super::lanes::LANES;
 use super::system::BatchSystem;
 use super::vec::{lane_of, set_lane};
-use crate::batch::contact::SkinTest;
-use crate::frame_balance::SteppedFrame;
 use crate::motion::{HeadTrajectory, RigidMotion};
 
 /// Every strand's (q, q̇), strand after strand in index order, one
@@ -69,16 +67,7 @@ impl BatchSystem {
         self.time_secs = start_secs + self.settings.substeps as f64 * h;
         if let Some(guard) = &self.guard {
             let motion = head.motion_at(self.time_secs);
-            let check = FrameCheck {
-                guard,
-                motion: &motion,
-                contact: SkinTest::of_head(&self.collider, self.settings.contact, &motion, h),
-                frame: SteppedFrame {
-                    dt_secs: self.settings.dt_secs,
-                    substeps: self.settings.substeps,
-                },
-                kinetic,
-            };
+            let check = FrameCheck::new(guard, &motion, &self.collider, &self.settings, kinetic);
             for group in &mut self.groups {
                 group.step(
                     &motion,

@@ -300,15 +300,8 @@ impl BatchSystem {
             let last = substep + 1 == self.settings.substeps;
             let end_motion = (last && self.guard.is_some()).then(|| head.motion_at(end_secs));
             let check = self.guard.as_ref().zip(end_motion.as_ref());
-            let check = check.map(|(guard, motion)| FrameCheck {
-                guard,
-                motion,
-                contact: SkinTest::of_head(&self.collider, self.settings.contact, motion, h),
-                frame: SteppedFrame {
-                    dt_secs: self.settings.dt_secs,
-                    substeps: self.settings.substeps,
-                },
-                kinetic,
+            let check = check.map(|(guard, motion)| {
+                FrameCheck::new(guard, motion, &self.collider, &self.settings, kinetic)
             });
             for (i, group) in self.groups.iter_mut().enumerate() {
                 let pulls = volume.map(|v| (v, i));

@@ -79,18 +79,6 @@ impl GpuSide {
         self.device.as_deref().filter(|_| !self.failed)
     }
 
-    /// Whether the last frame was stepped on the GPU.
-    pub fn on_gpu(&self) -> bool {
-        #[cfg(feature = "gpu")]
-        {
-            !self.failed && !self.stale && self.device.is_some()
-        }
-        #[cfg(not(feature = "gpu"))]
-        {
-            false
-        }
-    }
-
     /// Why the GPU cannot take `system`'s frames, if it cannot.
     fn unsupported(&self, system: &BatchSystem) -> Option<String> {
         let settings = system.settings();
@@ -215,7 +203,8 @@ impl Clone for GpuSide {
 impl fmt::Debug for GpuSide {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("GpuSide")
-            .field("on_gpu", &self.on_gpu())
+            .field("stale", &self.stale)
+            .field("failed", &self.failed)
             .field("note", &self.note)
             .finish()
     }

@@ -33,9 +33,10 @@
 use std::borrow::Cow;
 use std::ops::Range;
 
-use helixhair_gpu::upload_buffer;
-
-use super::kernels::{COMMON_WGSL, GpuState, bind_all, read_vec4, submit_step, wait};
+use super::kernels::{
+    COMMON_WGSL, GpuState, bind_all, dispatch_dims, read_vec4, scratch_buffer, storage_buffer,
+    submit_step, uniform_buffer, wait,
+};
 use super::layout::{
     ElementConstGpu, ElementDataGpu, EliminationGpu, EngineParamsGpu, Mat3Gpu, StrandGpu,
 };
@@ -173,68 +174,17 @@ impl GpuEngine {
             weights,
             ..bytemuck::Zeroable::zeroed()
         };
+        // A binding holds at least one element, even with no strands.
         let count = elements.len().max(1);
-        let zero = vec![[0.0f32; 4]; natural.len()];
-        let device = &ctx.device;
-        let limit = ctx.limits.max_storage_buffer_binding_size;
-        let storage = wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_DST
-            | wgpu::BufferUsages::COPY_SRC;
-        let check = |what: &'static str, bytes: u64| -> Result<(), GpuError> {
-            if bytes > limit {
-                return Err(GpuError::TooLarge {
-                    what,
-                    bytes,
-                    limit_bytes: limit,
-                });
-            }
-            Ok(())
-        };
-        let init = |label: &'static str, bytes: &[u8], usage| -> Result<wgpu::Buffer, GpuError> {
-            check(label, bytes.len() as u64)?;
-            Ok(upload_buffer(device, &ctx.queue, label, bytes, usage))
-        };
-        let empty = |label: &'static str, bytes: usize| -> Result<wgpu::Buffer, GpuError> {
-            check(label, bytes as u64)?;
-            Ok(device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes as u64,
-                usage: storage,
-                mapped_at_creation: false,
-            }))
-        };
-        let params_buffer = init(
-            "engine params",
-            bytemuck::bytes_of(&params),
-            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        )?;
-        let one_strand: [StrandGpu; 1] = [bytemuck::Zeroable::zeroed()];
-        let strands_bytes: &[u8] = if strands.is_empty() {
-            bytemuck::cast_slice(&one_strand)
-        } else {
-            bytemuck::cast_slice(&strands)
-        };
-        let one_element = [bytemuck::Zeroable::zeroed()];
-        let elements_of: &[ElementConstGpu] = if elements.is_empty() {
-            &one_element
-        } else {
-            &elements
-        };
-        let vec4s = |x: &[[f32; 4]]| -> Vec<[f32; 4]> {
-            if x.is_empty() {
-                vec![[0.0; 4]]
-            } else {
-                x.to_vec()
-            }
-        };
-        let strands_buffer = init("strands", strands_bytes, storage)?;
-        let elements_buffer = init("elements", bytemuck::cast_slice(elements_of), storage)?;
-        let q_buffer = init("q", bytemuck::cast_slice(&vec4s(&natural)), storage)?;
-        let v_buffer = init("v", bytemuck::cast_slice(&vec4s(&zero)), storage)?;
-        let scratch = empty("element data", count * size_of::<ElementDataGpu>())?;
-        let elimination = empty("elimination", count * size_of::<EliminationGpu>())?;
-        let krylov = empty("krylov", count * KRYLOV_SLOTS * 16)?;
-        let field = init("field", bytemuck::cast_slice(&distances), storage)?;
+        let params_buffer = uniform_buffer(&ctx, "engine params", bytemuck::bytes_of(&params))?;
+        let strands_buffer = storage_buffer(&ctx, "strands", &at_least_one(&strands))?;
+        let elements_buffer = storage_buffer(&ctx, "elements", &at_least_one(&elements))?;
+        let q_buffer = storage_buffer(&ctx, "q", &at_least_one(&natural))?;
+        let v_buffer = scratch_buffer(&ctx, "v", count * 16)?;
+        let scratch = scratch_buffer(&ctx, "element data", count * size_of::<ElementDataGpu>())?;
+        let elimination = scratch_buffer(&ctx, "elimination", count * size_of::<EliminationGpu>())?;
+        let krylov = scratch_buffer(&ctx, "krylov", count * KRYLOV_SLOTS * 16)?;
+        let field = storage_buffer(&ctx, "field", bytemuck::cast_slice(&distances))?;
         let buffers = [
             &params_buffer,
             &strands_buffer,
@@ -246,6 +196,7 @@ impl GpuEngine {
             &krylov,
             &field,
         ];
+        let device = &ctx.device;
         let (bind_group, pipeline_layout) =
             bind_all(device, "engine", &buffers, |b| matches!(b, 1 | 2 | 8));
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -353,14 +304,13 @@ impl GpuEngine {
     /// Submits one step of every strand with the head moving as `motion`
     /// over it.
     pub fn substep(&mut self, motion: &RigidMotion) {
-        let groups = (self.strands.len() as u32).div_ceil(WORKGROUP).max(1);
-        let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
+        let groups = dispatch_dims(&self.ctx, (self.strands.len() as u32).div_ceil(WORKGROUP));
         let params = self.params_at(motion);
         submit_step(
             &self.ctx,
             (&self.params_buffer, bytemuck::bytes_of(&params)),
             &self.bind_group,
-            &[(&self.pipeline, (x, groups.div_ceil(x)))],
+            &[(&self.pipeline, groups)],
         );
         self.time_secs += self.settings.substep_secs();
     }
@@ -390,5 +340,15 @@ impl SubstepOffload for GpuEngine {
 
     fn download(&mut self) -> Result<GpuState, String> {
         self.read_state().map_err(|e| e.to_string())
+    }
+}
+
+/// The bytes of `items`, or of one zeroed item where there are none: a
+/// storage binding holds at least one element.
+fn at_least_one<T: bytemuck::Pod>(items: &[T]) -> Cow<'_, [u8]> {
+    if items.is_empty() {
+        Cow::Owned(vec![0; size_of::<T>()])
+    } else {
+        Cow::Borrowed(bytemuck::cast_slice(items))
     }
 }

@@ -163,29 +163,11 @@ impl GpuSystem {
         let natural: Vec<[f32; 4]> = (0..count).map(|i| f4(model.natural[i % n])).collect();
         let zero = vec![[0.0f32; 4]; count];
         let device = &ctx.device;
-        let limit = ctx.limits.max_storage_buffer_binding_size;
-        let storage = wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_DST
-            | wgpu::BufferUsages::COPY_SRC;
-        let init = |label: &'static str, bytes: &[u8], usage| -> Result<wgpu::Buffer, GpuError> {
-            if bytes.len() as u64 > limit {
-                return Err(GpuError::TooLarge {
-                    what: label,
-                    bytes: bytes.len() as u64,
-                    limit_bytes: limit,
-                });
-            }
-            Ok(upload_buffer(device, &ctx.queue, label, bytes, usage))
-        };
-        let params_buffer = init(
-            "params",
-            bytemuck::bytes_of(&gpu_params),
-            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        )?;
-        let elements_buffer = init("elements", bytemuck::cast_slice(&elements), storage)?;
-        let roots_buffer = init("roots", bytemuck::cast_slice(&roots_gpu), storage)?;
-        let q_buffer = init("q", bytemuck::cast_slice(&natural), storage)?;
-        let v_buffer = init("v", bytemuck::cast_slice(&zero), storage)?;
+        let params_buffer = uniform_buffer(&ctx, "params", bytemuck::bytes_of(&gpu_params))?;
+        let elements_buffer = storage_buffer(&ctx, "elements", bytemuck::cast_slice(&elements))?;
+        let roots_buffer = storage_buffer(&ctx, "roots", bytemuck::cast_slice(&roots_gpu))?;
+        let q_buffer = storage_buffer(&ctx, "q", bytemuck::cast_slice(&natural))?;
+        let v_buffer = storage_buffer(&ctx, "v", bytemuck::cast_slice(&zero))?;
         let scratch_sizes: [(&'static str, usize); 4] = match settings.method {
             Method::Dense => dense_kernels::scratch_sizes(n),
             _ => [
@@ -197,22 +179,7 @@ impl GpuSystem {
         };
         let scratch = scratch_sizes
             .iter()
-            .map(|(label, size)| {
-                let bytes = (size * count.max(1)) as u64;
-                if bytes > limit {
-                    return Err(GpuError::TooLarge {
-                        what: label,
-                        bytes,
-                        limit_bytes: limit,
-                    });
-                }
-                Ok(device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(label),
-                    size: bytes,
-                    usage: storage,
-                    mapped_at_creation: false,
-                }))
-            })
+            .map(|(label, size)| scratch_buffer(&ctx, label, size * count.max(1)))
             .collect::<Result<Vec<_>, _>>()?;
         let buffers: Vec<&wgpu::Buffer> = [
             &params_buffer,
@@ -349,10 +316,8 @@ impl GpuSystem {
             Span::PerStrand => strands.div_ceil(WORKGROUP),
             Span::PerElement => (strands * self.elements.len() as u32).div_ceil(WORKGROUP),
             Span::WorkgroupPerStrand => strands,
-        }
-        .max(1);
-        let x = groups.min(self.ctx.limits.max_compute_workgroups_per_dimension);
-        (x, groups.div_ceil(x))
+        };
+        dispatch_dims(&self.ctx, groups)
     }
 
     /// Advances one frame: `substeps` submissions of the stage dispatches,
@@ -515,4 +480,73 @@ pub(crate) fn submit_step(
         }
     }
     ctx.queue.submit([encoder.finish()]);
+}
+
+/// Workgroup counts (x, y) for `groups` workgroups (at least one), split
+/// over y past the device's per-dimension limit (the kernels' `flat_index`
+/// reads them back as one index).
+pub(crate) fn dispatch_dims(ctx: &GpuContext, groups: u32) -> (u32, u32) {
+    let groups = groups.max(1);
+    let x = groups.min(ctx.limits.max_compute_workgroups_per_dimension);
+    (x, groups.div_ceil(x))
+}
+
+/// Refuses a buffer of `bytes` larger than one storage binding may be.
+fn check_size(ctx: &GpuContext, what: &'static str, bytes: u64) -> Result<(), GpuError> {
+    let limit_bytes = ctx.limits.max_storage_buffer_binding_size;
+    if bytes > limit_bytes {
+        return Err(GpuError::TooLarge {
+            what,
+            bytes,
+            limit_bytes,
+        });
+    }
+    Ok(())
+}
+
+/// Read-write storage (also copied to and from) for the kernels.
+const STORAGE: wgpu::BufferUsages = wgpu::BufferUsages::STORAGE
+    .union(wgpu::BufferUsages::COPY_DST)
+    .union(wgpu::BufferUsages::COPY_SRC);
+
+/// A uniform buffer holding `bytes`, rewritten each step.
+pub(crate) fn uniform_buffer(
+    ctx: &GpuContext,
+    label: &'static str,
+    bytes: &[u8],
+) -> Result<wgpu::Buffer, GpuError> {
+    check_size(ctx, label, bytes.len() as u64)?;
+    let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+    Ok(upload_buffer(&ctx.device, &ctx.queue, label, bytes, usage))
+}
+
+/// A storage buffer holding `bytes`, within the binding limit.
+pub(crate) fn storage_buffer(
+    ctx: &GpuContext,
+    label: &'static str,
+    bytes: &[u8],
+) -> Result<wgpu::Buffer, GpuError> {
+    check_size(ctx, label, bytes.len() as u64)?;
+    Ok(upload_buffer(
+        &ctx.device,
+        &ctx.queue,
+        label,
+        bytes,
+        STORAGE,
+    ))
+}
+
+/// An uninitialised storage buffer of `bytes`, within the binding limit.
+pub(crate) fn scratch_buffer(
+    ctx: &GpuContext,
+    label: &'static str,
+    bytes: usize,
+) -> Result<wgpu::Buffer, GpuError> {
+    check_size(ctx, label, bytes as u64)?;
+    Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes as u64,
+        usage: STORAGE,
+        mapped_at_creation: false,
+    }))
 }
