@@ -11,9 +11,11 @@
 
 use glam::{DVec3, Vec3};
 use helixhair_gpu::context_or_skip;
-use helixhair_physics::gpu::GpuSystem;
+use helixhair_physics::batch::layout::BatchModel;
+use helixhair_physics::gpu::GpuEngine;
 use helixhair_physics::{
-    Engine, EngineKind, Method, Oscillation, RigidMotion, RootPose, SimSettings, StrandParams,
+    Engine, EngineKind, Method, Oscillation, RigidMotion, RootPose, SimSettings, StrandModel,
+    StrandParams,
 };
 use helixhair_render::head_generate::default_head;
 use helixhair_render::{
@@ -35,7 +37,10 @@ fn the_gpu_engine_reports_a_lost_device_instead_of_panicking() {
         method: Method::BlockDiagonal,
         ..SimSettings::default()
     };
-    let mut system = GpuSystem::new(gpu.clone(), &settings, &StrandParams::default(), &roots)
+    let model = StrandModel::new(&StrandParams::default(), settings.quadrature_points)
+        .expect("valid parameters");
+    let models = vec![BatchModel::new(&model); roots.len()];
+    let mut system = GpuEngine::new(gpu.clone(), &settings, &models, &roots, None)
         .expect("the GPU engine builds");
     system.step_frame(&RigidMotion::default());
     system.read_state().expect("a working device reads back");

@@ -1,16 +1,13 @@
-// The frame chain, shared by the Block-diagonal and Dense kernels (appended
-// to common.wgsl, before the kernel's own file). One stage:
+// The Dense kernel's frame chain (appended to common.wgsl, before
+// dense.wgsl). One stage:
 //   stage_frames   one invocation per strand: the root-to-tip frame chain
 //                  (R, ω, α, p, ṗ, p̈ at each element start) and the
-//                  element's Jacobians A_Q, B_Q.
-// The kernel's file sets LOCAL_MOMENTS (WGSL allows module-scope
-// declarations in any order): true takes A_Q about the element's own end
-// point and records its span (Block-diagonal, whose suffix sums move from
-// element to element); false takes A_Q about the root (Dense, which pairs
-// every element with every other one when it assembles the off-diagonal
-// blocks, and so needs one common point). Its CPU twins are
-// `stage_frames` in crates/physics/src/gpu/twin.rs and dense_twin.rs, both
-// `frame_chain` with the same flag.
+//                  element's Jacobians A_Q, B_Q, A_Q about the root (Dense
+//                  pairs every element with every other one when it
+//                  assembles the off-diagonal blocks, and so needs one
+//                  common point) and a zero span.
+// Its CPU twin is `stage_frames` in crates/physics/src/gpu/dense_twin.rs
+// (twin.rs `frame_chain`).
 
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read> elements_const: array<ElementConst>;
@@ -32,11 +29,7 @@ fn stage_frames(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
         let i = strand * n + e;
         frames[i] = frame_record(s);
         let adv = advance(s, elements_const[e].stiffness_length.w, q[i].xyz, v[i].xyz);
-        if LOCAL_MOMENTS {
-            jacobians[i] = Jacobians(adv.a_local, adv.b, vec4<f32>(adv.span, 0.0));
-        } else {
-            jacobians[i] = Jacobians(adv.a, adv.b, vec4<f32>(0.0));
-        }
+        jacobians[i] = Jacobians(adv.a, adv.b, vec4<f32>(0.0));
         s = adv.next;
     }
 }

@@ -295,6 +295,9 @@ struct Advanced {
     b: mat3x3<f32>,
     a_local: mat3x3<f32>,
     span: vec3<f32>,
+    // The end point's local rates ḣ(ℓ), ḧ(ℓ) (Block-diagonal's own terms).
+    end_h_dot: vec3<f32>,
+    end_h_ddot: vec3<f32>,
 }
 
 fn advance(s: FrameState, length_m: f32, k: vec3<f32>, k_dot: vec3<f32>) -> Advanced {
@@ -321,6 +324,8 @@ fn advance(s: FrameState, length_m: f32, k: vec3<f32>, k_dot: vec3<f32>) -> Adva
     out.a_local = s.frame * end.jacobian;
     out.a = out.a_local + cross_cols(moved[0], out.b);
     out.span = s.frame * end.h;
+    out.end_h_dot = end.h_dot;
+    out.end_h_ddot = end.h_ddot;
     let spin = s.frame * spin_local;
     out.next.frame = s.frame * rotation;
     out.next.w = s.w + spin;

@@ -24,9 +24,6 @@
 // too. X, Y and the two solution vectors sit in workgroup memory, which
 // caps N at MAX_DENSE_ELEMENTS = 64 (7.5 KiB).
 
-// Moments about the root (see chain.wgsl).
-const LOCAL_MOMENTS: bool = false;
-
 @group(0) @binding(7) var<storage, read_write> own: array<DenseOwn>;
 @group(0) @binding(8) var<storage, read_write> matrix: array<f32>;
 

@@ -1,7 +1,8 @@
 // The GPU engine's step (appended to common.wgsl): the CPU engines' one
-// Exact step, one strand per invocation, every strand with its own
-// constants and element count. Stages and functions keep the names of
-// their Rust originals, whose f32 instance at width one is the CPU twin
+// step, Exact or Block-diagonal (params.method), one strand per
+// invocation, every strand with its own constants and element count.
+// Stages and functions keep the names of their Rust originals, whose f32
+// instance at width one is the CPU twin
 // (crates/physics/src/gpu/engine_twin.rs):
 //   forward_with, own_sums_into   batch/forward.rs (sweep 1, root to tip,
 //                                 with the head's implicit contact at each
@@ -9,10 +10,16 @@
 //                                 collision/contact.rs implicit_force)
 //   eliminate, back_substitute,   batch/step/exact.rs (sweeps 2 and 3, and
 //   solve_again                   P⁻¹ b with the stored elimination)
+//   blocks_tip_to_root            batch/step/block_diagonal.rs (each
+//                                 element's block, with the loads'
+//                                 stiffness of batch/step/load_stiffness.rs)
+//   block_correction,             batch/block_terms.rs (Block-diagonal's
+//   beyond_terms                  own velocity terms, F_true − F_bd)
 //   velocity_product              batch/velocity_terms.rs (G z by
 //                                 polarisation)
+//   block_product                 batch/step/block_implicit.rs (G_bd z)
 //   gmres_correct                 gmres.rs correct (right-preconditioned
-//                                 GMRES on (P + hG) Δv = rhs)
+//                                 GMRES on (P + θhG) Δv = rhs)
 //   integrate                     batch/suffix.rs
 // Per-element data lives in storage buffers (a strand has up to 200
 // elements, too many for private memory): the sweep's element data, the
@@ -31,8 +38,11 @@ struct Params {
     implicit_stiffness_ratio: f32,
     max_acceleration_m_per_s2: f32,
     field_cell_m: f32,
-    _pad0: f32,
-    _pad1: f32,
+    // METHOD_EXACT or METHOD_BLOCK.
+    method: u32,
+    // Vectors per element in `krylov`: KRYLOV_SLOTS, or BLOCK_SLOTS for
+    // Block-diagonal.
+    slots: u32,
     field_dims: vec4<u32>,
     field_origin_m: vec4<f32>,
     gravity_m_per_s2: vec4<f32>,
@@ -45,6 +55,12 @@ struct Params {
     head_angular_acceleration: vec4<f32>,
     head_velocity: vec4<f32>,
     head_acceleration: vec4<f32>,
+    // θ h: the step Block-diagonal's GMRES takes its velocity terms with
+    // (batch/step/block_implicit.rs BLOCK_THETA), rounded once from f64.
+    block_h_secs: f32,
+    _pad2: f32,
+    _pad3: f32,
+    _pad4: f32,
 }
 
 // One strand: its elements first..first + elements in every per-element
@@ -110,9 +126,40 @@ const OWN_PRODUCT: u32 = 19u;
 const OWN_FORCE: u32 = 20u;
 const OWN_TORQUE: u32 = 21u;
 const KRYLOV_SLOTS: u32 = 22u;
+// Block-diagonal's vectors after those: its own terms at the rates
+// (CORRECTION) and at the two polarisation shifts, then block_correction's
+// record of each element (RECORD_SLOTS vectors, fields R_*; a 3×3 matrix
+// takes three, its columns).
+const CORRECTION: u32 = 22u;
+const CORRECTION_PLUS: u32 = 23u;
+const CORRECTION_MINUS: u32 = 24u;
+const RECORD: u32 = 25u;
+const R_TURN: u32 = 0u; // Ω_Q, w: t_Q
+const R_C: u32 = 1u;
+const R_ALPHA: u32 = 2u;
+const R_BETA: u32 = 3u;
+const R_ALPHA_RATE: u32 = 4u;
+const R_BETA_RATE: u32 = 5u;
+const R_END: u32 = 6u;
+const R_END_VELOCITY: u32 = 7u;
+const R_OWN: u32 = 8u;
+const R_FORCE: u32 = 9u;
+const R_TORQUE: u32 = 10u;
+const R_FIRST: u32 = 11u; // Σ m r, w: Σ m
+const R_VELOCITY: u32 = 12u;
+const R_S: u32 = 13u;
+const R_A: u32 = 16u;
+const R_B: u32 = 19u;
+const R_SECOND: u32 = 22u;
+const R_MIXED: u32 = 25u;
+const RECORD_SLOTS: u32 = 28u;
+const BLOCK_SLOTS: u32 = 53u;
+
+const METHOD_EXACT: u32 = 0u;
+const METHOD_BLOCK: u32 = 1u;
 
 fn slot(st: Strand, which: u32, e: u32) -> u32 {
-    return st.first * KRYLOV_SLOTS + which * st.elements + e;
+    return st.first * params.slots + which * st.elements + e;
 }
 
 fn zero3() -> mat3x3<f32> {
@@ -343,16 +390,29 @@ fn mul_mat_t(a: mat3x3<f32>, b: mat3x3<f32>) -> mat3x3<f32> {
     return a * transpose(b);
 }
 
+// batch::layout::shift_spatial_inertia: a twist-to-wrench matrix H (four
+// 3×3 blocks) moved to an origin `delta` from its own, H′ = XᵀHX with
+// X = [[𝟙, [δ]×], [0, 𝟙]]. The elimination's H and the contact's point
+// inertias move by it.
+fn shift_spatial_inertia(h: ptr<function, array<mat3x3<f32>, 4>>, delta: vec3<f32>) {
+    let sk = skew(delta);
+    let h_aa = (*h)[0];
+    let h_ab = (*h)[1];
+    let h_ba = (*h)[2];
+    let h_aa_s = h_aa * sk;
+    (*h)[1] = h_aa_s + h_ab;
+    (*h)[3] = (*h)[3] + h_ba * sk - sk * h_ab - sk * h_aa_s;
+    (*h)[2] = h_ba - sk * h_aa;
+}
+
 // batch::step::exact::eliminate (sweeps 1 and 2) with local moments:
 // returns Σ|rhs|².
 fn eliminate(st: Strand, root: FrameState) -> f32 {
     forward_with(st, root);
     let sc = 1.0 + params.h_secs * st.air_drag / st.mass_per_length;
     var b = zero_beyond();
-    var h_aa = zero3();
-    var h_ab = zero3();
-    var h_ba = zero3();
-    var h_bb = zero3();
+    // The articulated inertia H past the element: H_aa, H_ab, H_ba, H_bb.
+    var h = array<mat3x3<f32>, 4>(zero3(), zero3(), zero3(), zero3());
     var carried_a = vec3<f32>(0.0);
     var carried_b = vec3<f32>(0.0);
     var rhs_squared = 0.0;
@@ -367,8 +427,8 @@ fn eliminate(st: Strand, root: FrameState) -> f32 {
         let st_terms = step_terms_of(i, terms.force, q[i].xyz, v[i].xyz);
         rhs_squared += dot(st_terms[1], st_terms[1]);
         let own_v = el.v - cross_cols(span, el.u);
-        let hu_top = h_aa * el.a + h_ab * el.b;
-        let hu_bottom = h_ba * el.a + h_bb * el.b;
+        let hu_top = h[0] * el.a + h[1] * el.b;
+        let hu_bottom = h[2] * el.a + h[3] * el.b;
         let w_top = (el.u + terms.x_beyond) * sc - hu_top;
         let w_bottom = (own_v + terms.y_beyond) * sc - hu_bottom;
         let s_tilde = add_diagonal(terms.mass_block * sc
@@ -376,10 +436,10 @@ fn eliminate(st: Strand, root: FrameState) -> f32 {
         let s_inv = inverse3(s_tilde);
         let p_top = w_top * s_inv;
         let p_bottom = w_bottom * s_inv;
-        h_aa += mul_mat_t(p_top, w_top);
-        h_ab += mul_mat_t(p_top, w_bottom);
-        h_ba += mul_mat_t(p_bottom, w_top);
-        h_bb += mul_mat_t(p_bottom, w_bottom);
+        h[0] += mul_mat_t(p_top, w_top);
+        h[1] += mul_mat_t(p_top, w_bottom);
+        h[2] += mul_mat_t(p_bottom, w_top);
+        h[3] += mul_mat_t(p_bottom, w_bottom);
         let r = st_terms[1] - (transpose(el.b) * carried_b + transpose(el.a) * carried_a);
         let y = s_inv * r;
         carried_a += w_top * y;
@@ -388,19 +448,15 @@ fn eliminate(st: Strand, root: FrameState) -> f32 {
         // Move H, the carried wrench and the sums to the element's start
         // (shift_articulated, Beyond::shift).
         let delta = -span;
-        let sk = skew(delta);
-        let h_aa_s = h_aa * sk;
-        let h_ab_old = h_ab;
-        h_ab = h_aa_s + h_ab;
-        h_bb = h_bb + h_ba * sk - sk * h_ab_old - sk * h_aa_s;
-        h_ba = h_ba - sk * h_aa;
+        shift_spatial_inertia(&h, delta);
         carried_b = carried_b - cross(delta, carried_a);
         shift_beyond(&b, delta);
         if el.span.w != 0.0 {
-            h_aa -= el.contact[0];
-            h_ab -= el.contact[1];
-            h_ba -= el.contact[2];
-            h_bb -= el.contact[3];
+            // Written out: llvmpipe counts every loop iteration (docs/gpu.md).
+            h[0] -= el.contact[0];
+            h[1] -= el.contact[1];
+            h[2] -= el.contact[2];
+            h[3] -= el.contact[3];
         }
         add_beyond(&b, own_sums);
     }
@@ -451,9 +507,9 @@ fn largest_abs3(x: vec3<f32>) -> f32 {
     return max(a.x, max(a.y, a.z));
 }
 
-// batch::velocity_terms::velocity_product: krylov slot `out` = G (slot `z`).
-fn velocity_product(st: Strand, root: FrameState, z: u32, out: u32) {
-    // polarisation_shift: c = max(|q̇|∞, 1)/|z|∞.
+// batch::velocity_terms::polarisation_shift: c = max(|q̇|∞, 1)/|z|∞ for
+// the rates shifted along krylov slot `z`.
+fn polarisation_shift(st: Strand, z: u32) -> f32 {
     var v_size = 0.0;
     var z_size = 0.0;
     for (var e = 0u; e < st.elements; e++) {
@@ -463,7 +519,12 @@ fn velocity_product(st: Strand, root: FrameState, z: u32, out: u32) {
     if z_size < 1.17549435e-38 {
         z_size = 1.0;
     }
-    let reach = max(v_size, 1.0) / z_size;
+    return max(v_size, 1.0) / z_size;
+}
+
+// batch::velocity_terms::velocity_product: krylov slot `out` = G (slot `z`).
+fn velocity_product(st: Strand, root: FrameState, z: u32, out: u32) {
+    let reach = polarisation_shift(st, z);
     let factor = st.mass_per_length / (reach + reach);
     var plus = root;
     plus.alpha = vec3<f32>(0.0);
@@ -520,6 +581,253 @@ fn velocity_product(st: Strand, root: FrameState, z: u32, out: u32) {
     }
 }
 
+// ContactInertia::project: [A; B]ᵀ (Σ φ φᵀ) [A; B], the block's share of
+// the contact's point inertias past the element.
+fn project_contact(c: array<mat3x3<f32>, 4>, a: mat3x3<f32>, b: mat3x3<f32>) -> mat3x3<f32> {
+    let top = c[0] * a + c[1] * b;
+    let bottom = c[2] * a + c[3] * b;
+    return transpose(a) * top + transpose(b) * bottom;
+}
+
+// batch::step::block_diagonal::blocks_tip_to_root with local moments,
+// after forward_with: each element's step matrix s M_QQ + D (+ the
+// contact past it) inverted and kept (elimination[i].s_inv), Δv₀ = block⁻¹
+// rhs into slot DELTA_V. With `own_terms` (velocity-implicit), Block's own
+// velocity terms (slot CORRECTION) join the force and the loads' stiffness
+// h²K_Q (load_stiffness::UniformLoad) the block. Returns Σ|rhs|².
+fn blocks_tip_to_root(st: Strand, root: FrameState, own_terms: bool) -> f32 {
+    let sc = 1.0 + params.h_secs * st.air_drag / st.mass_per_length;
+    let h_squared = params.h_secs * params.h_secs;
+    // UniformLoad::new: g − a_O per kg and its direction.
+    let per_kg = params.gravity_m_per_s2.xyz - root.pa;
+    let size = sqrt(dot(per_kg, per_kg));
+    let direction = per_kg * (1.0 / max(size, 1e-30));
+    var b = zero_beyond();
+    var contact = array<mat3x3<f32>, 4>(zero3(), zero3(), zero3(), zero3());
+    var touched = false;
+    var rhs_squared = 0.0;
+    for (var k = 0u; k < st.elements; k++) {
+        let e = st.elements - 1u - k;
+        let i = st.first + e;
+        let el = scratch[i];
+        let span = el.span.xyz;
+        let jac = Jacobians(el.a, el.b, vec4<f32>(span, 0.0));
+        let own_sums = Own(el.own_mass_block, el.inertia, el.own_force, el.moment, el.force_sum,
+            el.torque_sum);
+        let terms = element_terms(jac, own_sums, b);
+        var force = terms.force;
+        if own_terms {
+            force += krylov[slot(st, CORRECTION, e)].xyz;
+        }
+        let st_terms = step_terms_of(i, force, q[i].xyz, v[i].xyz);
+        var rhs = st_terms[1];
+        var step_matrix = add_diagonal(terms.mass_block * sc, st_terms[0]);
+        if own_terms {
+            // UniformLoad::stiffness about the point a third of the
+            // element from its end, plus the own samples' sixth.
+            let lever = b.moment.xyz + span * (b.moment.w * (1.0 / 3.0))
+                + el.moment.xyz * (1.0 / 6.0);
+            let strength = max(dot(per_kg, lever), 0.0);
+            let across = transpose(el.b) * direction;
+            let stiffness = ((transpose(el.b) * el.b) - outer(across, across)) * strength
+                * h_squared;
+            rhs = rhs - stiffness * v[i].xyz;
+            step_matrix += stiffness;
+        }
+        if touched {
+            step_matrix += project_contact(contact, el.a, el.b);
+        }
+        let inverse = inverse3(step_matrix);
+        elimination[i].s_inv = inverse;
+        krylov[slot(st, DELTA_V, e)] = vec4<f32>(inverse * rhs, 0.0);
+        rhs_squared += dot(rhs, rhs);
+        shift_beyond(&b, -span);
+        if touched {
+            shift_spatial_inertia(&contact, -span);
+        }
+        add_beyond(&b, own_sums);
+        if el.span.w != 0.0 {
+            contact[0] += el.contact[0];
+            contact[1] += el.contact[1];
+            contact[2] += el.contact[2];
+            contact[3] += el.contact[3];
+            touched = true;
+        }
+    }
+    return rhs_squared;
+}
+
+fn record(st: Strand, field: u32, e: u32, x: vec3<f32>, w: f32) {
+    krylov[slot(st, RECORD + field, e)] = vec4<f32>(x, w);
+}
+
+fn record_m(st: Strand, field: u32, e: u32, m: mat3x3<f32>) {
+    record(st, field, e, m[0], 0.0);
+    record(st, field + 1u, e, m[1], 0.0);
+    record(st, field + 2u, e, m[2], 0.0);
+}
+
+fn recorded(st: Strand, field: u32, e: u32) -> vec4<f32> {
+    return krylov[slot(st, RECORD + field, e)];
+}
+
+fn recorded_m(st: Strand, field: u32, e: u32) -> mat3x3<f32> {
+    return mat3x3<f32>(recorded(st, field, e).xyz, recorded(st, field + 1u, e).xyz,
+        recorded(st, field + 2u, e).xyz);
+}
+
+// batch::block_terms::block_correction: krylov slot `out` = F_true − F_bd
+// (N·m²) at the rates q̇ + shift (slot `x`) (shift 0: q̇ itself, `x` not
+// read), the forward kinematics with the root held still in its frame.
+fn block_correction(st: Strand, root: FrameState, x: u32, shift: f32, out: u32) {
+    var s: FrameState;
+    s.frame = root.frame;
+    s.w = vec3<f32>(0.0);
+    s.alpha = vec3<f32>(0.0);
+    s.p = vec3<f32>(0.0);
+    s.pv = vec3<f32>(0.0);
+    s.pa = vec3<f32>(0.0);
+    let rho_s = st.mass_per_length;
+    var c = vec3<f32>(0.0);
+    var s_sum = zero3();
+    var t = 0.0;
+    for (var e = 0u; e < st.elements; e++) {
+        let i = st.first + e;
+        let k = q[i].xyz;
+        var k_dot = v[i].xyz;
+        if shift != 0.0 {
+            k_dot = k_dot + krylov[slot(st, x, e)].xyz * shift;
+        }
+        let length_m = elements_const[i].stiffness_length.w;
+        var own_local = vec3<f32>(0.0);
+        var force = vec3<f32>(0.0);
+        var torque = vec3<f32>(0.0);
+        var mass = 0.0;
+        var first = vec3<f32>(0.0);
+        var velocity = vec3<f32>(0.0);
+        var second = zero3();
+        var mixed = zero3();
+        for (var j = 0u; j < params.points; j++) {
+            let lp = local_point(node(j) * length_m, k, k_dot);
+            let rva = carry(s, lp.h, lp.h_dot, lp.h_ddot);
+            let r = rva[0];
+            let acc = rva[2];
+            let m = weight(j) * length_m * rho_s;
+            // f = c − S r + t r: the turn of the elements before, seen at r.
+            let f = r * t + (c - s_sum * r);
+            let own = transpose(s.frame) * (acc + f) - lp.h_ddot;
+            own_local = transpose(lp.jacobian) * (own * m) + own_local;
+            let acc_m = acc * m;
+            force += acc_m;
+            torque += cross(r, acc_m);
+            mass += m;
+            first = r * m + first;
+            velocity = rva[1] * m + velocity;
+            second += outer(r * m, r);
+            mixed += outer(rva[1] * m, r);
+        }
+        let adv = advance(s, length_m, k, k_dot);
+        let p = adv.next.p;
+        let p_dot = adv.next.pv;
+        let beta = adv.next.w - s.w;
+        let beta_rate = adv.next.alpha - s.alpha;
+        // α = R J_end k̇ + p × β; its rate with q̈ = 0.
+        let local_velocity = s.frame * adv.end_h_dot;
+        let alpha = local_velocity + cross(p, beta);
+        let alpha_rate = cross(s.w, local_velocity) + s.frame * adv.end_h_ddot
+            + cross(p_dot, beta) + cross(p, beta_rate);
+        record(st, R_TURN, e, s.w, t);
+        record(st, R_C, e, c, 0.0);
+        record_m(st, R_S, e, s_sum);
+        record_m(st, R_A, e, adv.a);
+        record_m(st, R_B, e, adv.b);
+        record(st, R_ALPHA, e, alpha, 0.0);
+        record(st, R_BETA, e, beta, 0.0);
+        record(st, R_ALPHA_RATE, e, alpha_rate, 0.0);
+        record(st, R_BETA_RATE, e, beta_rate, 0.0);
+        record(st, R_END, e, p, 0.0);
+        record(st, R_END_VELOCITY, e, p_dot, 0.0);
+        record(st, R_OWN, e, own_local, 0.0);
+        record(st, R_FORCE, e, force, 0.0);
+        record(st, R_TORQUE, e, torque, 0.0);
+        record(st, R_FIRST, e, first, mass);
+        record(st, R_VELOCITY, e, velocity, 0.0);
+        record_m(st, R_SECOND, e, second);
+        record_m(st, R_MIXED, e, mixed);
+        c += cross(alpha, beta);
+        s_sum += outer(beta, beta);
+        t += dot(beta, beta);
+        s = adv.next;
+    }
+    beyond_terms(st, out);
+}
+
+// block_terms::axial: the axial vector of a matrix's antisymmetric part,
+// doubled.
+fn axial(c: mat3x3<f32>) -> vec3<f32> {
+    return vec3<f32>(c[1].z - c[2].y, c[2].x - c[0].z, c[0].y - c[1].x);
+}
+
+// batch::block_terms::beyond_terms: tip to root, each element's own share
+// of F_true − F_bd plus its beyond terms from the suffix sums.
+fn beyond_terms(st: Strand, out: u32) {
+    var m = 0.0;
+    var r_sum = vec3<f32>(0.0);
+    var v_sum = vec3<f32>(0.0);
+    var rr = zero3();
+    var vr = zero3();
+    var force = vec3<f32>(0.0);
+    var torque = vec3<f32>(0.0);
+    for (var k = 0u; k < st.elements; k++) {
+        let e = st.elements - 1u - k;
+        let turn_t = recorded(st, R_TURN, e);
+        let turn = turn_t.xyz;
+        let t = turn_t.w;
+        let alpha = recorded(st, R_ALPHA, e).xyz;
+        let beta = recorded(st, R_BETA, e).xyz;
+        let end = recorded(st, R_END, e).xyz;
+        let bx = skew(beta);
+        let k0 = recorded(st, R_ALPHA_RATE, e).xyz - recorded(st, R_C, e).xyz - cross(turn, alpha);
+        let l = add_diagonal(skew(recorded(st, R_BETA_RATE, e).xyz) - skew(turn) * bx
+            + recorded_m(st, R_S, e), vec3<f32>(-t));
+        let pulled = k0 * m + l * r_sum + bx * v_sum;
+        let end_turn = turn + beta;
+        let d0 = cross(end_turn, end) - recorded(st, R_END_VELOCITY, e).xyz;
+        let nn = skew(-end_turn);
+        let turned = cross(r_sum, k0) + axial(l * rr) + axial(bx * vr) + cross(v_sum, alpha)
+            + axial(bx * transpose(vr)) + cross(d0, alpha) * m + cross(d0, bx * r_sum)
+            + cross(nn * r_sum, alpha) + axial(bx * rr * transpose(nn));
+        let a = recorded_m(st, R_A, e);
+        let b = recorded_m(st, R_B, e);
+        krylov[slot(st, out, e)] = vec4<f32>(transpose(b) * (torque - turned)
+            + (transpose(a) * (force - pulled) + recorded(st, R_OWN, e).xyz), 0.0);
+        let first = recorded(st, R_FIRST, e);
+        m += first.w;
+        r_sum += first.xyz;
+        v_sum += recorded(st, R_VELOCITY, e).xyz;
+        rr += recorded_m(st, R_SECOND, e);
+        vr += recorded_m(st, R_MIXED, e);
+        force += recorded(st, R_FORCE, e).xyz;
+        torque += recorded(st, R_TORQUE, e).xyz;
+    }
+}
+
+// batch::step::block_implicit's product: krylov slot `out`, G (slot `z`)
+// on entry, becomes G_bd z = G z − (∂corr/∂q̇) z, the correction's
+// derivative by polarisation.
+fn block_product(st: Strand, root: FrameState, z: u32, out: u32) {
+    let reach = polarisation_shift(st, z);
+    block_correction(st, root, z, reach, CORRECTION_PLUS);
+    block_correction(st, root, z, -reach, CORRECTION_MINUS);
+    let half_over = 1.0 / (reach + reach);
+    for (var e = 0u; e < st.elements; e++) {
+        let difference = krylov[slot(st, CORRECTION_PLUS, e)].xyz
+            - krylov[slot(st, CORRECTION_MINUS, e)].xyz;
+        krylov[slot(st, out, e)] = vec4<f32>(krylov[slot(st, out, e)].xyz - difference * half_over,
+            0.0);
+    }
+}
+
 fn dot_slots(st: Strand, a: u32, b: u32) -> f32 {
     var s = 0.0;
     for (var e = 0u; e < st.elements; e++) {
@@ -528,18 +836,40 @@ fn dot_slots(st: Strand, a: u32, b: u32) -> f32 {
     return s;
 }
 
+// The step's preconditioner: krylov slot `x` = P⁻¹ (slot `b`), with
+// Exact's stored elimination or Block-diagonal's inverted blocks.
+fn precondition(st: Strand, b: u32, x: u32) {
+    if params.method == METHOD_BLOCK {
+        for (var e = 0u; e < st.elements; e++) {
+            let inverse = elimination[st.first + e].s_inv;
+            krylov[slot(st, x, e)] = vec4<f32>(inverse * krylov[slot(st, b, e)].xyz, 0.0);
+        }
+    } else {
+        solve_again(st, b, x);
+    }
+}
+
+// The step's velocity terms' product: krylov slot `out` = G (slot `z`),
+// or Block-diagonal's G_bd.
+fn operator_product(st: Strand, root: FrameState, z: u32, out: u32) {
+    velocity_product(st, root, z, out);
+    if params.method == METHOD_BLOCK {
+        block_product(st, root, z, out);
+    }
+}
+
 // gmres::correct for one strand: corrects Δv (slot DELTA_V, P⁻¹ rhs on
 // entry) towards (P + hG) Δv = rhs with at most params.iterations
-// iterations; returns the iterations run.
-fn gmres_correct(st: Strand, root: FrameState, rhs_norm: f32) -> u32 {
+// iterations, h the step the velocity terms take (θh for
+// Block-diagonal); returns the iterations run.
+fn gmres_correct(st: Strand, root: FrameState, rhs_norm: f32, h: f32) -> u32 {
     // Written without early returns or breaks: a strand that has converged
     // runs the rest of the loop inert (what the lanes of gmres.rs do).
     let k_max = min(params.iterations, MAX_GMRES);
-    let h = params.h_secs;
     let tol = rhs_norm * params.gmres_tolerance;
     var beta = 0.0;
     if k_max > 0u {
-        velocity_product(st, root, DELTA_V, PRODUCT);
+        operator_product(st, root, DELTA_V, PRODUCT);
         beta = h * sqrt(dot_slots(st, PRODUCT, PRODUCT));
     }
     var running = k_max > 0u && beta > tol;
@@ -559,8 +889,8 @@ fn gmres_correct(st: Strand, root: FrameState, rhs_norm: f32) -> u32 {
         if !running {
             continue;
         }
-        solve_again(st, BASIS + j, DIRECTIONS + j);
-        velocity_product(st, root, DIRECTIONS + j, PRODUCT);
+        precondition(st, BASIS + j, DIRECTIONS + j);
+        operator_product(st, root, DIRECTIONS + j, PRODUCT);
         let w = BASIS + j + 1u;
         for (var e = 0u; e < st.elements; e++) {
             krylov[slot(st, w, e)] = krylov[slot(st, BASIS + j, e)]
@@ -630,8 +960,12 @@ fn gmres_correct(st: Strand, root: FrameState, rhs_norm: f32) -> u32 {
     return used;
 }
 
-// One velocity-implicit Exact step of every strand
-// (batch::step::implicit::step_exact_implicit), then integrate.
+// One step of every strand, then integrate: Exact
+// (batch::step::implicit::step_exact_implicit; velocity-explicit with no
+// GMRES iterations, batch::step::exact::step_exact_with) or Block-diagonal
+// (batch::step::block_implicit::step_block_implicit; velocity-explicit,
+// without its own terms and the loads' stiffness,
+// batch::step::block_diagonal::step_block_diagonal_with).
 @compute @workgroup_size(64)
 fn stage_step(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let strand = flat_index(id, groups);
@@ -640,9 +974,19 @@ fn stage_step(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgro
     }
     let st = strands[strand];
     let root = root_state(st);
-    let rhs_squared = eliminate(st, root);
-    back_substitute(st, DELTA_V);
-    gmres_correct(st, root, sqrt(rhs_squared));
+    if params.method == METHOD_BLOCK {
+        forward_with(st, root);
+        let own_terms = params.iterations > 0u;
+        if own_terms {
+            block_correction(st, root, DELTA_V, 0.0, CORRECTION);
+        }
+        let rhs_squared = blocks_tip_to_root(st, root, own_terms);
+        gmres_correct(st, root, sqrt(rhs_squared), params.block_h_secs);
+    } else {
+        let rhs_squared = eliminate(st, root);
+        back_substitute(st, DELTA_V);
+        gmres_correct(st, root, sqrt(rhs_squared), params.h_secs);
+    }
     for (var e = 0u; e < st.elements; e++) {
         let i = st.first + e;
         let v_next = v[i].xyz + krylov[slot(st, DELTA_V, e)].xyz;

@@ -21,9 +21,10 @@
 //! [`batch::BatchSystem`] steps Block-diagonal or Exact in f32 with SIMD
 //! lanes across strands, in parallel over batches, matching the f64 path
 //! within named tolerances (`tests/batch_parity.rs`). With the cargo
-//! feature `gpu`, `gpu::GpuSystem` runs the same arithmetic as wgpu compute
-//! kernels (`shaders/physics/`: Block-diagonal, Exact, and Dense with a
-//! workgroup per strand), each stage with a CPU twin (`gpu::twin`,
+//! feature `gpu`, `gpu::GpuEngine` runs the batch engine's Exact and
+//! Block-diagonal step as a wgpu compute kernel (`shaders/physics/engine.wgsl`,
+//! its CPU twin `gpu::engine_twin`), and `gpu::GpuSystem` the Dense
+//! kernel with a workgroup per strand (twins `gpu::twin`,
 //! `gpu::dense_twin`); [`batch::dense`] is Dense's f32 arithmetic.
 //!
 //! This crate knows nothing of rendering, windows or file formats; its

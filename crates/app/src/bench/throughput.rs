@@ -4,9 +4,9 @@
 //! Paths: the f64 reference (`HairSystem`, one thread; up to 1,000
 //! strands, it is slow), the f32 batch path (`BatchSystem`) on one thread
 //! and on all threads, and the GPU on whatever adapter the environment
-//! gives (Exact: the GPU engine's step, `GpuEngine`, velocity-implicit as
-//! the batch rows; Block-diagonal and Dense: the velocity-explicit
-//! kernels of `GpuSystem`); without one the GPU rows are skipped with the
+//! gives (Exact and Block-diagonal: the GPU engine's step, `GpuEngine`,
+//! velocity-implicit as the batch rows; Dense: the velocity-explicit
+//! kernel of `GpuSystem`); without one the GPU rows are skipped with the
 //! reason. Methods: Block-diagonal, Exact and Dense. `BatchSystem` has no
 //! Dense, so Dense's `f32-batch-1-thread` rows time
 //! `batch::dense::step_dense` over the same lane batches on one thread
@@ -254,9 +254,9 @@ pub fn run(ctx: &mut BenchContext<'_>) -> anyhow::Result<()> {
 }
 
 /// The GPU row of one case: (element-steps per second, bytes per strand,
-/// finite, adapter). Exact runs the GPU engine's step (`GpuEngine`: the
-/// CPU engines' velocity-implicit step, as the batch rows run it, without
-/// the guard); Block-diagonal and Dense the velocity-explicit kernels of
+/// finite, adapter). Exact and Block-diagonal run the GPU engine's step
+/// (`GpuEngine`: the CPU engines' velocity-implicit step, as the batch
+/// rows run it, without the guard); Dense the velocity-explicit kernel of
 /// `GpuSystem`.
 fn gpu_row(
     context: GpuContext,
@@ -267,7 +267,7 @@ fn gpu_row(
     work: f64,
 ) -> anyhow::Result<(f64, f64, bool, String)> {
     let finite = |(q, v): GpuState| q.iter().chain(&v).flatten().all(|x| x.is_finite());
-    if settings.method == Method::Exact {
+    if matches!(settings.method, Method::Exact | Method::BlockDiagonal) {
         let model = BatchModel::new(&StrandModel::new(params, settings.quadrature_points)?);
         let models = vec![model; roots.len()];
         let mut g = GpuEngine::new(context, settings, &models, roots, None)?;

@@ -18,8 +18,9 @@
 //! Where the GPU cannot take the frame, the batch engine steps it on the
 //! CPU and [`GpuSide::note`] says why, once in words: no adapter or a
 //! device lost mid-run (the frame is then stepped again on the CPU from
-//! its start), a build without the cargo feature `gpu`, Block-diagonal
-//! (the GPU engine runs Exact), the hair–hair model (not on the GPU).
+//! its start), a build without the cargo feature `gpu`, the hair–hair
+//! model (not on the GPU). Exact and Block-diagonal, the batch engine's
+//! two methods, both step on the device.
 
 use std::fmt;
 use std::sync::Arc;
@@ -82,9 +83,9 @@ impl GpuSide {
     /// Why the GPU cannot take `system`'s frames, if it cannot.
     fn unsupported(&self, system: &BatchSystem) -> Option<String> {
         let settings = system.settings();
-        if settings.method != Method::Exact {
+        if !matches!(settings.method, Method::Exact | Method::BlockDiagonal) {
             return Some(format!(
-                "the GPU engine runs Exact; {} steps on the CPU batch engine",
+                "the GPU engine runs Exact and Block-diagonal; {} steps on the CPU batch engine",
                 settings.method.label()
             ));
         }

@@ -1,12 +1,12 @@
 //! The Dense kernel's plan: its WGSL, stages, per-element buffers and
-//! limits, which [`super::GpuSystem`] builds like the other methods'.
+//! limits, which [`super::GpuSystem`] builds.
 //!
 //! How it works (`shaders/physics/dense.wgsl`, arithmetic of
 //! [`crate::batch::step::dense`]). Three dispatches per step:
 //!
 //! | stage | invocations | what it does |
 //! | --- | --- | --- |
-//! | `stage_frames` | one per strand | root-to-tip chain, A_Q, B_Q (as Block-diagonal) |
+//! | `stage_frames` | one per strand | root-to-tip chain, A_Q (about the root), B_Q |
 //! | `stage_elements` | one per element | own sums with U_Q and V_Q |
 //! | `stage_dense` | a workgroup of [`DENSE_WORKGROUP`] per strand | suffix (one invocation), assembly of S = s·M + diag(D) (blocks in parallel), right-looking square-root-free Cholesky S = L D Lᵀ with the forward substitution folded in (rows in parallel, one barrier per column), back substitution (one barrier per row), integrate |
 //!

@@ -3,8 +3,8 @@
 //! f32 arithmetic of [`crate::batch::step::dense`] at width 1. Dense still takes
 //! its moments about the root (A_P must be paired with X_Q, Y_Q of every
 //! Q > P, so local moments would move A_P to each Q's end point); its
-//! `stage_frames` stores the root-based A_Q and a zero span, unlike
-//! Block-diagonal's ([`super::twin::stage_frames`]).
+//! `stage_frames` stores the root-based A_Q and a zero span
+//! ([`super::twin::frame_chain`]).
 
 use crate::batch::forward::own_sums;
 use crate::batch::layout::ElementData;
@@ -28,7 +28,7 @@ pub fn stage_frames(
     frames: &mut [FrameGpu],
     jacobians: &mut [JacobiansGpu],
 ) {
-    frame_chain(params, elements, roots, (q, v), frames, jacobians, false);
+    frame_chain(params, elements, roots, (q, v), frames, jacobians);
 }
 
 /// Twin of `stage_elements`: per element, its own sums with U_Q and V_Q.

@@ -1,34 +1,43 @@
-//! [`GpuEngine`]: strands stepped on the GPU by the CPU engines' one Exact
-//! step, velocity-implicit with its GMRES, the head's implicit contact at
-//! every quadrature sample, and each strand's own constants and element
-//! count (an imported groom's strands differ in all of them).
+//! [`GpuEngine`]: strands stepped on the GPU by the CPU engines' one step,
+//! Exact or Block-diagonal, velocity-implicit with its GMRES, the head's
+//! implicit contact at every quadrature sample, and each strand's own
+//! constants and element count (an imported groom's strands differ in all
+//! of them).
 //!
 //! # How it works
 //!
-//! `shaders/physics/engine.wgsl` runs one invocation per strand: sweep 1
-//! (root to tip: kinematics, forces, the contact's terms), sweep 2 (tip to
-//! root: the articulated-inertia elimination), sweep 3 (Δv₀ = P⁻¹ rhs), then
-//! GMRES on (P + hG) Δv = rhs, each iteration one more solve with the
-//! stored elimination and one product G z by polarisation, and
-//! integration. Every function there keeps the name of its Rust original
-//! (`batch/forward.rs`, `batch/step/exact.rs`, `batch/velocity_terms.rs`,
-//! `gmres.rs`); the CPU twin ([`super::engine_twin`]) is that Rust code
-//! at f32, one strand wide, so the parity tests compare the kernel with
-//! the batch engine's own arithmetic.
+//! `shaders/physics/engine.wgsl` runs one invocation per strand. Exact:
+//! sweep 1 (root to tip: kinematics, forces, the contact's terms), sweep 2
+//! (tip to root: the articulated-inertia elimination), sweep 3 (Δv₀ = P⁻¹
+//! rhs), then GMRES on (P + hG) Δv = rhs, each iteration one more solve
+//! with the stored elimination and one product G z by polarisation, and
+//! integration. Block-diagonal: sweep 1, its own velocity terms (one more
+//! sweep each way, `batch/block_terms.rs`), one tip-to-root sweep that
+//! inverts each element's block with the loads' stiffness, then GMRES on
+//! (P_bd + θhG_bd) Δv = rhs, each product G_bd z two more of those sweeps.
+//! Every function there keeps the name of its Rust original
+//! (`batch/forward.rs`, `batch/step/exact.rs`, `batch/step/block_diagonal.rs`,
+//! `batch/block_terms.rs`, `batch/velocity_terms.rs`, `gmres.rs`); the CPU
+//! twin ([`super::engine_twin`]) is that Rust code at f32, one strand
+//! wide, so the parity tests compare the kernel with the batch engine's
+//! own arithmetic.
 //!
 //! Buffers: the strands' table ([`StrandGpu`]), the per-element constants,
 //! q and q̇ (one vec4 per element, strand after strand, each strand's
 //! elements contiguous from [`StrandGpu::first`]), the sweep's element
-//! data and elimination, GMRES's vectors (22 vec4 per element: room for
-//! the most iterations a step may take, [`crate::gmres::MAX_GMRES`]) and
-//! the collider's distances. Each substep writes the uniforms (the head's
+//! data and elimination (Block-diagonal keeps its inverted blocks there),
+//! GMRES's vectors ([`KRYLOV_SLOTS`] vec4 per element: room for the most
+//! iterations a step may take, [`crate::gmres::MAX_GMRES`]; Block-diagonal
+//! [`BLOCK_SLOTS`], with its own terms' vectors and their sweep's record)
+//! and the collider's distances. Each substep writes the uniforms (the head's
 //! motion over the step, [`HeadTrajectory::step_motion_at`], as the CPU
 //! engines take it) and dispatches one stage; nothing is read back in the
 //! frame loop.
 //!
-//! What the CPU engines have and this does not yet: the guard, the
-//! hair–hair model, Block-diagonal and Dense (which [`super::GpuSystem`]
-//! steps velocity-explicit, for one shared strand's constants).
+//! What the CPU engines have and this does not yet: the guard (the batch
+//! engine judges the frames this steps, [`crate::engine::EngineKind::Gpu`]),
+//! the hair–hair model, and Dense (which [`super::GpuSystem`] steps
+//! velocity-explicit, for one shared strand's constants).
 
 use std::borrow::Cow;
 use std::ops::Range;
@@ -43,6 +52,7 @@ use super::layout::{
 use super::{GpuContext, GpuError};
 use crate::batch::SubstepOffload;
 use crate::batch::layout::BatchModel;
+use crate::batch::step::block_implicit::BLOCK_THETA;
 use crate::collision::SignedDistanceField;
 use crate::gmres::GMRES_TOLERANCE;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -53,6 +63,37 @@ pub const ENGINE_WGSL: &str = include_str!("../../../../shaders/physics/engine.w
 
 /// GMRES's vectors per element in the `krylov` buffer (WGSL `KRYLOV_SLOTS`).
 pub const KRYLOV_SLOTS: usize = 22;
+
+/// Vectors per element in the `krylov` buffer for Block-diagonal (WGSL
+/// `BLOCK_SLOTS`): GMRES's, its own terms at the rates and at the two
+/// polarisation shifts, and their sweep's record of 28.
+pub const BLOCK_SLOTS: usize = 53;
+
+/// Loop iterations llvmpipe (lavapipe) lets one invocation run in all
+/// before it ends its loops without a word (Mesa's
+/// `LP_MAX_TGSI_LOOP_ITERATIONS`, docs/gpu.md).
+pub const LAVAPIPE_LOOP_BUDGET: usize = 65_535;
+
+/// Loop iterations of one Block-diagonal step of a strand of `n` elements
+/// with `points` quadrature points and at most `iterations` GMRES
+/// iterations, at the worst case, counted from `engine.wgsl`: sweep 1
+/// and its own terms, the blocks, and per GMRES iteration the
+/// preconditioner, the product G_bd z (the velocity product's sweep and
+/// two more of the own terms', each n(points + 1), with the shifts and
+/// sums) and Arnoldi's orthogonalisation. (Exact's step stays under the
+/// budget at the worst case a style may ask for: `tests/gpu_engine.rs`.)
+pub fn block_loop_count(n: usize, points: usize, iterations: usize) -> usize {
+    let sweep = n * (points + 1);
+    let correction = sweep + n;
+    let product = (n + sweep + n) + (n + 2 * correction + n);
+    let start = sweep + correction + n + product + n;
+    let per_iteration = |j: usize| n + product + n + 2 * n * (j + 1) + 2 * n;
+    start + (0..iterations).map(per_iteration).sum::<usize>() + iterations * n + n
+}
+
+/// WGSL `METHOD_EXACT` and `METHOD_BLOCK`.
+const METHOD_EXACT: u32 = 0;
+const METHOD_BLOCK: u32 = 1;
 
 const WORKGROUP: u32 = 64;
 
@@ -69,7 +110,7 @@ fn mat(m: glam::DMat3) -> Mat3Gpu {
     [f4(m.x_axis), f4(m.y_axis), f4(m.z_axis)]
 }
 
-/// Strands stepped on the GPU by the one Exact step (module docs).
+/// Strands stepped on the GPU by the one step (module docs).
 #[derive(Debug)]
 pub struct GpuEngine {
     ctx: GpuContext,
@@ -87,8 +128,10 @@ pub struct GpuEngine {
 impl GpuEngine {
     /// Uploads one strand per root, `models[i]` rooted at `roots[i]`, at
     /// rest in its natural shape, with the head `collider` (head
-    /// coordinates) if any. `settings.method` must be Exact; the scheme
-    /// sets GMRES's iterations (none for velocity-explicit).
+    /// coordinates) if any. `settings.method` must be Exact or
+    /// Block-diagonal; the scheme sets GMRES's iterations (none for
+    /// velocity-explicit, which Block-diagonal then takes without its own
+    /// velocity terms and the loads' stiffness, as the batch engine does).
     pub fn new(
         ctx: GpuContext,
         settings: &SimSettings,
@@ -97,13 +140,37 @@ impl GpuEngine {
         collider: Option<&SignedDistanceField>,
     ) -> Result<Self, GpuError> {
         settings.validate()?;
-        if settings.method != Method::Exact {
-            return Err(GpuError::UnsupportedMethod {
-                method: settings.method.label(),
-                runs: "`exact` (Block-diagonal and Dense run on `GpuSystem`)",
+        let (method, slots) = match settings.method {
+            Method::Exact => (METHOD_EXACT, KRYLOV_SLOTS),
+            Method::BlockDiagonal => (METHOD_BLOCK, BLOCK_SLOTS),
+            _ => {
+                return Err(GpuError::UnsupportedMethod {
+                    method: settings.method.label(),
+                    runs: "`exact` and `block` (Dense runs on `GpuSystem`)",
+                });
+            }
+        };
+        assert_eq!(models.len(), roots.len(), "one model per root");
+        let iterations = match settings.scheme {
+            StepScheme::VelocityImplicit { corrections } => corrections as usize,
+            StepScheme::VelocityExplicit => 0,
+        };
+        let longest = models.iter().map(BatchModel::elements).max().unwrap_or(0);
+        let points = models.first().map_or(0, |m| m.nodes.len());
+        let count = block_loop_count(longest, points, iterations.min(crate::gmres::MAX_GMRES));
+        if method == METHOD_BLOCK
+            && ctx.adapter_name.contains("llvmpipe")
+            && count > LAVAPIPE_LOOP_BUDGET
+        {
+            return Err(GpuError::LoopBudget {
+                method: "Block-diagonal",
+                elements: longest,
+                points,
+                iterations,
+                count,
+                budget: LAVAPIPE_LOOP_BUDGET,
             });
         }
-        assert_eq!(models.len(), roots.len(), "one model per root");
         let mut strands = Vec::with_capacity(roots.len());
         let mut elements = Vec::new();
         let mut natural = Vec::new();
@@ -165,13 +232,15 @@ impl GpuEngine {
             implicit_stiffness_ratio: contact.implicit_stiffness_ratio as f32,
             max_acceleration_m_per_s2: contact.max_acceleration_m_per_s2 as f32,
             field_cell_m,
-            pad: [0.0; 2],
+            method,
+            slots: slots as u32,
             field_dims,
             field_origin_m,
             gravity_m_per_s2: f4(settings.gravity_m_per_s2),
             air_velocity_m_per_s: f4(settings.air_velocity_m_per_s),
             nodes,
             weights,
+            block_h_secs: (BLOCK_THETA * settings.substep_secs()) as f32,
             ..bytemuck::Zeroable::zeroed()
         };
         // A binding holds at least one element, even with no strands.
@@ -183,7 +252,7 @@ impl GpuEngine {
         let v_buffer = scratch_buffer(&ctx, "v", count * 16)?;
         let scratch = scratch_buffer(&ctx, "element data", count * size_of::<ElementDataGpu>())?;
         let elimination = scratch_buffer(&ctx, "elimination", count * size_of::<EliminationGpu>())?;
-        let krylov = scratch_buffer(&ctx, "krylov", count * KRYLOV_SLOTS * 16)?;
+        let krylov = scratch_buffer(&ctx, "krylov", count * slots * 16)?;
         let field = storage_buffer(&ctx, "field", bytemuck::cast_slice(&distances))?;
         let buffers = [
             &params_buffer,
@@ -268,7 +337,7 @@ impl GpuEngine {
             + 2 * 16
             + size_of::<ElementDataGpu>()
             + size_of::<EliminationGpu>()
-            + KRYLOV_SLOTS * 16;
+            + self.params.slots as usize * 16;
         let strands = self.strands.len().max(1);
         (elements * per_element + strands * size_of::<StrandGpu>()) as f64 / strands as f64
     }

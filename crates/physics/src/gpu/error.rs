@@ -50,6 +50,28 @@ pub enum GpuError {
         /// The kernel's limit.
         max: usize,
     },
+    /// A step longer than Mesa's llvmpipe (lavapipe) runs: it ends every
+    /// loop of an invocation, silently, once the invocation has run
+    /// 65,535 loop iterations in all (docs/gpu.md).
+    #[error(
+        "lavapipe runs at most {budget} loop iterations per strand and step; a {method} \
+         step of {elements} elements with {points} quadrature points and {iterations} GMRES \
+         iterations may take {count}"
+    )]
+    LoopBudget {
+        /// The method.
+        method: &'static str,
+        /// The longest strand's elements.
+        elements: usize,
+        /// Quadrature points per element.
+        points: usize,
+        /// Most GMRES iterations.
+        iterations: usize,
+        /// The step's loop iterations at the worst case, by count.
+        count: usize,
+        /// Lavapipe's bound.
+        budget: usize,
+    },
     /// Mapping a buffer for readback failed.
     #[error("reading GPU memory back failed: {0}")]
     Readback(String),

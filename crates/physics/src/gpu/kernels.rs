@@ -1,15 +1,15 @@
 //! [`GpuSystem`]: one group of strands stepped by the velocity-explicit
-//! WGSL kernels in `shaders/physics/` (`common.wgsl` + `group.wgsl` +
-//! `block_diagonal.wgsl` or `dense.wgsl`), Block-diagonal and Dense. Exact
-//! runs on the GPU engine's step ([`super::engine`]).
+//! Dense kernel in `shaders/physics/` (`common.wgsl` + `group.wgsl` +
+//! `chain.wgsl` + `dense.wgsl`), and the buffer, dispatch and readback
+//! helpers both GPU paths use. Exact and Block-diagonal run on the GPU
+//! engine's step ([`super::engine`]).
 //!
 //! How it works. The state (q, q̇ as vec4 per element) and the per-element
 //! scratch live in storage buffers; each substep writes the uniforms (step,
 //! gravity, the head's motion at that instant) and submits the stage
-//! dispatches: Block-diagonal `stage_frames` (per strand), `stage_elements`
-//! (per element), `stage_suffix` (per strand), `stage_solve` (per element);
-//! Dense `stage_frames`, `stage_elements`
-//! and `stage_dense` (a workgroup per strand, see [`super::dense_kernels`]).
+//! dispatches: `stage_frames` (per strand), `stage_elements` (per
+//! element) and `stage_dense` (a workgroup per strand, see
+//! [`super::dense_kernels`]).
 //! Nothing is read back in the frame loop: [`GpuSystem::read_state`] exists
 //! for tests and tools, and a renderer binds [`GpuSystem::frames_buffer`]
 //! directly:
@@ -23,9 +23,7 @@ use helixhair_gpu::upload_buffer;
 
 use super::dense_kernels::{self, DENSE_WGSL};
 use super::layout::Span;
-use super::layout::{
-    BeyondGpu, ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu,
-};
+use super::layout::{ElementConstGpu, ParamsGpu, RootPoseGpu};
 use super::{GpuContext, GpuError};
 use crate::model::StrandModel;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
@@ -38,25 +36,17 @@ pub const COMMON_WGSL: &str = include_str!("../../../../shaders/physics/common.w
 /// own sums, which the kernels of [`GpuSystem`] share (the engine's step,
 /// [`super::engine`], reads each strand's own constants instead).
 pub const GROUP_WGSL: &str = include_str!("../../../../shaders/physics/group.wgsl");
-/// `shaders/physics/chain.wgsl`: the bindings and the `stage_frames` stage
-/// that Block-diagonal and Dense share (each sets `LOCAL_MOMENTS`).
+/// `shaders/physics/chain.wgsl`: the bindings and the `stage_frames`
+/// stage of the Dense kernel (which sets `LOCAL_MOMENTS`).
 pub const CHAIN_WGSL: &str = include_str!("../../../../shaders/physics/chain.wgsl");
-/// `shaders/physics/block_diagonal.wgsl`: the Block-diagonal stages after
-/// the chain.
-pub const BLOCK_DIAGONAL_WGSL: &str =
-    include_str!("../../../../shaders/physics/block_diagonal.wgsl");
 
-/// The full source of a kernel module: the common part, the uniform
-/// group's, the shared frame chain where the kernel uses it (Exact fuses its own), then the kernel.
+/// The full source of `method`'s kernel module on [`GpuSystem`]: the
+/// common part, the uniform group's, the frame chain, then the kernel.
+/// Only Dense has one (Exact and Block-diagonal are the GPU engine's,
+/// [`super::engine::engine_source`]).
 pub fn kernel_source(method: Method) -> Option<String> {
-    let source = match method {
-        Method::BlockDiagonal => {
-            format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{BLOCK_DIAGONAL_WGSL}")
-        }
-        Method::Dense => format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{DENSE_WGSL}"),
-        _ => return None,
-    };
-    Some(source)
+    (method == Method::Dense)
+        .then(|| format!("{COMMON_WGSL}\n{GROUP_WGSL}\n{CHAIN_WGSL}\n{DENSE_WGSL}"))
 }
 
 const WORKGROUP: u32 = 64;
@@ -91,7 +81,8 @@ pub struct GpuSystem {
 
 impl GpuSystem {
     /// Uploads strands sharing `params`, one per root, at rest in their
-    /// natural shape, and builds the kernels for `settings.method`.
+    /// natural shape, and builds the Dense kernel (`settings.method` must
+    /// be Dense).
     pub fn new(
         ctx: GpuContext,
         settings: &SimSettings,
@@ -101,13 +92,11 @@ impl GpuSystem {
         settings.validate()?;
         let source = kernel_source(settings.method).ok_or_else(|| GpuError::UnsupportedMethod {
             method: settings.method.label(),
-            runs: "`block` and `dense` (Exact runs on the GPU engine, `GpuEngine`)",
+            runs: "`dense` (Exact and Block-diagonal run on the GPU engine, `GpuEngine`)",
         })?;
         let model = StrandModel::new(params, settings.quadrature_points)?;
         let n = model.elements();
-        if settings.method == Method::Dense {
-            dense_kernels::check(n, &ctx.limits)?;
-        }
+        dense_kernels::check(n, &ctx.limits)?;
         let elements: Vec<ElementConstGpu> = (0..n)
             .map(|e| {
                 let mut stiffness_length = f4(model.stiffness[e]);
@@ -168,16 +157,7 @@ impl GpuSystem {
         let roots_buffer = storage_buffer(&ctx, "roots", bytemuck::cast_slice(&roots_gpu))?;
         let q_buffer = storage_buffer(&ctx, "q", bytemuck::cast_slice(&natural))?;
         let v_buffer = storage_buffer(&ctx, "v", bytemuck::cast_slice(&zero))?;
-        let scratch_sizes: [(&'static str, usize); 4] = match settings.method {
-            Method::Dense => dense_kernels::scratch_sizes(n),
-            _ => [
-                ("frames", size_of::<FrameGpu>()),
-                ("jacobians", size_of::<JacobiansGpu>()),
-                ("own", size_of::<OwnGpu>()),
-                ("beyond", size_of::<BeyondGpu>()),
-            ],
-        };
-        let scratch = scratch_sizes
+        let scratch = dense_kernels::scratch_sizes(n)
             .iter()
             .map(|(label, size)| scratch_buffer(&ctx, label, size * count.max(1)))
             .collect::<Result<Vec<_>, _>>()?;
@@ -196,16 +176,7 @@ impl GpuSystem {
             label: Some(settings.method.name()),
             source: wgpu::ShaderSource::Wgsl(Cow::Owned(source)),
         });
-        let entry_points: &[(&str, Span)] = match settings.method {
-            Method::Dense => &dense_kernels::STAGES,
-            _ => &[
-                ("stage_frames", Span::PerStrand),
-                ("stage_elements", Span::PerElement),
-                ("stage_suffix", Span::PerStrand),
-                ("stage_solve", Span::PerElement),
-            ],
-        };
-        let stages = entry_points
+        let stages = dense_kernels::STAGES
             .iter()
             .map(|(name, span)| {
                 let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -187,8 +187,11 @@ pub struct EngineParamsGpu {
     pub max_acceleration_m_per_s2: f32,
     /// The field's grid spacing, m.
     pub field_cell_m: f32,
-    /// Padding.
-    pub pad: [f32; 2],
+    /// The step's method: WGSL `METHOD_EXACT` (0) or `METHOD_BLOCK` (1).
+    pub method: u32,
+    /// Vectors per element in the `krylov` buffer (WGSL `KRYLOV_SLOTS`, or
+    /// `BLOCK_SLOTS` for Block-diagonal).
+    pub slots: u32,
     /// The field's grid points along x, y, z (w unused).
     pub field_dims: [u32; 4],
     /// The field's grid point (0, 0, 0), head coordinates, m.
@@ -213,6 +216,11 @@ pub struct EngineParamsGpu {
     pub head_velocity: [f32; 4],
     /// Acceleration of the head origin, m/s².
     pub head_acceleration: [f32; 4],
+    /// θ h, s: the step Block-diagonal's GMRES takes its velocity terms
+    /// with ([`crate::batch::step::block_implicit::BLOCK_THETA`] times the step), rounded once.
+    pub block_h_secs: f32,
+    /// Padding.
+    pub pad: [f32; 3],
 }
 
 /// One strand of the GPU engine (WGSL `Strand`): where its elements lie in
@@ -281,7 +289,7 @@ pub mod size_asserts {
     const _: () = assert!(std::mem::size_of::<BeyondGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<EliminationGpu>() == 160);
     const _: () = assert!(std::mem::size_of::<DenseOwnGpu>() == 256);
-    const _: () = assert!(std::mem::size_of::<EngineParamsGpu>() == 304);
+    const _: () = assert!(std::mem::size_of::<EngineParamsGpu>() == 320);
     const _: () = assert!(std::mem::size_of::<StrandGpu>() == 96);
     const _: () = assert!(std::mem::size_of::<ElementDataGpu>() == 560);
 }

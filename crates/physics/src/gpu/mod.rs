@@ -1,5 +1,5 @@
-//! The GPU path (cargo feature `gpu`): the GPU engine's Exact step and
-//! the Block-diagonal and Dense kernels as wgpu compute shaders, with a
+//! The GPU path (cargo feature `gpu`): the GPU engine's step (Exact and
+//! Block-diagonal) and the Dense kernel as wgpu compute shaders, with a
 //! CPU twin for every kernel stage.
 //!
 //! - [`GpuContext`]: the headless device, from `helixhair-gpu` (the one
@@ -8,21 +8,21 @@
 //!   [`Stepper::prefer_gpu`] does it with a message).
 //! - [`layout`]: host structs of the WGSL structs, checked against the
 //!   shaders by `tests/gpu_layout.rs`.
-//! - [`engine`]: [`GpuEngine`], the CPU engines' one Exact step
-//!   (velocity-implicit with GMRES, the head's implicit contact, each
-//!   strand's own constants) on the GPU; [`engine_twin`] its CPU twin, the
-//!   batch engine's step at f32 one strand wide.
-//! - [`kernels`]: [`GpuSystem`], buffers, pipelines and the step of the
-//!   velocity-explicit kernels (one strand's constants shared by all).
+//! - [`engine`]: [`GpuEngine`], the CPU engines' one step, Exact and
+//!   Block-diagonal (velocity-implicit with GMRES, the head's implicit
+//!   contact, each strand's own constants) on the GPU; [`engine_twin`] its
+//!   CPU twin, the batch engine's step at f32 one strand wide.
+//! - [`kernels`]: [`GpuSystem`], the velocity-explicit Dense kernel (one
+//!   strand's constants shared by all), and the buffer and dispatch
+//!   helpers both paths use.
 //! - [`dense_kernels`]: the Dense kernel's stages, buffers and limits (a
 //!   workgroup per strand factoring its 3N×3N step matrix).
-//! - [`twin`]: the CPU twins, one per WGSL entry point, same names;
-//!   [`dense_twin`] those of the Dense kernel.
+//! - [`twin`]: the CPU twin of the Dense kernel's frame chain and its
+//!   buffer conversions; [`dense_twin`] those of its other stages.
 //!
 //! The WGSL lives in the top-level `shaders/physics/` folder (`common.wgsl`,
-//! `engine.wgsl`, `group.wgsl` (what the kernels of [`GpuSystem`] share),
-//! `chain.wgsl` (the frame chain Block-diagonal and Dense share),
-//! `block_diagonal.wgsl`, `dense.wgsl`; the renderer's shaders are the
+//! `engine.wgsl`, `group.wgsl` (the uniform group of [`GpuSystem`]),
+//! `chain.wgsl` (its frame chain), `dense.wgsl`; the renderer's shaders are the
 //! files directly in `shaders/`), included with `include_str!`.
 //! `docs/gpu.md` explains the stage split and how a renderer reads the
 //! state without a readback.
@@ -47,9 +47,9 @@ use crate::motion::{HeadTrajectory, RootPose};
 use crate::params::StrandParams;
 use crate::settings::{Method, SimSettings};
 
-/// A group of strands on the kernels of [`GpuSystem`] (Block-diagonal or
-/// Dense), or on the CPU batch path when they cannot run (no adapter,
-/// Dense past its element limit, Exact: which runs on the GPU engine,
+/// A group of strands on the Dense kernel of [`GpuSystem`], or on the CPU
+/// batch path when it cannot run (no adapter, Dense past its element
+/// limit; Exact and Block-diagonal, which run on the GPU engine,
 /// `engine: Gpu`, [`crate::engine::GpuSide`]).
 #[derive(Debug)]
 pub enum Stepper {

@@ -1,17 +1,16 @@
-//! CPU twins of the GPU kernels: one function per WGSL entry point, with
-//! the entry point's name and its bindings in binding order, computing the
-//! same thing from the same buffers with the batch path's f32 arithmetic
-//! ([`crate::batch`], at width 1). The parity tests run a step both ways and
-//! compare; a twin is also the reference when a kernel is changed.
+//! What the CPU twins of [`super::GpuSystem`]'s Dense kernel
+//! ([`super::dense_twin`]) share: the kernel uniforms as the batch path's
+//! constants, the root's and the frame chain's arithmetic (`chain.wgsl`),
+//! and the conversions between its buffers and the batch path's types,
+//! all with the batch path's f32 arithmetic ([`crate::batch`], at width
+//! 1). (The GPU engine's twin is [`super::engine_twin`].)
 
-use crate::batch::forward::{FrameState, advance_local, own_sums, root_jacobian};
+use crate::batch::forward::{FrameState, advance_local, root_jacobian};
 use crate::batch::layout::{BatchModel, ElementData, StepEnv};
-use crate::batch::suffix::{Beyond, element_terms, integrate, mass_scale, step_terms};
 use crate::batch::vec::V3;
 
 use super::layout::{
-    BeyondGpu, ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu, m3, m4, v3,
-    v4,
+    ElementConstGpu, FrameGpu, JacobiansGpu, OwnGpu, ParamsGpu, RootPoseGpu, m3, m4, v3, v4,
 };
 
 /// The batch path's constants and environment from the kernel uniforms.
@@ -86,23 +85,8 @@ pub(crate) fn frame_of(f: &FrameGpu) -> FrameState<f32> {
     }
 }
 
-/// Twin of `stage_frames`: per strand, the frame chain and A_Q (about
-/// each element's end point), B_Q and the span (local moments, as
-/// [`crate::batch::forward::forward_with`]).
-pub fn stage_frames(
-    params: &ParamsGpu,
-    elements: &[ElementConstGpu],
-    roots: &[RootPoseGpu],
-    q: &[[f32; 4]],
-    v: &[[f32; 4]],
-    frames: &mut [FrameGpu],
-    jacobians: &mut [JacobiansGpu],
-) {
-    frame_chain(params, elements, roots, (q, v), frames, jacobians, true);
-}
-
-/// The frame chain of `stage_frames`, with A_Q about each element's end
-/// point and its span (`local`), or about the root and a zero span (Dense).
+/// The frame chain of `chain.wgsl`'s `stage_frames`, with A_Q about the
+/// root and a zero span.
 pub(crate) fn frame_chain(
     params: &ParamsGpu,
     elements: &[ElementConstGpu],
@@ -110,7 +94,6 @@ pub(crate) fn frame_chain(
     (q, v): (&[[f32; 4]], &[[f32; 4]]),
     frames: &mut [FrameGpu],
     jacobians: &mut [JacobiansGpu],
-    local: bool,
 ) {
     let n = params.elements as usize;
     for (strand, pose) in roots.iter().enumerate() {
@@ -125,45 +108,15 @@ pub(crate) fn frame_chain(
                 point_velocity: v4(s.point_velocity),
                 point_acceleration: v4(s.point_acceleration),
             };
-            let (next, a, b, span) =
+            let (next, a, b, _) =
                 advance_local(&s, element.stiffness_length[3], v3(q[i]), v3(v[i]));
-            jacobians[i] = if local {
-                JacobiansGpu {
-                    a: m4(&a),
-                    b: m4(&b),
-                    span: v4(span),
-                }
-            } else {
-                JacobiansGpu {
-                    a: m4(&root_jacobian(a, next.point_m, &b)),
-                    b: m4(&b),
-                    span: [0.0; 4],
-                }
+            jacobians[i] = JacobiansGpu {
+                a: m4(&root_jacobian(a, next.point_m, &b)),
+                b: m4(&b),
+                span: [0.0; 4],
             };
             s = next;
         }
-    }
-}
-
-/// Twin of `stage_elements`: per element, its own sums, about its start
-/// point (local moments).
-pub fn stage_elements(
-    params: &ParamsGpu,
-    elements: &[ElementConstGpu],
-    q: &[[f32; 4]],
-    v: &[[f32; 4]],
-    frames: &[FrameGpu],
-    own: &mut [OwnGpu],
-) {
-    let (model, env) = model_of(params, elements);
-    let n = params.elements as usize;
-    for (i, out) in own.iter_mut().enumerate() {
-        let start = FrameState {
-            point_m: V3::zero(),
-            ..frame_of(&frames[i])
-        };
-        let el = own_sums::<f32, false>(&model, &env, i % n, &start, v3(q[i]), v3(v[i]));
-        *out = own_of(&el);
     }
 }
 
@@ -194,70 +147,5 @@ pub(crate) fn element_of(jac: &JacobiansGpu, own: &OwnGpu) -> ElementData<f32> {
         force_sum: v3(own.force_sum),
         torque_sum: v3(own.torque_sum),
         ..ElementData::zero()
-    }
-}
-
-/// Twin of `stage_suffix`: per strand, the sums past each element, about
-/// its end point (moved by −span from element to element).
-pub fn stage_suffix(
-    params: &ParamsGpu,
-    jacobians: &[JacobiansGpu],
-    own: &[OwnGpu],
-    beyond: &mut [BeyondGpu],
-) {
-    let n = params.elements as usize;
-    for ((own, beyond), jacobians) in own
-        .chunks(n)
-        .zip(beyond.chunks_mut(n))
-        .zip(jacobians.chunks(n))
-    {
-        let mut b = Beyond::<f32>::zero();
-        for e in (0..n).rev() {
-            let mut moment = v4(b.first_moment);
-            moment[3] = b.mass;
-            beyond[e] = BeyondGpu {
-                inertia: m4(&b.inertia),
-                moment,
-                force: v4(b.force),
-                torque: v4(b.torque),
-            };
-            b.shift(-v3(jacobians[e].span));
-            b.add(&element_of(&bytemuck::Zeroable::zeroed(), &own[e]));
-        }
-    }
-}
-
-/// Twin of `stage_solve`: per element, its block, the 3×3 solve and the
-/// integration.
-pub fn stage_solve(
-    params: &ParamsGpu,
-    elements: &[ElementConstGpu],
-    q: &mut [[f32; 4]],
-    v: &mut [[f32; 4]],
-    jacobians: &[JacobiansGpu],
-    own: &[OwnGpu],
-    beyond: &[BeyondGpu],
-) {
-    let (model, env) = model_of(params, elements);
-    let n = params.elements as usize;
-    for i in 0..q.len() {
-        let b = &beyond[i];
-        let sums = Beyond {
-            mass: b.moment[3],
-            first_moment: v3(b.moment),
-            inertia: m3(&b.inertia),
-            force: v3(b.force),
-            torque: v3(b.torque),
-        };
-        let terms = element_terms(&element_of(&jacobians[i], &own[i]), &sums);
-        let (mut qi, mut vi) = (v3(q[i]), v3(v[i]));
-        let (diagonal, rhs) = step_terms(&model, &env, i % n, terms.force, qi, vi);
-        let step_matrix = terms
-            .mass_block
-            .scale(mass_scale(&model, &env))
-            .add_diagonal(diagonal);
-        integrate(env.h_secs, &mut qi, &mut vi, step_matrix.inverse() * rhs);
-        q[i] = v4(qi);
-        v[i] = v4(vi);
     }
 }

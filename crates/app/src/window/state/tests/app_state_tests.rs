@@ -196,18 +196,18 @@ fn batch_engine_guard_is_told_once_in_words() {
 }
 
 /// Issue 31: the GPU engine says once on the status line when the CPU
-/// steps for it (here: Block-diagonal, which its step does not run).
+/// steps for it (here: the hair–hair model, which its step does not run).
 #[test]
 fn the_gpu_engine_says_when_the_cpu_steps_for_it() {
     let mut app = AppState::new(default_style(16), None).unwrap();
     app.doc.edit(|s| {
         crate::window::panels::style_panel::select_engine(s, EngineKind::Gpu);
-        s.sim.method = Method::BlockDiagonal;
+        s.sim.interaction.enabled = true;
     });
     app.step_frame();
     let message = app.message().unwrap_or_default().to_owned();
     assert!(
-        message.contains("GPU engine: the GPU engine runs Exact"),
+        message.contains("GPU engine: the GPU engine has no hair–hair model"),
         "{message}"
     );
 }
