@@ -386,6 +386,17 @@ fn step_terms_of(i: u32, force: vec3<f32>, qi: vec3<f32>, vi: vec3<f32>) -> mat2
     return mat2x3<f32>(diagonal, rhs);
 }
 
+// An element's own sums and Jacobians as sweep 1 left them, for the
+// tip-to-root sweeps (batch::suffix::element_terms reads both).
+fn own_of(el: ElementData) -> Own {
+    return Own(el.own_mass_block, el.inertia, el.own_force, el.moment, el.force_sum,
+        el.torque_sum);
+}
+
+fn jacobians_of(el: ElementData) -> Jacobians {
+    return Jacobians(el.a, el.b, vec4<f32>(el.span.xyz, 0.0));
+}
+
 fn mul_mat_t(a: mat3x3<f32>, b: mat3x3<f32>) -> mat3x3<f32> {
     return a * transpose(b);
 }
@@ -420,10 +431,8 @@ fn eliminate(st: Strand, root: FrameState) -> f32 {
         let i = st.first + st.elements - 1u - k;
         let el = scratch[i];
         let span = el.span.xyz;
-        let jac = Jacobians(el.a, el.b, vec4<f32>(span, 0.0));
-        let own_sums = Own(el.own_mass_block, el.inertia, el.own_force, el.moment, el.force_sum,
-            el.torque_sum);
-        let terms = element_terms(jac, own_sums, b);
+        let own_sums = own_of(el);
+        let terms = element_terms(jacobians_of(el), own_sums, b);
         let st_terms = step_terms_of(i, terms.force, q[i].xyz, v[i].xyz);
         rhs_squared += dot(st_terms[1], st_terms[1]);
         let own_v = el.v - cross_cols(span, el.u);
@@ -611,10 +620,8 @@ fn blocks_tip_to_root(st: Strand, root: FrameState, own_terms: bool) -> f32 {
         let i = st.first + e;
         let el = scratch[i];
         let span = el.span.xyz;
-        let jac = Jacobians(el.a, el.b, vec4<f32>(span, 0.0));
-        let own_sums = Own(el.own_mass_block, el.inertia, el.own_force, el.moment, el.force_sum,
-            el.torque_sum);
-        let terms = element_terms(jac, own_sums, b);
+        let own_sums = own_of(el);
+        let terms = element_terms(jacobians_of(el), own_sums, b);
         var force = terms.force;
         if own_terms {
             force += krylov[slot(st, CORRECTION, e)].xyz;

@@ -220,11 +220,8 @@ impl GpuEngine {
         };
         let params = EngineParamsGpu {
             strand_count: roots.len() as u32,
-            points: models.first().map_or(0, |m| m.nodes.len()) as u32,
-            iterations: match settings.scheme {
-                StepScheme::VelocityImplicit { corrections } => corrections,
-                StepScheme::VelocityExplicit => 0,
-            },
+            points: points as u32,
+            iterations: iterations as u32,
             has_collider: u32::from(collider.is_some()),
             h_secs: settings.substep_secs() as f32,
             gmres_tolerance: GMRES_TOLERANCE as f32,
