@@ -1,25 +1,23 @@
 //! The CPU twin of the GPU engine's one stage, `stage_step`
 //! (`shaders/physics/engine.wgsl`): the batch engine's step at f32, one
 //! strand wide, with the head's implicit contact ([`LaneContact`]) where
-//! there is a collider: Exact ([`step_exact_implicit`], with no GMRES
-//! iterations the velocity-explicit step) or Block-diagonal
-//! ([`step_block_implicit`]; velocity-explicit,
-//! [`step_block_diagonal_with`]), picked as the batch engine picks them.
+//! there is a collider: Exact or Block-diagonal, velocity-implicit or
+//! explicit, picked and run by the batch engine's own dispatch
+//! (`batch::step::run_step` of `BatchStep::of` the settings).
 //! Not a second copy of the step: the very code the batch engine runs in
 //! SIMD lanes, instanced at `f32`.
 
 use crate::batch::contact::{LaneContact, NearCells, SkinTest};
-use crate::batch::forward::{NoContact, SampleHook};
+use crate::batch::forward::NoContact;
 use crate::batch::layout::{BatchModel, ElementData, RootMotion, StepEnv};
-use crate::batch::step::block_diagonal::step_block_diagonal_with;
-use crate::batch::step::block_implicit::step_block_implicit;
 use crate::batch::step::exact::Elimination;
-use crate::batch::step::implicit::{Krylov, step_exact_implicit};
+use crate::batch::step::implicit::Krylov;
+use crate::batch::step::{BatchStep, run_step};
 use crate::batch::vec::V3;
 use crate::batch::{LANES, Lanes, Real};
 use crate::collision::{ContactInputs, SignedDistanceField};
 use crate::motion::{RigidMotion, RootPose};
-use crate::settings::{Method, SimSettings, StepScheme};
+use crate::settings::SimSettings;
 
 /// The step's buffers for one strand of N elements.
 #[derive(Clone, Debug)]
@@ -32,10 +30,7 @@ pub struct TwinBuffers {
 impl TwinBuffers {
     /// Buffers for N elements and the iterations `settings` asks for.
     pub fn new(n: usize, settings: &SimSettings) -> Self {
-        let iterations = match settings.scheme {
-            StepScheme::VelocityImplicit { corrections } => corrections as usize,
-            StepScheme::VelocityExplicit => 0,
-        };
+        let iterations = BatchStep::of(settings).iterations();
         Self {
             scratch: vec![ElementData::zero(); n],
             elimination: vec![Elimination::zero(); n],
@@ -88,51 +83,12 @@ pub fn stage_step(
             [motion.position_m; LANES],
         )
     });
-    let step = TwinStep {
-        method: settings.method,
-        model,
-        env: &env,
-        root: &root_motion,
-    };
+    let step = BatchStep::of(settings);
+    let buffers = (&mut scratch[..], &mut elimination[..], krylov);
     // One branch per step, as the batch engine takes it: without a
     // collider the sweep has no contact stage at all.
     match contact {
-        Some(hook) => step.run(q, v, scratch, elimination, krylov, &hook),
-        None => step.run(q, v, scratch, elimination, krylov, &NoContact),
-    }
-}
-
-/// What one twin step is given besides its state and buffers.
-struct TwinStep<'a> {
-    method: Method,
-    model: &'a BatchModel,
-    env: &'a StepEnv,
-    root: &'a RootMotion<f32>,
-}
-
-impl TwinStep<'_> {
-    /// The batch engine's step for the method (its `BatchStep::of`: GMRES
-    /// iterations in `krylov`, none for velocity-explicit) with `hook` at
-    /// the samples; returns GMRES's iterations.
-    fn run<H: SampleHook<f32>>(
-        &self,
-        q: &mut [V3<f32>],
-        v: &mut [V3<f32>],
-        scratch: &mut [ElementData<f32>],
-        elimination: &mut [Elimination<f32>],
-        krylov: &mut Krylov<f32>,
-        hook: &H,
-    ) -> usize {
-        let (model, env, root) = (self.model, self.env, self.root);
-        match self.method {
-            Method::BlockDiagonal if krylov.iterations() > 0 => {
-                step_block_implicit(model, env, root, q, v, scratch, krylov, hook)
-            }
-            Method::BlockDiagonal => {
-                step_block_diagonal_with::<f32, true, H>(model, env, root, q, v, scratch, hook);
-                0
-            }
-            _ => step_exact_implicit(model, env, root, q, v, scratch, elimination, krylov, hook),
-        }
+        Some(hook) => run_step(step, model, &env, &root_motion, q, v, buffers, &hook),
+        None => run_step(step, model, &env, &root_motion, q, v, buffers, &NoContact),
     }
 }

@@ -16,8 +16,8 @@ pub mod load_stiffness;
 use std::cell::RefCell;
 
 use super::forward::SampleHook;
-use super::lane_model::LaneModel;
-use super::lanes::Lanes;
+use super::lane_model::{Constants, LaneModel};
+use super::lanes::{Lanes, Real};
 use super::layout::{ElementData, RootMotion, StepEnv};
 use super::vec::V3;
 use crate::batch::step::block_diagonal::step_block_diagonal_with;
@@ -79,7 +79,7 @@ impl Scratch {
 
 /// Which step a batch takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum BatchStep {
+pub(crate) enum BatchStep {
     /// Block-diagonal, the whole system's velocity terms, explicit.
     BlockDiagonal,
     /// Block-diagonal with its own Lagrangian's velocity terms, implicit,
@@ -92,7 +92,7 @@ pub(super) enum BatchStep {
 }
 
 impl BatchStep {
-    pub(super) fn of(settings: &SimSettings) -> Self {
+    pub(crate) fn of(settings: &SimSettings) -> Self {
         match (settings.method, settings.scheme) {
             (Method::Exact, StepScheme::VelocityImplicit { corrections }) if corrections > 0 => {
                 BatchStep::ExactImplicit(corrections as usize)
@@ -124,7 +124,7 @@ impl BatchStep {
     }
 
     /// GMRES iterations the scratch must hold.
-    pub(super) fn iterations(self) -> usize {
+    pub(crate) fn iterations(self) -> usize {
         match self {
             BatchStep::ExactImplicit(k) | BatchStep::BlockImplicit(k) => k,
             _ => 0,
@@ -175,18 +175,52 @@ fn step_batch_with<H: SampleHook<Lanes>>(
         krylov,
         made_for: _,
     } = scratch;
+    run_step(
+        step,
+        model,
+        env,
+        root,
+        q,
+        v,
+        (elements, elimination, krylov),
+        hook,
+    );
+}
+
+/// `step` of the strands in (`q`, `v`) at any width `T` (the batch
+/// engine's lanes, or f32 one strand wide for the GPU engine's twin,
+/// [`crate::gpu::engine_twin`]), in the step's buffers, with `hook` at
+/// the samples; moments about each element's own points. Returns GMRES's
+/// iterations (0 for the velocity-explicit steps).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the step's inputs and buffers, passed through"
+)]
+#[inline(always)]
+pub(crate) fn run_step<T: Real, H: SampleHook<T>>(
+    step: BatchStep,
+    model: &impl Constants<T>,
+    env: &StepEnv,
+    root: &RootMotion<T>,
+    q: &mut [V3<T>],
+    v: &mut [V3<T>],
+    (elements, elimination, krylov): (&mut [ElementData<T>], &mut [Elimination<T>], &mut Krylov<T>),
+    hook: &H,
+) -> usize {
     match step {
         BatchStep::Exact => {
             step_exact_with::<_, true, _>(model, env, root, q, v, elements, elimination, hook);
+            0
         }
         BatchStep::ExactImplicit(_) => {
-            step_exact_implicit(model, env, root, q, v, elements, elimination, krylov, hook);
+            step_exact_implicit(model, env, root, q, v, elements, elimination, krylov, hook)
         }
         BatchStep::BlockDiagonal => {
             step_block_diagonal_with::<_, true, _>(model, env, root, q, v, elements, hook);
+            0
         }
         BatchStep::BlockImplicit(_) => {
-            step_block_implicit(model, env, root, q, v, elements, krylov, hook);
+            step_block_implicit(model, env, root, q, v, elements, krylov, hook)
         }
     }
 }
