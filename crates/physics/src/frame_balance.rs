@@ -120,7 +120,7 @@ pub struct StrandMeasure {
 ///
 /// Exact, Dense and Iterative step the true system, whose energy is
 /// T + V. Block-diagonal with its own velocity terms
-/// ([`crate::step::block_velocity_terms`]) steps a different mechanical
+/// ([`crate::batch::block_terms`]) steps a different mechanical
 /// system: the same potential, and the true kinetic energy with its
 /// strain-strain part ½ q̇ᵀ M q̇ replaced by ½ Σ_Q q̇_Qᵀ M_QQ q̇_Q. That system
 /// conserves its own energy, not the true one, so judging it by T + V

@@ -144,7 +144,7 @@ pub enum StepScheme {
     /// (`gmres::GMRES_TOLERANCE`).
     /// Block-diagonal runs the same GMRES with its own P = s M_bd + D and
     /// the derivative of its own Lagrangian's velocity terms
-    /// (`step::block_velocity_terms`), on the reference engine.
+    /// (`batch::block_terms`), on both engines.
     VelocityImplicit {
         /// Most GMRES iterations per step, range 0..=8 (0 is the explicit
         /// answer). Default 8: a 0.66 m curl needs up to 8 to stop gaining

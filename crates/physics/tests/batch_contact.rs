@@ -11,7 +11,7 @@ use common::sphere::{RADIUS_M, icosphere, sphere_field};
 use common::*;
 use glam::DVec3;
 use helixhair_physics::batch::BatchSystem;
-use helixhair_physics::batch::contact::NearCells;
+use helixhair_physics::batch::contact::{NearCells, SkinTest};
 use helixhair_physics::collision::{ContactInputs, ContactSettings, SignedDistanceField};
 use helixhair_physics::{
     Bounce, HairSystem, HeadTrajectory, Method, RigidMotion, RootPose, SimSettings, StepScheme,
@@ -330,7 +330,7 @@ fn a_point_in_a_cell_that_is_not_near_feels_exactly_no_force() {
     // zero; and it must skip most points a few cells off the surface.
     let (field, _) = sphere_field();
     let settings = ContactSettings::default();
-    let near = NearCells::new(&field, settings.skin_m);
+    let near = NearCells::new(&field);
     let head = RigidMotion::default();
     let inputs = ContactInputs {
         collider: &field,
@@ -345,9 +345,7 @@ fn a_point_in_a_cell_that_is_not_near_feels_exactly_no_force() {
         let p = dir * (RADIUS_M + 0.02 * rng.next());
         let v = rng.vec3(1.0);
         let force = inputs.force(p, v, 5e-6);
-        let g = (p - field.origin_m) / field.cell_m;
-        let cell = [g.x, g.y, g.z].map(|x| x as usize);
-        if !near.contains(cell[0], cell[1], cell[2]) {
+        if !SkinTest::new(inputs, &near).may_feel(p, v, false) {
             assert_eq!(force, DVec3::ZERO, "skipped a point in contact at {p}");
             skipped += 1;
         }

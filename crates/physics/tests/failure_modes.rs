@@ -95,7 +95,7 @@ fn block_diagonal_blows_up_on_a_hanging_curl_at_sixty_hertz_with_the_whole_syste
     // substeps (h = 1/600 s) kept it finite. That old step is still the
     // velocity-explicit scheme, pinned here. With the velocity terms of
     // Block-diagonal's own Lagrangian (the default scheme,
-    // `block_velocity_terms.rs`) the same curl stays finite at every N:
+    // `batch/block_terms.rs`) the same curl stays finite at every N:
     // its energy T_bd + V can no longer grow (tests/block_velocity_terms.rs).
     // Dense and Exact are finite at 60 Hz for N = 10 and 30.
     let run_with = |method: Method, n: usize, h: f64, scheme: StepScheme| -> bool {

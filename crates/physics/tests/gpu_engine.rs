@@ -50,19 +50,6 @@ const FREE_FRAMES: usize = 60;
 /// the strands part (measured: strand 1 at frame 50, 0.2 of q̇).
 const CONTACT_FRAMES: usize = 40;
 
-/// The twin's near-cells screen takes cells within this many contact skins
-/// of the surface, not one: the batch engine's screen (one skin, where a
-/// point is and where it is headed) can reject a sample the contact law
-/// acts on, one moving fast across a curved surface (the law predicts
-/// d + h·(v·n), the screen the distance of p + h·v, which a convex
-/// surface puts further out), and the GPU has no screen. Measured on
-/// lavapipe with one skin: Block-diagonal's faster curls lost such a
-/// contact in 3 of 320 strand-steps (up to 1.26 of q̇ apart in that step),
-/// Exact in none; with 20 skins (40 mm, any sample whose step moves it
-/// less than 38 mm across the surface) the twin and the kernel agree
-/// step by step to 1.1e-5. (docs/gpu.md, "What the fast paths lack".)
-const SCREEN_SKINS: f64 = 20.0;
-
 /// Frames of the batch engine's comparison with the twin.
 const FRAMES: usize = 60;
 
@@ -111,17 +98,7 @@ fn scene(method: Method) -> Scene {
 /// The twin's run: (q, q̇) per strand, and the most GMRES iterations a step
 /// took.
 fn twin_run(scene: &Scene, with_field: bool, frames: usize) -> (Strands, Strands, usize) {
-    twin_run_screened(scene, with_field, frames, SCREEN_SKINS)
-}
-
-/// [`twin_run`] with the near-cells screen at `skins` contact skins.
-fn twin_run_screened(
-    scene: &Scene,
-    with_field: bool,
-    frames: usize,
-    skins: f64,
-) -> (Strands, Strands, usize) {
-    let near = NearCells::new(&scene.field, skins * scene.settings.contact.skin_m);
+    let near = NearCells::new(&scene.field);
     let head = shake();
     let h = scene.settings.substep_secs();
     let mut most_iterations = 0;
@@ -337,8 +314,7 @@ fn twin_against_batch(scene: &Scene) {
                 .collect()
         })
         .collect();
-    // The batch engine's own screen, one skin.
-    let (twin_q, _, _) = twin_run_screened(scene, true, FRAMES, 1.0);
+    let (twin_q, _, _) = twin_run(scene, true, FRAMES);
     let err = relative(&batch_q, &twin_q);
     let method = scene.settings.method;
     println!(

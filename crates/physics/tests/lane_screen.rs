@@ -43,21 +43,26 @@ fn point(rng: &mut Rng, root: DVec3, head: &RigidMotion) -> DVec3 {
     }
 }
 
+/// A head somewhere near the origin, turned, moving and turning at random.
+fn moving_head(rng: &mut Rng) -> RigidMotion {
+    RigidMotion {
+        position_m: rng.vec3(0.3),
+        world_from_body: rng.rotation(),
+        velocity_m_per_s: rng.vec3(2.0),
+        angular_velocity_rad_per_s: rng.vec3(6.0),
+        ..RigidMotion::default()
+    }
+}
+
 #[test]
 fn the_lane_screen_never_skips_a_point_the_exact_test_keeps() {
     let (field, _) = sphere_field();
     let settings = ContactSettings::default();
-    let near = NearCells::new(&field, settings.skin_m);
+    let near = NearCells::new(&field);
     let mut rng = Rng::new(41);
     let (mut kept, mut skipped, mut exact_kept) = (0usize, 0usize, 0usize);
     for trial in 0..400 {
-        let head = RigidMotion {
-            position_m: rng.vec3(0.3),
-            world_from_body: rng.rotation(),
-            velocity_m_per_s: rng.vec3(2.0),
-            angular_velocity_rad_per_s: rng.vec3(6.0),
-            ..RigidMotion::default()
-        };
+        let head = moving_head(&mut rng);
         let inputs = ContactInputs {
             collider: &field,
             head: &head,
@@ -117,4 +122,52 @@ fn the_lane_screen_never_skips_a_point_the_exact_test_keeps() {
         skipped > exact_rejected / 2,
         "skipped {skipped} of the {exact_rejected} the exact test rejects"
     );
+}
+
+#[test]
+fn the_exact_test_keeps_every_point_the_contact_law_pushes() {
+    // The exact test is the contact law's own screen: a point it rejects
+    // must get no force from `ContactInputs::implicit_force` (nor from
+    // `force`), also one moving fast across the curved surface, whose
+    // predicted distance d + h v·n is nearer than the distance of where it
+    // is headed (a convex surface puts p + h v further out).
+    let (field, _) = sphere_field();
+    let near = NearCells::new(&field);
+    let mut rng = Rng::new(97);
+    let (mut pushed, mut rejected) = (0usize, 0usize);
+    for _ in 0..200 {
+        let head = moving_head(&mut rng);
+        let settings = ContactSettings {
+            skin_m: 0.02 * rng.next(),
+            ..ContactSettings::default()
+        };
+        let inputs = ContactInputs {
+            collider: &field,
+            head: &head,
+            settings,
+            h_secs: 1.0 / 60.0,
+        };
+        let test = SkinTest::new(inputs, &near);
+        for _ in 0..250 {
+            let dir = rng.vec3(1.0).normalize_or(DVec3::X);
+            let p = head.position_m + dir * (RADIUS_M + 0.1 * rng.next());
+            let v = rng.vec3(8.0);
+            let rho_s = 1e-5;
+            if inputs.implicit_force(p, v, rho_s).is_some() {
+                pushed += 1;
+                assert!(
+                    test.may_feel(p, v, true),
+                    "implicit push at {p} moving {v} rejected"
+                );
+            } else if !test.may_feel(p, v, true) {
+                rejected += 1;
+            }
+            if inputs.force(p, v, rho_s) != DVec3::ZERO {
+                assert!(test.may_feel(p, v, false), "push at {p} rejected");
+            }
+        }
+    }
+    println!("law pushed {pushed}; the test rejected {rejected} others");
+    assert!(pushed > 5_000, "pushed {pushed}");
+    assert!(rejected > 10_000, "rejected {rejected}");
 }

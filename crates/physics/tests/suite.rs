@@ -13,7 +13,6 @@ mod batch_lanes;
 mod batch_parity;
 mod batch_stable_step;
 mod batch_volume;
-mod block_terms;
 mod block_velocity_terms;
 mod collision;
 mod derivatives;

@@ -1,6 +1,55 @@
 //! Block-diagonal's own velocity terms, written once for every width: the
 //! correction F_true − F_bd that turns the step's forces into those of
-//! Block-diagonal's own Lagrangian (the physics: [`crate::step::block_velocity_terms`]).
+//! Block-diagonal's own Lagrangian. Both engines run it, velocity-implicit
+//! with the correction's derivative by polarisation
+//! ([`crate::batch::step::block_implicit`]); the guard judges
+//! Block-diagonal by T_bd + V ([`crate::batch::block_kinetic`]).
+//! `tests/block_velocity_terms.rs` checks it at f64 against the truncated
+//! energy's Lagrangian by differences, and at f32 against f64.
+//!
+//! # Why
+//!
+//! Block-diagonal solves with M_bd, the N diagonal 3×3 blocks M_QQ of the
+//! mass matrix, but the forces stage gives it the true system's velocity
+//! terms −∫ρS Jᵀ J̇q̇ ds, which belong with the whole M. The mix is no
+//! mechanical system: on a strand released horizontally it gained energy
+//! (docs/solvers.md). M_bd is itself symmetric positive definite, so the
+//! Lagrangian with T_bd = ½ q̇ᵀ M_bd(q) q̇ and the same potential is a
+//! mechanical system, and its equations
+//!
+//! M_bd q̈ + F_bd = Q_ext,  F_bd = Ṁ_bd q̇ − ∂T_bd/∂q,
+//!
+//! conserve T_bd + V with a still head (q̇ᵀF_bd = ½ q̇ᵀṀ_bd q̇ is exactly
+//! what T_bd's own change needs).
+//!
+//! # The terms
+//!
+//! T_bd = Σ_Q ½ ∫_{Ω_Q} ρS |w_Q|² ds, with Ω_Q element Q and all beyond it
+//! and w_Q = J_Q q̇_Q the motion element Q's rate alone gives. Then
+//!
+//! - Ṁ_QQ q̇_Q = ∫_{Ω_Q} ρS (J_Qᵀ J̇_Q q̇_Q + J̇_Qᵀ w_Q);
+//! - ∂T_bd/∂q_Q = ∫_{Ω_Q} ρS (J_Qᵀ f_Q + (J̇_Q^own)ᵀ w_Q): an earlier
+//!   element P < Q sees q_Q move its points, J_P = A_P − \[r\]×B_P changes
+//!   by −\[δr\]×B_P, which gives f_Q = Σ_{P<Q} w_P × β_P (β_P = B_P q̇_P);
+//!   a later element P > Q is turned rigidly by q_Q, which leaves |w_P|
+//!   unchanged; and element Q itself gives J̇_Q^own = (∂J_Q/∂q_Q)[q̇_Q],
+//!   the rate of J_Q from q̇_Q alone.
+//!
+//! Every rate is the strain rates' alone (the head's turn is taken out:
+//! T_bd is defined in the root's frame). J̇_Q^own is J̇_Q
+//! less the rigid turn Ω_Q × J_Q of element Q's start frame and, beyond
+//! element Q, less −[v_{>Q}]× B_Q, v_{>Q} being the points' velocity
+//! relative to element Q's end frame. f_Q = c_Q − (S_Q − t_Q I) r with the
+//! prefix sums c_Q = Σ (A_P q̇_P) × β_P, S_Q = Σ β_P β_Pᵀ, t_Q = Σ |β_P|².
+//!
+//! The head's motion keeps the true system's terms (its accelerations,
+//! the centrifugal ω × (ω × r) and the gyroscopic 2ω × J q̇, which does no
+//! work). So the step's forces become Q + F_true − F_bd: the true
+//! strain-rate terms, which Q holds as −F_true = −∫ρS Jᵀ J̇ˢq̇, are taken
+//! out and Block-diagonal's own put in. This is the Lagrangian of
+//! T = ½∫ρS|v_O + ω × r|² + ∫ρS (v_O + ω × r)·Jq̇ + T_bd: the true kinetic
+//! energy with only its strain-strain part truncated; the head's terms all
+//! come from the first two parts, which are the true system's.
 //!
 //! # How it works
 //!
@@ -11,7 +60,7 @@
 //! frame kept, its velocities and accelerations zero). Then at every
 //! sample the acceleration with q̈ = 0 is J̇ˢq̇, the strain-rate
 //! acceleration F_true projects; every velocity is a strain velocity; and
-//! element Q's start frame turns at Ω_Q = Σ_{P<Q} β_P, so the reference's
+//! element Q's start frame turns at Ω_Q = Σ_{P<Q} β_P, so the
 //! head terms (ω × w and the root's velocity) drop out of its formulas.
 //!
 //! Root to tip, per element Q, the sweep records
@@ -28,11 +77,10 @@
 //!
 //! Tip to root, the suffix sums give each element's beyond terms: F_true's
 //! Aᵀ F + Bᵀ τ, and F_bd's Aᵀ (k₀ m + L Σr + \[β\]× Σṙ) + Bᵀ (turned), the
-//! reference's formulas with ω = 0 and a still root.
+//! formulas of "The terms" with ω = 0 and a still root.
 //!
-//! Moments are taken about the root, as the f64 reference takes them:
-//! the f32 instance's round-off is measured against the f64 one in
-//! `tests/block_terms.rs`.
+//! Moments are taken about the root: the f32 instance's round-off is
+//! measured against the f64 one in `tests/block_velocity_terms.rs`.
 
 use super::forward::{FrameState, advance_from_end, root_jacobian};
 use super::geometry::{Coefficients, local_end_with, local_point_with};

@@ -212,7 +212,7 @@ impl BatchSystem {
     /// as in the reference ([`super::contact`]).
     pub fn set_collider(&mut self, collider: Option<Arc<SignedDistanceField>>) {
         self.collider = collider.map(|field| {
-            let near = NearCells::new(&field, self.settings.contact.skin_m);
+            let near = NearCells::new(&field);
             (field, near)
         });
     }
@@ -231,8 +231,6 @@ impl BatchSystem {
     /// checked here: [`ContactSettings::validate`] says what is in range).
     pub fn set_contact_settings(&mut self, settings: ContactSettings) {
         self.settings.contact = settings;
-        let field = self.collider.take().map(|(field, _)| field);
-        self.set_collider(field);
     }
 
     /// Sets the guard (`None`: no checks). Default: [`Guard::default`]; a

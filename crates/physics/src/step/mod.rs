@@ -26,7 +26,6 @@
 //! also gives the Jacobians' time derivatives, which make each product
 //! G x three prefix sums and a projection.
 
-pub mod block_velocity_terms;
 pub mod forces;
 pub mod generic;
 pub mod mass;

@@ -5,7 +5,8 @@
 //!
 //! [`SkinTest::may_feel`] is exact and scalar: per lane it widens the
 //! point to f64, takes it into head coordinates, divides by the cell and
-//! reads one bit, twice with the implicit contact's predicted point. On an
+//! reads the cell's lowest distance, which it compares with the skin plus
+//! the point's reach over the step. On an
 //! imported groom it ran at every element end point of every lane (where
 //! contact acted then), in the step and in the guard's measure, and fewer
 //! than 3% of those points passed it (Sintel on a still head: 58,365 of
@@ -19,10 +20,12 @@
 //! once, in f64 ([`LaneScreen::new`]). A point relative to its root is then
 //! mapped by the head's rotation scaled to cells, in lanes: eight points
 //! for nine multiply-adds; the cell, whether the point is near a cell face,
-//! and the bit's place in the bitmap are found in lanes too, and only the
-//! bit is read lane by lane ([`NearCells::screen_contains`]). A lane whose
-//! bit is clear is skipped; the others go on to the exact test, so results
-//! are bit for bit those of the exact test alone.
+//! the value's place in [`NearCells`] and the point's reach over the step
+//! h |v − v_surface| are found in lanes too, and only the cell's lowest
+//! distance is read lane by lane ([`NearCells::lowest_m`]). A lane whose
+//! cell, less the reach, is beyond the skin is skipped; the others go on
+//! to the exact test, so results are bit for bit those of the exact test
+//! alone.
 //!
 //! **Why this never skips a point the exact test keeps.** While every term
 //! summed into a grid coordinate is below `LARGEST_CELLS` (2¹² cells),
@@ -31,14 +34,20 @@
 //!
 //! - a coordinate more than `FACE_MARGIN` (1/32 cell) from every face of
 //!   a cell of the grid has the exact test's cell, and reads that cell's
-//!   own bit: the screen is then exactly the exact test;
+//!   own value;
 //! - a coordinate nearer a face, or in the one-cell band just outside the
-//!   grid, may belong to the next cell: it reads the near set grown by one
-//!   cell, which holds every cell within one of it;
+//!   grid, may belong to the next cell: it reads the lowest value over its
+//!   cell and the 26 around it, at most the exact test's;
 //! - a coordinate below −1 or at or above cells + 1 is outside [0, cells]
 //!   exactly, where the exact test rejects too;
 //! - a lane with a larger term, or a non-finite one, is left to the exact
-//!   test.
+//!   test;
+//! - the f32 reach is at least the exact test's f64 one: the speed is
+//!   raised by [`REACH_SLACK`] of the sum of every term's magnitude (far
+//!   above the f32 rounding of the head's surface velocity and the
+//!   difference) and a floor, the skin by [`SKIN_MARGIN_M`].
+
+use std::cmp::Ordering;
 
 use glam::{DMat3, DVec3};
 
@@ -64,6 +73,10 @@ pub struct LaneScreen {
     head_angular_velocity_rad_per_s: [f32; 3],
     /// Step length, seconds (the implicit contact's look-ahead).
     h_secs: f32,
+    /// The contact skin, metres, rounded up to f32, with
+    /// [`SKIN_MARGIN_M`]: a lane is kept unless its cell is farther than
+    /// this plus its reach.
+    skin_limit_m: f32,
 }
 
 impl LaneScreen {
@@ -90,6 +103,7 @@ impl LaneScreen {
             head_velocity_m_per_s: head.velocity_m_per_s.as_vec3().to_array(),
             head_angular_velocity_rad_per_s: head.angular_velocity_rad_per_s.as_vec3().to_array(),
             h_secs: test.inputs.h_secs as f32,
+            skin_limit_m: test.inputs.settings.skin_m as f32 + SKIN_MARGIN_M,
         }
     }
 
@@ -105,28 +119,50 @@ impl LaneScreen {
         velocity_m_per_s: V3<T>,
         implicit: bool,
     ) -> u32 {
-        let lanes3 = |a: &[[f32; LANES]; 3]| {
-            V3::new(
-                T::from_fn(|i| a[0][i]),
-                T::from_fn(|i| a[1][i]),
-                T::from_fn(|i| a[2][i]),
-            )
-        };
-        let root = lanes3(&self.root_cells);
+        let root: V3<T> = lanes3(&self.root_cells);
         let offset = self.in_cells(point_m);
-        let grid = root + offset;
         let size = largest_abs(root).max(largest_abs(offset));
-        let mut mask = near_mask(near, grid, size);
-        if implicit {
-            // Where the exact test's predicted point goes: p + h (v − v_surface(p)).
-            let from_head = lanes3(&self.root_from_head_m) + point_m;
-            let w = V3::splat(self.head_angular_velocity_rad_per_s);
-            let surface = V3::splat(self.head_velocity_m_per_s) + w.cross(from_head);
-            let moved = self.in_cells((velocity_m_per_s - surface).scale(T::splat(self.h_secs)));
-            let size = size.max(largest_abs(grid)).max(largest_abs(moved));
-            mask |= near_mask(near, grid + moved, size);
+        let index = screen_index(near, root + offset, size);
+        let reach = if implicit {
+            self.reach(point_m, velocity_m_per_s)
+        } else {
+            T::splat(0.0)
+        };
+        let mut mask = 0;
+        for lane in 0..T::WIDTH {
+            let i = index.lane(lane);
+            let may = if i.is_nan() {
+                true
+            } else if i < 0.0 {
+                false
+            } else {
+                let (lowest, reach) = (near.lowest_m(i as usize), reach.lane(lane));
+                // The f32 difference rounds by at most an ulp of its terms.
+                let rounding = (lowest.abs() + reach) * REACH_SLACK;
+                // A NaN compares as nothing: the lane is kept.
+                (lowest - reach).partial_cmp(&(self.skin_limit_m + rounding))
+                    != Some(Ordering::Greater)
+            };
+            mask |= u32::from(may) << lane;
         }
         mask
+    }
+
+    /// Per lane, at least the exact test's reach h |v − v_surface(p)| for a
+    /// point `point_m` (relative to its root) moving at `velocity_m_per_s`:
+    /// the f32 speed raised by [`REACH_SLACK`] of every term summed into it
+    /// and [`SPEED_FLOOR_M_PER_S`].
+    #[inline(always)]
+    fn reach<T: Real>(&self, point_m: V3<T>, velocity_m_per_s: V3<T>) -> T {
+        let from_head = lanes3::<T>(&self.root_from_head_m) + point_m;
+        let head_velocity = V3::splat(self.head_velocity_m_per_s);
+        let w = V3::splat(self.head_angular_velocity_rad_per_s);
+        let relative = velocity_m_per_s - (head_velocity + w.cross(from_head));
+        let terms =
+            sum_abs(velocity_m_per_s) + sum_abs(head_velocity) + sum_abs(w) * sum_abs(from_head);
+        let speed = relative.dot(relative).sqrt();
+        let slack = T::splat(REACH_SLACK);
+        T::splat(self.h_secs) * (speed + slack * (speed + terms) + T::splat(SPEED_FLOOR_M_PER_S))
     }
 
     /// A world offset `d` (metres) in grid cells, head axes.
@@ -145,17 +181,31 @@ impl LaneScreen {
 const LARGEST_CELLS: f32 = 4096.0;
 
 /// How close to a cell face, in cells, a screened coordinate reads the
-/// grown set instead of its own cell's bit: more than three times the
+/// grown set instead of its own cell's value: more than three times the
 /// screen's rounding (module docs).
 const FACE_MARGIN: f32 = 1.0 / 32.0;
 
-/// Per lane, whether grid point `grid` (cells) may lie in a near cell of
-/// `near` (see the module docs for why this covers the exact test); `size`
-/// is the largest magnitude of the terms summed into `grid`, which marks
-/// the lanes the screen leaves to the exact test. The cell and its place in
-/// the bitmap are found in lanes; only the bit is read lane by lane.
+/// Relative slack of the screen's f32 reach and difference: some hundred
+/// f32 ulps (2⁻²³ each), far above their rounding (module docs).
+const REACH_SLACK: f32 = 1e-5;
+
+/// Speed, m/s, added to every reach: covers the rounding of a speed near
+/// zero, where relative slack is none.
+const SPEED_FLOOR_M_PER_S: f32 = 1e-6;
+
+/// Metres added to the skin: above the skin's own rounding to f32 (2 nm at
+/// the largest skin, 2 cm) and the exact test's margin (1e-12 m).
+const SKIN_MARGIN_M: f32 = 1e-6;
+
+/// Per lane, the index into [`NearCells::lowest_m`] that grid point `grid`
+/// (cells) reads (see the module docs for why its value is never above
+/// the exact test's): the point's own cell, or the grown half where it is
+/// within rounding of a face; −1 where it is outside the grid, NaN where
+/// the screen leaves the lane to the exact test. `size` is the largest
+/// magnitude of the terms summed into `grid`, which marks those lanes.
+/// Everything is found in lanes; only the value is read lane by lane.
 #[inline(always)]
-fn near_mask<T: Real>(near: &NearCells, grid: V3<T>, size: T) -> u32 {
+fn screen_index<T: Real>(near: &NearCells, grid: V3<T>, size: T) -> T {
     let cells = near.cells();
     let (zero, one) = (T::splat(0.0), T::splat(1.0));
     // NaN in every lane with a non-finite coordinate (∞ · 0 is NaN), and in
@@ -186,21 +236,10 @@ fn near_mask<T: Real>(near: &NearCells, grid: V3<T>, size: T) -> u32 {
     let row = T::splat(cells[0] as f32);
     let plane = T::splat((cells[0] * cells[1]) as f32);
     // Exact in f32: a field has at most 2²¹ cells (MAX_CELLS), and the
-    // grown half of the bitmap doubles that.
+    // grown half of the values doubles that.
     let own = x + row * y + plane * z;
     let index = own + at_face.select_greater(zero, T::splat(near.cell_count() as f32), zero);
-    let index = outside.select_greater(T::splat(0.5), T::splat(-1.0), index) + unscreened;
-    let mut mask = 0;
-    for lane in 0..T::WIDTH {
-        let i = index.lane(lane);
-        let may = if i.is_nan() {
-            true
-        } else {
-            i >= 0.0 && near.screen_contains(i as usize)
-        };
-        mask |= u32::from(may) << lane;
-    }
-    mask
+    outside.select_greater(T::splat(0.5), T::splat(-1.0), index) + unscreened
 }
 
 /// Per-lane triples regrouped by axis: x of every lane, then y, then z.
@@ -213,4 +252,21 @@ fn by_axis(per_lane: [[f32; 3]; LANES]) -> [[f32; LANES]; 3] {
 fn largest_abs<T: Real>(v: V3<T>) -> T {
     let abs = |a: T| a.max(-a);
     abs(v.x).max(abs(v.y)).max(abs(v.z))
+}
+
+/// A triple of per-lane arrays (x, y, z) as one vector of lanes.
+#[inline(always)]
+fn lanes3<T: Real>(a: &[[f32; LANES]; 3]) -> V3<T> {
+    V3::new(
+        T::from_fn(|i| a[0][i]),
+        T::from_fn(|i| a[1][i]),
+        T::from_fn(|i| a[2][i]),
+    )
+}
+
+/// Per lane, |x| + |y| + |z| of `v` (at least its length).
+#[inline(always)]
+fn sum_abs<T: Real>(v: V3<T>) -> T {
+    let abs = |a: T| a.max(-a);
+    abs(v.x) + abs(v.y) + abs(v.z)
 }

@@ -43,9 +43,9 @@
 //! **Cost.** With no collider, [`super::BatchSystem`] branches once per
 //! batch to the sweep without this stage ([`NoContact`](super::forward::NoContact), which compiles to
 //! nothing). With one, each lane's sample is first taken into the field's
-//! grid and tested against [`NearCells`], one bit per grid cell that says
-//! whether any point of the cell can be within the skin; only points that
-//! pass pay for the full lookup (eight grid values, the gradient, the
+//! grid and tested against [`NearCells`], per grid cell the lowest distance
+//! any point of it has from the surface, less the sample's reach over the
+//! step; only points that can reach the skin pay for the full lookup (eight grid values, the gradient, the
 //! force). The test is exact: a point it skips has a force of exactly
 //! zero, so results do not depend on it. The point-inertia products run
 //! only for samples where some lane of the batch is in contact.

@@ -4,11 +4,14 @@
 //!
 //! A lookup is eight grid values, a gradient and a force, per point; most
 //! points of a head of hair are nowhere near the scalp. [`NearCells`] keeps
-//! one bit per grid cell, set where some point of the cell can be within
-//! the contact skin, and [`SkinTest`] takes a point into the grid and
-//! reads its bit. The test is exact: a point it rejects has a force of
+//! per grid cell the lowest distance any point of it can have from the
+//! surface, and [`SkinTest`] takes a point into the grid and compares its
+//! cell's value with the skin plus how far the point moves towards the
+//! surface in a step. The test is exact: a point it rejects has a force of
 //! exactly zero, so results do not depend on it (module docs of
 //! [`crate::batch::contact`], "Cost").
+
+use std::cmp::Ordering;
 
 use glam::{DMat3, DVec3};
 
@@ -33,52 +36,58 @@ const CELL_CORNERS: [(usize, usize, usize); 8] = [
 /// lookup (1e-18 m on centimetre distances), far below anything physical.
 const CORNER_MARGIN_M: f64 = 1e-12;
 
-/// Which cells of a field's grid can hold a point within the contact skin:
-/// one bit per cell, set where the lowest of its eight corner values is
-/// within the skin (the lookup interpolates between them, so a point of a
-/// cell with every corner beyond the skin feels no force). A skipped point
-/// costs one bit instead of eight grid values and the gradient: most
-/// points of a head of hair are nowhere near the scalp. 2 bits per cell
-/// (the set and the set grown by a cell): 512 KiB for the largest field
-/// ([`MAX_CELLS`](crate::collision::sdf::MAX_CELLS)).
+/// Relative slack on the exact test's reach h |v − v_surface|: the field's
+/// normal is unit to round-off (1e-15), so h |v_rel · n| ≤ reach.
+const REACH_SLACK: f64 = 1e-9;
+
+/// How far from the head's surface each cell of a field's grid lies: per
+/// cell, the lowest of its eight corner values (the lookup interpolates
+/// between them, so no point of the cell is nearer than that). Whether a
+/// point can feel the contact law then costs one value instead of eight
+/// grid values and the gradient: most points of a head of hair are
+/// nowhere near the scalp. Two f32 per cell (the cell's own and the lowest
+/// over it and its 26 neighbours): 16 MiB for the largest field
+/// ([`MAX_CELLS`](crate::collision::sdf::MAX_CELLS)), as much as the
+/// field's own values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NearCells {
-    /// Cell i's bit at index i < `count`; then, at `count` + i, the same
-    /// set grown by one cell along every axis (set where cell i or one of
-    /// its 26 neighbours is near). The exact test reads the first half; the
-    /// f32 lane screen ([`super::lane_screen`]) reads a point's own cell
-    /// where it is well inside it, and the grown set where it is within
-    /// rounding of a face, so that rounding can never move it out of a
-    /// near cell's reach.
-    bits: Vec<u64>,
+    /// Cell i's lowest corner value at index i < `count`, metres, rounded
+    /// down to f32 (−∞ where a corner is NaN: the lookup would give a NaN
+    /// force, not none); then, at `count` + i, the lowest over cell i and
+    /// its 26 neighbours. The exact test reads the first half; the f32 lane
+    /// screen ([`super::lane_screen`]) reads a point's own cell where it is
+    /// well inside it, and the grown half where it is within rounding of a
+    /// face, so that rounding can never move it out of a near cell's reach.
+    lowest_m: Vec<f32>,
     cells: [usize; 3],
     count: usize,
 }
 
 impl NearCells {
-    /// The cells of `field` that may be within `skin_m` of its surface.
-    pub fn new(field: &SignedDistanceField, skin_m: f64) -> Self {
+    /// The cells of `field` and how near each is to its surface.
+    pub fn new(field: &SignedDistanceField) -> Self {
         let cells = field.dims.map(|d| d.saturating_sub(1));
         let count = cells[0] * cells[1] * cells[2];
-        let mut bits = vec![0u64; (2 * count).div_ceil(64)];
+        let mut lowest_m = vec![f32::INFINITY; 2 * count];
         for z in 0..cells[2] {
             for y in 0..cells[1] {
                 for x in 0..cells[0] {
                     let corners = CELL_CORNERS.map(|(dx, dy, dz)| field.at(x + dx, y + dy, z + dz));
-                    let lowest = corners.iter().copied().fold(f64::INFINITY, f64::min);
-                    // An interpolated value can round below its lowest
-                    // corner by an ulp or so: the margin keeps the test on
-                    // the safe side. A NaN corner counts as near (the
-                    // lookup would give a NaN force, not none).
-                    if corners.iter().any(|c| c.is_nan()) || lowest <= skin_m + CORNER_MARGIN_M {
-                        let i = x + cells[0] * (y + cells[1] * z);
-                        bits[i / 64] |= 1 << (i % 64);
-                    }
+                    let lowest = if corners.iter().any(|c| c.is_nan()) {
+                        f64::NEG_INFINITY
+                    } else {
+                        corners.iter().copied().fold(f64::INFINITY, f64::min)
+                    };
+                    lowest_m[x + cells[0] * (y + cells[1] * z)] = round_down(lowest);
                 }
             }
         }
-        grow_by_one_cell(&mut bits, cells, count);
-        Self { bits, cells, count }
+        lowest_over_neighbours(&mut lowest_m, cells, count);
+        Self {
+            lowest_m,
+            cells,
+            count,
+        }
     }
 
     /// Cells in the grid.
@@ -91,46 +100,41 @@ impl NearCells {
         self.cells
     }
 
-    /// Whether cell (x, y, z) may be within the skin.
-    #[inline(always)]
-    pub fn contains(&self, x: usize, y: usize, z: usize) -> bool {
-        let i = x + self.cells[0] * (y + self.cells[1] * z);
-        i < self.count && bit(&self.bits, i)
-    }
-
     /// For `index` = x + cells_x (y + cells_y z) below [`Self::cell_count`],
-    /// whether that cell may be within the skin; for `count` + that index,
-    /// whether it or one of its neighbours may be.
+    /// no point of that cell is nearer the surface than this, metres; for
+    /// `count` + that index, no point of it or its neighbours. Rounded
+    /// down to f32; +∞ past the end.
     #[inline(always)]
-    pub fn screen_contains(&self, index: usize) -> bool {
-        bit(&self.bits, index)
+    pub fn lowest_m(&self, index: usize) -> f32 {
+        self.lowest_m.get(index).copied().unwrap_or(f32::INFINITY)
     }
 }
 
-/// Bit `i` of `bits` (false past the end).
-#[inline(always)]
-fn bit(bits: &[u64], i: usize) -> bool {
-    bits.get(i / 64)
-        .is_some_and(|word| word & (1 << (i % 64)) != 0)
+/// The largest f32 at or below `x`.
+fn round_down(x: f64) -> f32 {
+    let rounded = x as f32;
+    if f64::from(rounded) > x {
+        rounded.next_down()
+    } else {
+        rounded
+    }
 }
 
-/// Sets, in the second half of `bits` (from index `count`), the first
-/// half's cells (one per cell of a `cells` grid, x fastest) with every set
-/// cell's 26 neighbours.
-fn grow_by_one_cell(bits: &mut [u64], cells: [usize; 3], count: usize) {
+/// Sets, in the second half of `lowest_m` (from index `count`), each cell's
+/// lowest over the first half's values of it and its 26 neighbours (one per
+/// cell of a `cells` grid, x fastest).
+fn lowest_over_neighbours(lowest_m: &mut [f32], cells: [usize; 3], count: usize) {
     let index = |x: usize, y: usize, z: usize| x + cells[0] * (y + cells[1] * z);
     let around = |c: usize, n: usize| c.saturating_sub(1)..(c + 2).min(n);
     for z in 0..cells[2] {
         for y in 0..cells[1] {
             for x in 0..cells[0] {
-                if !bit(bits, index(x, y, z)) {
-                    continue;
-                }
+                let own = lowest_m[index(x, y, z)];
                 for nz in around(z, cells[2]) {
                     for ny in around(y, cells[1]) {
                         for nx in around(x, cells[0]) {
-                            let i = count + index(nx, ny, nz);
-                            bits[i / 64] |= 1 << (i % 64);
+                            let grown = &mut lowest_m[count + index(nx, ny, nz)];
+                            *grown = grown.min(own);
                         }
                     }
                 }
@@ -153,7 +157,7 @@ pub struct SkinTest<'a> {
 
 impl<'a> SkinTest<'a> {
     /// The test for `inputs`; `near` must be [`NearCells::new`] of the
-    /// inputs' collider and skin.
+    /// inputs' collider.
     pub fn new(inputs: ContactInputs<'a>, near: &'a NearCells) -> Self {
         Self {
             inputs,
@@ -182,13 +186,19 @@ impl<'a> SkinTest<'a> {
         })
     }
 
-    /// Whether the point at `point_m` (world) can feel the collider: false
-    /// only where [`ContactInputs::force`] is exactly zero, because the
-    /// point is outside the field's grid or in a cell that is not
-    /// [`NearCells`]. The position is computed with the same operations as
-    /// in the full lookup, so the cell is the one the lookup would use.
+    /// Whether a point at `point_m` (world) moving at `velocity_m_per_s`
+    /// can feel the contact law during the step: false only where
+    /// [`ContactInputs::force`] (without `implicit`) or
+    /// [`ContactInputs::implicit_force`] (with it) gives no force. The
+    /// explicit law acts where d < skin; the implicit one where
+    /// d + h min(v_rel · n, 0) < skin, and h |v_rel · n| is at most the
+    /// reach h |v − v_surface|. d is at least the lowest corner value of
+    /// the point's cell, so a point is rejected only where that lowest
+    /// value, less the reach, is beyond the skin, or outside the field's
+    /// grid (no lookup there). The position is computed with the same
+    /// operations as in the lookup, so the cell is the one it would use.
     #[inline(always)]
-    pub fn may_touch(&self, point_m: DVec3) -> bool {
+    pub fn may_feel(&self, point_m: DVec3, velocity_m_per_s: DVec3, implicit: bool) -> bool {
         let field = self.inputs.collider;
         let local = self.body_from_world * (point_m - self.inputs.head.position_m);
         let g = (local - field.origin_m) / field.cell_m;
@@ -201,22 +211,21 @@ impl<'a> SkinTest<'a> {
             return false;
         }
         let cell = |a: usize| (g[a] as usize).min(field.dims[a].saturating_sub(2));
-        self.near.contains(cell(0), cell(1), cell(2))
-    }
-
-    /// Whether a point at `point_m` (world) moving at `velocity_m_per_s`
-    /// can feel the collider during the step: [`Self::may_touch`] where it
-    /// is, and with `implicit` (the Exact steps' implicit contact,
-    /// [`ContactInputs::implicit_force`], which also acts on a point that
-    /// will enter the skin during the step) where it is headed.
-    #[inline(always)]
-    pub fn may_feel(&self, point_m: DVec3, velocity_m_per_s: DVec3, implicit: bool) -> bool {
-        if self.may_touch(point_m) {
-            return true;
-        }
-        let h = self.inputs.h_secs;
-        implicit
-            && self.may_touch(point_m + h * (velocity_m_per_s - self.surface_velocity(point_m)))
+        let cells = self.near.cells();
+        let lowest = f64::from(
+            self.near
+                .lowest_m(cell(0) + cells[0] * (cell(1) + cells[1] * cell(2))),
+        );
+        let reach = if implicit {
+            let relative = velocity_m_per_s - self.surface_velocity(point_m);
+            self.inputs.h_secs * relative.length() * (1.0 + REACH_SLACK)
+        } else {
+            0.0
+        };
+        // A NaN anywhere compares as nothing and keeps the point (its force
+        // is NaN).
+        (lowest - reach).partial_cmp(&(self.inputs.settings.skin_m + CORNER_MARGIN_M))
+            != Some(Ordering::Greater)
     }
 
     /// The velocity of the head's surface at world point `point_m`, m/s.

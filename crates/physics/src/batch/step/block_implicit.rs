@@ -1,6 +1,6 @@
 //! Block-diagonal's velocity-implicit step: its own matrix and its own
-//! Lagrangian's velocity terms, for every width (the f64 reference's
-//! scheme, [`crate::step::block_velocity_terms`], written once).
+//! Lagrangian's velocity terms ([`crate::batch::block_terms`]), for every
+//! width: the f64 reference's and the f32 batch engine's, written once.
 //!
 //! # How it works
 //!
