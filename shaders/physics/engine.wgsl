@@ -18,6 +18,8 @@
 //   velocity_product              batch/velocity_terms.rs (G z by
 //                                 polarisation)
 //   block_product                 batch/step/block_implicit.rs (G_bd z)
+//   add_contact_coupling          batch/step/block_contact.rs ((C − C_bd) z,
+//                                 the contact Block's blocks leave out)
 //   gmres_correct                 gmres.rs correct (right-preconditioned
 //                                 GMRES on (P + θhG) Δv = rhs)
 //   integrate                     batch/suffix.rs
@@ -600,8 +602,10 @@ fn project_contact(c: array<mat3x3<f32>, 4>, a: mat3x3<f32>, b: mat3x3<f32>) -> 
 
 // batch::step::block_diagonal::blocks_tip_to_root with local moments,
 // after forward_with: each element's step matrix s M_QQ + D (+ the
-// contact past it) inverted and kept (elimination[i].s_inv), Δv₀ = block⁻¹
-// rhs into slot DELTA_V. With `own_terms` (velocity-implicit), Block's own
+// contact past it) inverted and kept (elimination[i].s_inv), the contact's
+// share C_bd kept too (elimination[i].w_top, which Block-diagonal does not
+// otherwise use: block_contact::contact_diagonal), Δv₀ = block⁻¹ rhs into
+// slot DELTA_V. With `own_terms` (velocity-implicit), Block's own
 // velocity terms (slot CORRECTION) join the force and the loads' stiffness
 // h²K_Q (load_stiffness::UniformLoad) the block. Returns Σ|rhs|².
 fn blocks_tip_to_root(st: Strand, root: FrameState, own_terms: bool) -> f32 {
@@ -641,9 +645,12 @@ fn blocks_tip_to_root(st: Strand, root: FrameState, own_terms: bool) -> f32 {
             rhs = rhs - stiffness * v[i].xyz;
             step_matrix += stiffness;
         }
+        var contact_block = zero3();
         if touched {
-            step_matrix += project_contact(contact, el.a, el.b);
+            contact_block = project_contact(contact, el.a, el.b);
+            step_matrix += contact_block;
         }
+        elimination[i].w_top = contact_block;
         let inverse = inverse3(step_matrix);
         elimination[i].s_inv = inverse;
         krylov[slot(st, DELTA_V, e)] = vec4<f32>(inverse * rhs, 0.0);
@@ -835,6 +842,47 @@ fn block_product(st: Strand, root: FrameState, z: u32, out: u32) {
     }
 }
 
+// batch::step::block_contact::add_contact_coupling: krylov slot `out` +=
+// ((C − C_bd) z) · scale, the head's contact between elements that the
+// blocks leave out (C_bd in elimination[i].w_top, from
+// blocks_tip_to_root). Slots CORRECTION_PLUS and CORRECTION_MINUS, free
+// once block_product has read them, hold the wrench of each element's own
+// samples.
+fn add_contact_coupling(st: Strand, z: u32, scale: f32, out: u32) {
+    // Root to tip: the twist of z at each element's start point, and the
+    // wrench it makes at the element's own samples.
+    var linear = vec3<f32>(0.0);
+    var angular = vec3<f32>(0.0);
+    for (var e = 0u; e < st.elements; e++) {
+        let i = st.first + e;
+        var force = vec3<f32>(0.0);
+        var torque = vec3<f32>(0.0);
+        if scratch[i].span.w != 0.0 {
+            let c = scratch[i].contact;
+            force = c[0] * linear + c[1] * angular;
+            torque = c[2] * linear + c[3] * angular;
+        }
+        krylov[slot(st, CORRECTION_PLUS, e)] = vec4<f32>(force, 0.0);
+        krylov[slot(st, CORRECTION_MINUS, e)] = vec4<f32>(torque, 0.0);
+        let x = krylov[slot(st, z, e)].xyz;
+        linear = linear + cross(angular, scratch[i].span.xyz) + scratch[i].a * x;
+        angular += scratch[i].b * x;
+    }
+    // Tip to root: the wrench of the samples past e about e's end point.
+    var f = vec3<f32>(0.0);
+    var tau = vec3<f32>(0.0);
+    for (var k = 0u; k < st.elements; k++) {
+        let e = st.elements - 1u - k;
+        let i = st.first + e;
+        let x = krylov[slot(st, z, e)].xyz;
+        let whole = transpose(scratch[i].a) * f + transpose(scratch[i].b) * tau;
+        let coupling = whole - elimination[i].w_top * x;
+        krylov[slot(st, out, e)] = vec4<f32>(krylov[slot(st, out, e)].xyz + coupling * scale, 0.0);
+        tau = tau + cross(scratch[i].span.xyz, f) + krylov[slot(st, CORRECTION_MINUS, e)].xyz;
+        f += krylov[slot(st, CORRECTION_PLUS, e)].xyz;
+    }
+}
+
 fn dot_slots(st: Strand, a: u32, b: u32) -> f32 {
     var s = 0.0;
     for (var e = 0u; e < st.elements; e++) {
@@ -857,11 +905,13 @@ fn precondition(st: Strand, b: u32, x: u32) {
 }
 
 // The step's velocity terms' product: krylov slot `out` = G (slot `z`),
-// or Block-diagonal's G_bd.
+// or Block-diagonal's G_bd with the contact its blocks leave out,
+// G_bd + (C − C_bd)/θh (GMRES scales the product by θh).
 fn operator_product(st: Strand, root: FrameState, z: u32, out: u32) {
     velocity_product(st, root, z, out);
     if params.method == METHOD_BLOCK {
         block_product(st, root, z, out);
+        add_contact_coupling(st, z, 1.0 / params.block_h_secs, out);
     }
 }
 

@@ -13,6 +13,7 @@ mod batch_lanes;
 mod batch_parity;
 mod batch_stable_step;
 mod batch_volume;
+mod block_contact;
 mod block_velocity_terms;
 mod collision;
 mod derivatives;

@@ -55,7 +55,8 @@ pub struct Krylov<T> {
 
 /// What Block-diagonal's velocity-implicit step needs besides GMRES's
 /// vectors: its own velocity terms' sweep, their correction at the step's
-/// rates and at shifted ones, and the inverse of each diagonal block.
+/// rates and at shifted ones, the inverse of each diagonal block, and
+/// each block's share of the head's contact, C_bd ([`super::block_contact`]).
 #[derive(Clone, Debug)]
 pub struct BlockBuffers<T> {
     pub(super) elements: Vec<BlockElement<T>>,
@@ -64,6 +65,7 @@ pub struct BlockBuffers<T> {
     pub(super) plus: Vec<V3<T>>,
     pub(super) minus: Vec<V3<T>>,
     pub(super) inverse: Vec<M3<T>>,
+    pub(super) contact_block: Vec<M3<T>>,
 }
 
 impl<T: Real> Krylov<T> {

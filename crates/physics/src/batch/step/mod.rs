@@ -6,6 +6,7 @@
 //! The buffers are sized by element count and GMRES iterations and made
 //! once per thread: a step allocates nothing.
 
+pub mod block_contact;
 pub mod block_diagonal;
 pub mod block_implicit;
 pub mod dense;

@@ -196,19 +196,13 @@ fn batch_engine_guard_is_told_once_in_words() {
 }
 
 /// Issue 33: Block-diagonal with its own velocity terms (the default
-/// scheme) should hold the curly preset on a still head, on both engines.
-/// It does not today (ignored): a few strands draw the guard on either
-/// engine (measured 2026-12-02: batch 1 strand, 3 frames from t = 1.77 s;
-/// reference 2 strands, 2 frames), points at 50-100 m/s after a drape.
-/// Block-diagonal keeps only the diagonal blocks of the implicit
-/// contact's term h (h k + c) Jᵀ n nᵀ J, so a contact spring that many
-/// elements share is explicit in their joint motion, and at the contact's
-/// α = 4 that overshoots (at α = 1 neither engine draws the guard here).
-/// Until 2026-12-02 the batch engine passed only because its contact
-/// screen skipped samples moving fast across the head, which the law
-/// pushes (docs/gpu.md).
+/// scheme) holds the curly preset on a still head, on both engines. Until
+/// its GMRES held the contact between elements that its blocks leave out
+/// (batch/step/block_contact.rs) it did not: a contact spring that many
+/// elements share was explicit in their joint motion, and at the
+/// contact's α = 4 that overshot (measured 2026-12-02: batch 1 strand
+/// reset, 3 frames from t = 1.77 s; reference 2 strands, 2 frames).
 #[test]
-#[ignore = "fails today: Block-diagonal's contact coupling (issue 33)"]
 fn block_diagonal_holds_the_curly_preset_on_a_still_head() {
     for engine in [EngineKind::Batch, EngineKind::Reference] {
         let app = curls_on_block(engine, StepScheme::default());
