@@ -80,12 +80,14 @@ pub const LAVAPIPE_LOOP_BUDGET: usize = 65_535;
 /// and its own terms, the blocks, and per GMRES iteration the
 /// preconditioner, the product G_bd z (the velocity product's sweep and
 /// two more of the own terms', each n(points + 1), with the shifts and
-/// sums) and Arnoldi's orthogonalisation. (Exact's step stays under the
+/// sums, and the contact's coupling, `add_contact_coupling`, two sweeps
+/// of n) and Arnoldi's orthogonalisation. (Exact's step stays under the
 /// budget at the worst case a style may ask for: `tests/gpu_engine.rs`.)
 pub fn block_loop_count(n: usize, points: usize, iterations: usize) -> usize {
     let sweep = n * (points + 1);
     let correction = sweep + n;
-    let product = (n + sweep + n) + (n + 2 * correction + n);
+    let coupling = 2 * n;
+    let product = (n + sweep + n) + (n + 2 * correction + n) + coupling;
     let start = sweep + correction + n + product + n;
     let per_iteration = |j: usize| n + product + n + 2 * n * (j + 1) + 2 * n;
     start + (0..iterations).map(per_iteration).sum::<usize>() + iterations * n + n
