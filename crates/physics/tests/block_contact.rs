@@ -5,9 +5,12 @@
 //! The recursion carries twists and wrenches along the strand through
 //! spatial inertias; the assembly reads only the points' positions.
 
-use helixhair_physics::batch::layout::ElementData;
-use helixhair_physics::batch::step::block_contact::{add_contact_coupling, contact_diagonal};
+use helixhair_physics::batch::layout::{ElementData, StepEnv};
+use helixhair_physics::batch::step::block_contact::add_contact_coupling;
+use helixhair_physics::batch::step::block_diagonal::blocks_tip_to_root;
 use helixhair_physics::batch::vec::{M3, V3};
+use helixhair_physics::model::StrandModel;
+use helixhair_physics::params::StrandParams;
 
 /// The recursion against the assembly, relative to |C x|: f64 round-off
 /// over a handful of 3×3 products per element (measured 6.1e-16).
@@ -131,8 +134,7 @@ fn the_coupling_is_the_assembled_contact_less_its_diagonal_blocks() {
         } = chain(n, &mut numbers);
         let x: Vec<V3<f64>> = (0..n).map(|_| numbers.v3()).collect();
         let (whole, diagonal) = assembled(&scratch, &points, &ends, &x);
-        let mut blocks = vec![M3::zero(); n];
-        contact_diagonal(&scratch, &mut blocks);
+        let blocks = contact_blocks(&scratch);
         let from_blocks: Vec<V3<f64>> = blocks.iter().zip(&x).map(|(b, x)| b.mul_vec(*x)).collect();
         // Starting from the diagonal share, scale 1, `out` becomes C x.
         let mut out = from_blocks.clone();
@@ -181,11 +183,41 @@ fn no_contact_adds_nothing() {
         el.touching = false;
     }
     let x: Vec<V3<f64>> = (0..6).map(|_| numbers.v3()).collect();
-    let mut blocks = vec![M3::zero(); 6];
-    contact_diagonal(&scratch, &mut blocks);
+    let blocks = contact_blocks(&scratch);
     let mut out = vec![V3::zero(); 6];
     add_coupling(&scratch, &blocks, &x, &mut out);
     assert_eq!(length(&out), 0.0);
+}
+
+/// Each element's C_bd as the Block-diagonal step's block sweep hands it
+/// on (the element data alone decide it; the strand's constants only
+/// its other terms).
+fn contact_blocks(scratch: &[ElementData<f64>]) -> Vec<M3<f64>> {
+    let n = scratch.len();
+    let params = StrandParams {
+        elements: n,
+        ..StrandParams::default()
+    };
+    let model = StrandModel::new(&params, 4).expect("valid params");
+    let env = StepEnv {
+        h_secs: 1.0 / 60.0,
+        gravity_m_per_s2: [0.0, -9.81, 0.0],
+        air_velocity_m_per_s: [0.0; 3],
+    };
+    let (mut q, mut v) = (vec![V3::zero(); n], vec![V3::zero(); n]);
+    let mut blocks = vec![M3::zero(); n];
+    blocks_tip_to_root::<f64, true>(
+        &model,
+        &env,
+        scratch,
+        0.0,
+        &mut q,
+        &mut v,
+        None,
+        None,
+        |e, _, contact, _, _, _| blocks[e] = contact,
+    );
+    blocks
 }
 
 /// `out += (C − C_bd) x` at scale 1, with scratch wrench buffers.

@@ -27,12 +27,12 @@
 //! root, the wrenches of the samples past each element are summed about
 //! its end point (τ += span × f as the origin moves back), and
 //! (C x)_e = Aᵀ f + Bᵀ τ. The diagonal share C_bd x_e is the element's
-//! block of the contact past it ([`ContactInertia::project`]), the
-//! matrix the blocks already hold, recorded once a step by
-//! [`contact_diagonal`].
+//! block of the contact past it (`ContactInertia::project`), the
+//! matrix the blocks already hold, recorded as the blocks are made
+//! ([`super::block_diagonal::blocks_tip_to_root`]).
 
 use crate::batch::lanes::Real;
-use crate::batch::layout::{ContactInertia, ElementData};
+use crate::batch::layout::ElementData;
 use crate::batch::vec::{M3, V3};
 
 /// Whether any element of the batch has a sample in contact this step
@@ -41,30 +41,9 @@ pub fn any_touching<T>(scratch: &[ElementData<T>]) -> bool {
     scratch.iter().any(|el| el.touching)
 }
 
-/// Each element's diagonal block of the contact, C_bd, into `out` (one per
-/// element): the contact of the samples past it about its end point,
-/// projected on its rates, as [`super::block_diagonal::blocks_tip_to_root`]
-/// adds it to the element's block.
-pub fn contact_diagonal<T: Real>(scratch: &[ElementData<T>], out: &mut [M3<T>]) {
-    let mut beyond: Option<ContactInertia<T>> = None;
-    for (e, el) in scratch.iter().enumerate().rev() {
-        out[e] = match &beyond {
-            Some(c) => c.project(&el.a, &el.b),
-            None => M3::zero(),
-        };
-        if let Some(c) = &mut beyond {
-            c.shift(-el.span);
-        }
-        if el.touching {
-            beyond
-                .get_or_insert_with(ContactInertia::zero)
-                .add(&el.contact);
-        }
-    }
-}
-
 /// out_e += ((C − C_bd) x)_e · `scale` for every element (module docs);
-/// `diagonal` from [`contact_diagonal`], `force` and `torque` buffers of
+/// `diagonal` each element's C_bd as
+/// [`super::block_diagonal::blocks_tip_to_root`] hands it, `force` and `torque` buffers of
 /// N entries for the wrench of each element's own samples.
 pub fn add_contact_coupling<T: Real>(
     scratch: &[ElementData<T>],

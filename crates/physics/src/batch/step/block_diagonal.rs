@@ -44,7 +44,7 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
         v,
         None,
         None,
-        |_, m, rhs, q, v| {
+        |_, m, _, rhs, q, v| {
             integrate(h_secs, q, v, m.inverse() * rhs);
         },
     );
@@ -58,8 +58,10 @@ pub fn step_block_diagonal_with<T: Real, const LOCAL: bool, H: SampleHook<T>>(
 /// Block-diagonal's own velocity terms, [`super::block_implicit`]) and,
 /// with `loads` (`LOCAL` moments only), their stiffness in the matrix
 /// ([`super::load_stiffness`]), handed
-/// to `each(e, matrix, rhs, q_e, v_e)` before the sums move on to the
-/// element before it; moments about each element's own points with
+/// to `each(e, matrix, contact, rhs, q_e, v_e)` before the sums move on
+/// to the element before it (`contact`: the contact's share of `matrix`,
+/// C_bd, zero where no sample past the element touches;
+/// [`super::block_contact`] subtracts it); moments about each element's own points with
 /// `LOCAL` (the sums then move by −span from each element to the next).
 #[expect(
     clippy::too_many_arguments,
@@ -75,7 +77,7 @@ pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
     v: &mut [V3<T>],
     extra_force: Option<&[V3<T>]>,
     loads: Option<&UniformLoad<T>>,
-    mut each: impl FnMut(usize, M3<T>, V3<T>, &mut V3<T>, &mut V3<T>),
+    mut each: impl FnMut(usize, M3<T>, M3<T>, V3<T>, &mut V3<T>, &mut V3<T>),
 ) {
     let s = mass_scale(model, env) + T::splat_f64(env.h_secs) * T::splat_f64(drag_rate_per_s);
     // The loads' stiffness reads the suffix sums about each element's end
@@ -104,10 +106,15 @@ pub fn blocks_tip_to_root<T: Real, const LOCAL: bool>(
             rhs = rhs - stiffness.mul_vec(v[e]);
             step_matrix += stiffness;
         }
-        if let Some(c) = &contact {
-            step_matrix += c.project(&el.a, &el.b);
-        }
-        each(e, step_matrix, rhs, &mut q[e], &mut v[e]);
+        let contact_block = match &contact {
+            Some(c) => {
+                let block = c.project(&el.a, &el.b);
+                step_matrix += block;
+                block
+            }
+            None => M3::zero(),
+        };
+        each(e, step_matrix, contact_block, rhs, &mut q[e], &mut v[e]);
         if LOCAL {
             beyond.shift(-el.span);
             if let Some(c) = &mut contact {

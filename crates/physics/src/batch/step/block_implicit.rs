@@ -54,7 +54,7 @@
 //! coily style at one substep 68, 34, 33, **15**, 42, at two substeps 0,
 //! 0, 0, **2**, 32. It costs nothing: the operator is only scaled.
 
-use super::block_contact::{add_contact_coupling, any_touching, contact_diagonal};
+use super::block_contact::{add_contact_coupling, any_touching};
 use super::implicit::{BlockBuffers, Krylov};
 use crate::batch::block_terms::{BlockElement, block_correction};
 use crate::batch::forward::{SampleHook, forward_with};
@@ -127,16 +127,14 @@ pub fn step_block_implicit<T: Real, H: SampleHook<T>>(
             env.gravity_m_per_s2,
             root.acceleration_m_per_s2,
         )),
-        |e, block, rhs, _, _| {
+        |e, block, contact, rhs, _, _| {
+            contact_block[e] = contact;
             inverse[e] = block.inverse();
             delta_v[e] = inverse[e] * rhs;
             rhs_squared = rhs.dot_add(rhs, rhs_squared);
         },
     );
     let touching = any_touching(scratch);
-    if touching {
-        contact_diagonal(scratch, contact_block);
-    }
     let theta_h = BLOCK_THETA * env.h_secs;
     let iterations = gmres::correct(
         gmres.iterations(),
