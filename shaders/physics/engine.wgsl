@@ -252,9 +252,11 @@ fn implicit_force(p_m: vec3<f32>, velocity: vec3<f32>, rho_s: f32) -> mat2x3<f32
     let cap = rho_s * params.max_acceleration_m_per_s2;
     var push = spring;
     var gain = h * k + c;
+    // Capped: spring and damper scaled by cap / spring for the step
+    // (collision::contact, "The cap").
     if spring > cap {
         push = cap;
-        gain = 0.0;
+        gain = gain * (cap / spring);
     }
     if !(push > 0.0) {
         return none;

@@ -19,7 +19,7 @@ use crate::head::load_head;
 use crate::head::of_style::{OwnHead, head_pivot_m};
 use crate::sim::build::SimOverrides;
 use crate::sim::headless::HeadlessSim;
-use crate::sim::settle::settle_on_head;
+use crate::sim::settle::{settle_on_head, settles_on_head};
 use crate::style::Style;
 use crate::style::error::{StyleError, StyleErrorKind};
 use crate::style::field_path::FieldPath;
@@ -109,7 +109,7 @@ pub fn grown_sim(
             .context("cannot build the head's collision field")?,
     };
     sim.engine_mut().set_collider(Some(Arc::new(collider)));
-    if crate::head::groom::needs_head(&groom.style) {
+    if settles_on_head(&groom.style) {
         settle_on_head(sim.engine_mut());
     }
     Ok((groom, sim))

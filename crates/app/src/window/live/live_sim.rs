@@ -37,7 +37,7 @@ use super::collision::HeadCollider;
 use super::head_motion::FrameHead;
 use crate::sim::build::{SimError, SimOverrides, build_sim};
 use crate::sim::carry::{Carry, carry_state};
-use crate::sim::settle::settle_on_head;
+use crate::sim::settle::{settle_on_head, settles_on_head};
 use crate::sim::strands::StyleStrand;
 
 /// A hair system kept in step with an edited style.
@@ -123,11 +123,11 @@ impl LiveSim {
         self.settle_grown_hair();
     }
 
-    /// Starts hair grown on the scalp settled on the head, not in its
-    /// natural shape through it ([`settle_on_head`]); nothing for other
-    /// styles or without a collider.
+    /// Starts the hair settled on the head, not in its natural shape
+    /// through it or above it ([`settle_on_head`]); nothing for an
+    /// imported groom ([`settles_on_head`]) or without a collider.
     fn settle_grown_hair(&mut self) {
-        if self.collider.is_some() && needs_head(&self.built) {
+        if self.collider.is_some() && settles_on_head(&self.built) {
             settle_on_head(&mut self.engine);
         }
     }

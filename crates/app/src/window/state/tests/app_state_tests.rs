@@ -321,14 +321,12 @@ fn the_compare_defaults_compare_two_solvers_that_run() {
 }
 
 /// Issue 33: Block-diagonal on the plain example styles as the window
-/// runs them, on the default head, still, at 60 Hz with one substep. It
-/// fails today: `sim` gives these styles (listed roots) no head, and there
-/// they hold; on the head their unsettled hair lands on it and the guard
-/// hands frames to Exact (measured 2026-12-02 over 150 frames: curly
-/// 5 interventions on the reference engine; docs/physics.md, "Not yet:
-/// the plain examples on the head", for every style and clip).
+/// runs them, on the default head, still, at 60 Hz with one substep, on
+/// both CPU engines: no guard event in 150 frames. The hair starts settled
+/// on the head (`sim::settle`); started in its natural shape, 30 cm spikes
+/// falling onto the head, it drew the guard (curly: 5 strand-frames on the
+/// reference engine).
 #[test]
-#[ignore = "fails today: Block-diagonal does not hold the plain examples on the head (issue 33)"]
 fn block_diagonal_holds_the_plain_examples_on_the_head() {
     let styles = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/styles");
     let mut failed = Vec::new();
