@@ -286,17 +286,21 @@ fn a_jumping_head_pushes_hair_aside_without_flinging_it() {
     assert!(speed_bound_m_per_s(s.model(), s.v()) < 20.0, "flung");
 }
 
-/// One step of a free point of mass ρS per unit length against the
-/// implicit contact: (ρS + h gain n nᵀ) Δv = h push n, whose solution is
+/// One step of a free point of mass ρS per unit length, half into its
+/// skin above `field`'s sphere, against the implicit contact:
+/// (ρS + h gain n nᵀ) Δv = h push n, whose solution is
 /// Δv = h push n / (ρS + h gain |n|²) (n is the field's gradient, unit
 /// length to the field's interpolation). Returns the point's velocity
-/// along n̂ at the step's end, m/s (negative: still approaching), and n.
-fn free_point_after_one_step(approach_m_per_s: f64) -> (f64, DVec3) {
+/// along n̂ at the step's end, m/s (negative: still approaching), n, and
+/// the point's distance d as the field reads it.
+fn free_point_after_one_step(
+    field: &SignedDistanceField,
+    approach_m_per_s: f64,
+) -> (f64, DVec3, f64) {
     use helixhair_physics::collision::{ContactInputs, ContactSettings};
-    let (field, _) = sphere_field();
     let settings = ContactSettings::default();
     let inputs = ContactInputs {
-        collider: &field,
+        collider: field,
         head: &RigidMotion::default(),
         settings,
         h_secs: H_SECS,
@@ -310,7 +314,8 @@ fn free_point_after_one_step(approach_m_per_s: f64) -> (f64, DVec3) {
     assert!(n.normalize().dot(DVec3::Y) > 0.99, "normal {n}");
     let push = contact.force_n_per_m.dot(n) / n.length_squared();
     let dv = n * (H_SECS * push / (RHO_S + H_SECS * contact.gain * n.length_squared()));
-    ((v + dv).dot(n.normalize()), n)
+    let (d, _) = field.sample(p).expect("inside the grid");
+    ((v + dv).dot(n.normalize()), n, d)
 }
 
 /// The step of [`free_point_after_one_step`], seconds: 60 Hz.
@@ -326,22 +331,20 @@ fn a_point_the_head_meets_at_speed_is_stopped_not_thrown_back() {
     // step at 60 Hz); from about 0.6 m/s on the predicted push is capped,
     // and the old law, the cap as a constant force with no term in the
     // step matrix, threw a point meeting the head at 1 m/s back at 4 m/s.
+    let (field, _) = sphere_field();
     for approach_m_per_s in [0.05, 0.2, 0.6, 1.0, 2.0, 5.0, 20.0] {
-        let (v_end, _) = free_point_after_one_step(approach_m_per_s);
+        let (v_end, _, _) = free_point_after_one_step(&field, approach_m_per_s);
         assert!(
             v_end <= 0.5 * approach_m_per_s && v_end >= -approach_m_per_s,
             "met at {approach_m_per_s} m/s, left at {v_end} m/s"
         );
     }
-    // At 1 m/s by hand (α = 4, the point d = 1 mm into its 2 mm skin, a
+    // At 1 m/s by hand (α = 4, the point d ≈ 1 mm into its 2 mm skin, a
     // its approach along n): per ρS the predicted push is
     // 4(skin − d − h a)/h² − 4a/h (about 494 m/s²), capped to 300, and the
     // gain h k + c = 8/h = 480 /s scaled by 300 / push, so the point keeps
     // approaching at about 0.15 m/s (the old law: 4 m/s back out).
-    let (v_end, n) = free_point_after_one_step(1.0);
-    let (field, _) = sphere_field();
-    let p = DVec3::new(0.0, RADIUS_M + 0.001, 0.0);
-    let (d, _) = field.sample(p).expect("inside the grid");
+    let (v_end, n, d) = free_point_after_one_step(&field, 1.0);
     let h = H_SECS;
     let a = -n.y;
     let push = 4.0 * (0.002 - d - h * a) / (h * h) - 4.0 * a / h;

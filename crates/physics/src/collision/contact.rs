@@ -51,10 +51,11 @@
 //! push, nothing taking it back as the point moved out), and
 //! Block-diagonal, whose strands answer a push in joint motion lighter
 //! than the true ones, turned it into points at 50–180 m/s (the straight
-//! example under the head's shake and nod at 60 Hz: 13 and 67
-//! strand-frames handed to Exact; none with the scaled law). With the
-//! scaled law that point leaves the step still approaching at 0.17 m/s
-//! (uncapped: 0.11 m/s), and the next step stops it.
+//! example settled on the default head, under the head's shake and nod
+//! at 60 Hz, batch engine: 13 and 67 strand-frames handed to Exact; none
+//! with the scaled law). With the scaled law that point, met at the
+//! skin's edge, leaves the step still approaching at 0.17 m/s (uncapped:
+//! 0.11 m/s), and the next step stops it.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};

@@ -43,8 +43,9 @@ pub fn any_touching<T>(scratch: &[ElementData<T>]) -> bool {
 
 /// out_e += ((C − C_bd) x)_e · `scale` for every element (module docs);
 /// `diagonal` each element's C_bd as
-/// [`super::block_diagonal::blocks_tip_to_root`] hands it, `force` and `torque` buffers of
-/// N entries for the wrench of each element's own samples.
+/// [`super::block_diagonal::blocks_tip_to_root`] hands it, `force` and
+/// `torque` buffers of N entries for the wrench of each element's own
+/// samples.
 pub fn add_contact_coupling<T: Real>(
     scratch: &[ElementData<T>],
     diagonal: &[M3<T>],
