@@ -854,24 +854,29 @@ fn every_example_comes_through_a_head_shake_at_60_hz_with_one_substep() {
     assert!(text.contains("nod, shake, turn, jerk"), "{text}");
 }
 
+/// The example styles Block-diagonal does not hold under the jerk at one
+/// substep, draped on the default head: the 30 cm straight and wavy ones
+/// (docs/physics.md, "Not yet: the jerk on the head").
+const JERK_NOT_HELD: [&str; 2] = ["assets/styles/straight.ron", "assets/styles/wavy.ron"];
+
 /// Issue 33: the seed's method at 60 Hz with one substep. Block-diagonal
 /// (its own velocity terms, θ = 0.6, each substep's root acceleration
 /// averaged over it; docs/physics.md section 6) holds every example style
-/// under the shake and the jerk on both engines with no guard event (with
-/// Newton's θ = 1 the wavy style drew 6 under the shake on either; with
-/// the start's acceleration held, 2 under the jerk), and the hair hangs
-/// afterwards: every tip below its root. As `sim` runs them: these styles
-/// list their roots, so `sim` gives them no head to collide with. On the
-/// default head (`render`, `export`, the window), settled on it, it holds
-/// them still and under the nod, the shake and the turn, but not the
-/// 30 cm straight and wavy examples under the jerk (docs/physics.md, "The
-/// plain examples on the head" and "Not yet: the jerk on the head").
+/// on the default head, settled on it, under the shake, the nod and the
+/// turn, and the curly and coily ones under the jerk, on both engines with
+/// no guard event, and the hair hangs afterwards: every tip below its
+/// root. Before the capped contact kept its term in the step matrix, the
+/// straight style drew 13 / 13 (reference / batch) under the shake; with
+/// no settling 26 / 118.
 #[test]
-fn block_diagonal_holds_the_examples_at_60_hz_with_one_substep() {
+fn block_diagonal_holds_the_examples_on_the_head_at_60_hz_with_one_substep() {
     for style in example_styles() {
         let style = style.as_str();
         for engine in ["reference", "batch"] {
-            for clip in ["shake", "jerk"] {
+            for clip in ["shake", "nod", "turn", "jerk"] {
+                if clip == "jerk" && JERK_NOT_HELD.contains(&style) {
+                    continue;
+                }
                 let args = [
                     "--style", style, "--engine", engine, "--method", "block", "--play", clip,
                     "--steps", "300",
@@ -882,24 +887,98 @@ fn block_diagonal_holds_the_examples_at_60_hz_with_one_substep() {
                     "{style} {engine} {clip}: {}",
                     report["guard"]
                 );
-                for strand in report["strands"].as_array().expect("strands") {
-                    let points = triples(&strand["points_m"]);
-                    let (root, tip) = (points[0], points[points.len() - 1]);
-                    assert!(tip[1] < root[1], "{style} {engine} {clip}: {strand}");
-                }
+                assert_tips_hang(&report, &format!("{style} {engine} {clip}"));
             }
         }
     }
 }
 
-/// The GPU engine against the batch engine, every example style under
-/// every clip, 300 frames of 60 Hz with one substep, Exact and
-/// Block-diagonal: the largest distance between the two engines' element
-/// boundary points. Both step the one step in f32 (the GPU's kernel, the
-/// batch engine's SIMD lanes), in other orders and with the collider
-/// looked up in f32 on the GPU, in f64 on the CPU. Measured on lavapipe:
-/// at most 1.1e-6 m with Exact (straight, jerk), 3.2e-6 m with
-/// Block-diagonal (wavy, jerk).
+/// Every strand's tip below its root in a `sim` report.
+fn assert_tips_hang(report: &Value, case: &str) {
+    for strand in report["strands"].as_array().expect("strands") {
+        let points = triples(&strand["points_m"]);
+        assert!(points.iter().flatten().all(|c| c.is_finite()), "{case}");
+        let (root, tip) = (points[0], points[points.len() - 1]);
+        assert!(tip[1] < root[1], "{case}: {strand}");
+    }
+}
+
+/// Where Block-diagonal cannot hold a style (the 30 cm straight and wavy
+/// examples draped on the head under the jerk: their strands answer the
+/// jerk's load 10 to 20 times faster than the true strands in the first
+/// frame, docs/physics.md), the guard hands the failing frames to
+/// Exact and `sim` says so in words: finite hair that hangs, never a
+/// silent switch.
+#[test]
+fn block_diagonal_hands_the_jerk_on_long_draped_hair_to_exact_and_says_so() {
+    for style in JERK_NOT_HELD {
+        for engine in ["reference", "batch"] {
+            let case = format!("{style} {engine}");
+            let out = scratch_dir("block-jerk-handed").join("report.json");
+            let out_arg = out.to_string_lossy().into_owned();
+            let output = run_helixhair(&[
+                "sim",
+                "--style",
+                style,
+                "--engine",
+                engine,
+                "--method",
+                "block",
+                "--play",
+                "jerk",
+                "--steps",
+                "300",
+                "--accept-resets",
+                "--json",
+                &out_arg,
+            ]);
+            assert!(output.status.success(), "{case}: {}", describe(&output));
+            let text = describe(&output);
+            assert!(
+                text.contains("Block-diagonal could not hold this style"),
+                "{case}: {text}"
+            );
+            let json = std::fs::read_to_string(&out).expect("the JSON report exists");
+            let report: Value = serde_json::from_str(&json).expect("a JSON report");
+            let handed = report["guard"]["block_handed_to_exact"].as_u64();
+            assert!(handed.is_some_and(|n| n > 0), "{case}: {}", report["guard"]);
+            assert_tips_hang(&report, &case);
+        }
+    }
+}
+
+/// The open half of issue 33's must-show: Block-diagonal holding the
+/// straight and wavy examples on the head under the jerk at one substep.
+/// Fails today (strand-frames handed to Exact, reference / batch: straight
+/// 11 / 46, wavy 16 / 20; none at two substeps).
+#[test]
+#[ignore = "issue 33: Block-diagonal does not hold 30 cm draped hair under the jerk at one substep (docs/physics.md)"]
+fn block_diagonal_holds_the_jerk_on_long_draped_hair() {
+    for style in JERK_NOT_HELD {
+        for engine in ["reference", "batch"] {
+            let args = [
+                "--style", style, "--engine", engine, "--method", "block", "--play", "jerk",
+                "--steps", "300",
+            ];
+            let report = sim_json("block-jerk-held", &args);
+            assert_eq!(report["guard"]["event_count"], 0, "{style} {engine}");
+        }
+    }
+}
+
+/// The GPU engine against the batch engine, every example style on the
+/// default head under every clip, 300 frames of 60 Hz with one substep,
+/// Exact and Block-diagonal: the largest distance between the two
+/// engines' element boundary points. Both start from one settled shape
+/// (the settling runs on the CPU for either) and step the one step in
+/// f32 (the GPU's kernel, the batch engine's SIMD lanes), in other orders
+/// and with the collider looked up in f32 on the GPU, in f64 on the CPU.
+/// Round-off that tips a contact sample in or out of the skin opens a gap
+/// mid-run (up to 6.6e-5 m at a tip, straight, shake) that closes as the
+/// hair comes to rest. Measured on lavapipe after 300 frames: at most
+/// 5.4e-6 m with Exact (curly, jerk), 2.0e-6 m with Block-diagonal (curly,
+/// jerk).
+/// (Settled on the device instead, the two started 6.7e-4 m apart.)
 const GPU_POINT_TOL_M: f64 = 1e-5;
 
 #[test]
@@ -914,8 +993,17 @@ fn the_gpu_engine_matches_the_batch_engine_on_every_example_and_clip() {
             for clip in ["shake", "nod", "turn", "jerk"] {
                 let run = |engine: &str| {
                     let args = [
-                        "--style", style, "--engine", engine, "--method", method, "--play", clip,
-                        "--steps", "300",
+                        "--style",
+                        style,
+                        "--engine",
+                        engine,
+                        "--method",
+                        method,
+                        "--play",
+                        clip,
+                        "--steps",
+                        "300",
+                        "--accept-resets",
                     ];
                     sim_json("gpu-engine", &args)
                 };
@@ -923,6 +1011,18 @@ fn the_gpu_engine_matches_the_batch_engine_on_every_example_and_clip() {
                 let case = format!("{method} {style} {clip}");
                 let note = gpu["gpu"].as_str().expect("the GPU note");
                 assert!(note.starts_with("physics on the GPU"), "{case}: {note}");
+                if method == "block" && clip == "jerk" && JERK_NOT_HELD.contains(&style) {
+                    // Block-diagonal draws the guard here on either engine:
+                    // the GPU engine's guard steps in where the batch
+                    // engine's does, first at the same strand and time.
+                    let first = |report: &Value| {
+                        let event = report["guard"]["events"][0].as_str().unwrap_or_default();
+                        event.split(':').next().unwrap_or_default().to_owned()
+                    };
+                    assert!(!first(&gpu).is_empty(), "{case}: {}", gpu["guard"]);
+                    assert_eq!(first(&gpu), first(&batch), "{case}");
+                    continue;
+                }
                 assert_eq!(gpu["guard"]["event_count"], 0, "{case}");
                 let (a, b) = (&gpu["strands"], &batch["strands"]);
                 let strands = a.as_array().expect("strands");

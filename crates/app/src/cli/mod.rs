@@ -30,7 +30,7 @@ use crate::sim::engine_arg::{parse_engine, parse_interaction};
 use crate::sim::frame_stepper::FrameStepper;
 use crate::sim::headless::HeadlessSim;
 use crate::sim::report::{SimReport, refuse_lost_strands};
-use crate::sim::settle::settle_on_head;
+use crate::sim::settle::{settle_on_head, settles_on_head};
 use crate::sim::tip_trajectories::Tracked;
 use crate::style::Style;
 #[cfg(feature = "window")]
@@ -236,10 +236,10 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         .with_context(|| format!("cannot simulate {style_path}"))?;
     // The head the hair is simulated against (and exported with): an
     // imported groom's own, which it rests on and turns with; else the
-    // default head, on which `sim` grows scalp placements and which their
-    // hair collides with. A style of listed roots only (the plain
-    // examples, roots on a 10 cm sphere, not on this head's skin) runs
-    // with no head to collide with.
+    // default head, which hair grown on its scalp and hair of listed roots
+    // (the plain examples) collide with and start settled on, as `render`
+    // and the window run them. An imported groom without a head of its
+    // own runs with none: its rest shapes were solved with no head.
     let head_mesh = match OwnHead::of_style(&style, &args.style)? {
         Some(own) => {
             let collider = own.collision_field()?;
@@ -249,8 +249,7 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
         }
         None => {
             let head = default_head();
-            if needs_head(&style) {
-                // Hair grown on the default head's scalp rests on it.
+            if needs_head(&style) || settles_on_head(&style) {
                 let collider = head_collider(&head)
                     .context("cannot build the default head's collision field")?;
                 sim.engine_mut().set_collider(Some(Arc::new(collider)));

@@ -62,6 +62,26 @@ pub(super) struct Group {
     kept_at: Option<RigidMotion>,
 }
 
+/// Which batches a [`Group::step`] steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Advance {
+    /// Every batch (the batch engine's own frame).
+    All,
+    /// Only batches that hold a retry's step: the rest were stepped
+    /// elsewhere with the settings' own step (the GPU engine's frame).
+    Held,
+}
+
+impl Advance {
+    /// Whether a batch standing as `standing` steps.
+    fn steps(self, standing: &BatchStanding) -> bool {
+        match self {
+            Advance::All => true,
+            Advance::Held => standing.hold_frames > 0,
+        }
+    }
+}
+
 /// One batch's standing with the guard.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct BatchStanding {
@@ -299,6 +319,25 @@ impl Group {
         self.measured = true;
     }
 
+    /// Whether a batch holds a retry's step ([`BatchStanding::hold_frames`]).
+    pub(super) fn any_held(&self) -> bool {
+        self.standing.iter().any(|s| s.hold_frames > 0)
+    }
+
+    /// Puts every batch that holds a retry's step back at the frame's
+    /// start ([`Self::save_checkpoint`]): a state stepped elsewhere with
+    /// the settings' own step is not what such a batch steps.
+    pub(super) fn restore_held(&mut self) {
+        let n = self.n;
+        for (b, standing) in self.standing.iter().enumerate() {
+            if standing.hold_frames > 0 {
+                let range = b * n..(b + 1) * n;
+                self.q[range.clone()].copy_from_slice(&self.checkpoint.0[range.clone()]);
+                self.v[range.clone()].copy_from_slice(&self.checkpoint.1[range]);
+            }
+        }
+    }
+
     /// Keeps the state as the start of the frame, where a retry starts
     /// from: one copy of the state per frame, with the guard on.
     pub(super) fn save_checkpoint(&mut self) {
@@ -359,9 +398,10 @@ impl Group {
     /// One substep of every batch, the head moving as `motion`; with
     /// `check` (the frame's last substep, guard on), each batch is then
     /// measured and judged at once ([`judge_batch`]) and
-    /// [`Self::record_check`] records what failed. Without `advance`, the
-    /// state as it stands (stepped elsewhere:
-    /// [`super::BatchSystem::step_frame_offloaded`]) is only judged.
+    /// [`Self::record_check`] records what failed. `advance` says which
+    /// batches step here ([`Advance`]); the others' state as it stands
+    /// (stepped elsewhere: [`super::BatchSystem::step_frame_offloaded`])
+    /// is only judged.
     #[expect(
         clippy::too_many_arguments,
         reason = "the substep's head, forces and kind, the frame's check, and how to run"
@@ -375,7 +415,7 @@ impl Group {
         pulls: Option<(&BatchVolume, usize)>,
         check: Option<&FrameCheck<'_>>,
         parallel: bool,
-        advance: bool,
+        advance: Advance,
     ) {
         let n = self.n;
         // Kept samples from the last frame describe the state no more.
@@ -388,7 +428,7 @@ impl Group {
         )| {
             let kind = kinds.of(standing);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            if advance {
+            if advance.steps(standing) {
                 step_one_batch(
                     model, env, motion, roots, kind, contact, pull, q, v, scratch,
                 );

@@ -5,7 +5,8 @@
 //! judges and recovers the frame's end with its own guard, as
 //! [`BatchSystem::step_frame`] does its own.
 
-use super::group::FrameCheck;
+use super::contact::SkinTest;
+use super::group::{Advance, FrameCheck, Group};
 use super::lanes::LANES;
 use super::system::BatchSystem;
 use super::vec::{lane_of, set_lane};
@@ -35,7 +36,9 @@ impl BatchSystem {
     /// guard measures the frame's start here, `offload` steps the
     /// substeps, the result comes back and is judged and recovered here
     /// as [`Self::step_frame`] judges and recovers its own (retries on the
-    /// CPU). Returns whether the guard changed a strand after the
+    /// CPU; a batch the guard holds on Exact after a retry steps its
+    /// frame here, from the start, and the device's answer for it is
+    /// dropped). Returns whether this changed a strand after the
     /// download, so that the next frame must upload; an error if the state
     /// could not be read back (this system's state is then the frame's
     /// start, and its clock has not moved). Without the hair–hair model
@@ -64,25 +67,47 @@ impl BatchSystem {
         self.start_frame(head, &env, kinetic);
         let (q, v) = offload.download()?;
         self.set_state_flat(&q, &v);
-        self.time_secs = start_secs + self.settings.substeps as f64 * h;
-        if let Some(guard) = &self.guard {
-            let motion = head.motion_at(self.time_secs);
-            let check = FrameCheck::new(guard, &motion, &self.collider, &self.settings, kinetic);
+        // A batch the guard holds on Exact after a retry steps Exact here,
+        // from the frame's start, as the batch engine's own frame steps it:
+        // the device stepped it with the settings' own solver. The guard
+        // judges every batch in the last substep's pass.
+        let held = self.groups.iter().any(Group::any_held);
+        for group in self.groups.iter_mut().filter(|g| g.any_held()) {
+            group.restore_held();
+        }
+        let substeps = self.settings.substeps;
+        let first = match (held, self.guard.is_some()) {
+            (true, _) => 0,
+            (false, true) => substeps - 1,
+            (false, false) => substeps,
+        };
+        self.time_secs = start_secs + first as f64 * h;
+        for substep in first..substeps {
+            let motion = head.step_motion_at(self.time_secs, h);
+            let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
+            let end_secs = self.time_secs + h;
+            let last = substep + 1 == substeps;
+            let end_motion = (last && self.guard.is_some()).then(|| head.motion_at(end_secs));
+            let check = self.guard.as_ref().zip(end_motion.as_ref());
+            let check = check.map(|(guard, motion)| {
+                FrameCheck::new(guard, motion, &self.collider, &self.settings, kinetic)
+            });
             for group in &mut self.groups {
                 group.step(
                     &motion,
                     &env,
                     kinds,
+                    contact,
                     None,
-                    None,
-                    Some(&check),
+                    check.as_ref(),
                     self.parallel,
-                    false,
+                    Advance::Held,
                 );
             }
+            self.time_secs = end_secs;
         }
         self.end_frame(head, start_secs, env, kinds, kinetic);
-        Ok(!self.last_events.is_empty())
+        Ok(held || !self.last_events.is_empty())
     }
 
     /// Every strand's (q, q̇) in index order, one `[f32; 4]` per element

@@ -23,7 +23,7 @@ use glam::{DVec3, Vec3};
 
 use super::contact::{NearCells, SkinTest};
 use super::forward::{FrameState, advance};
-use super::group::{FrameCheck, Group, StepKinds};
+use super::group::{Advance, FrameCheck, Group, StepKinds};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes, Real};
 use super::layout::{BatchModel, ElementData, RootMotion, StepEnv};
@@ -312,7 +312,7 @@ impl BatchSystem {
                     pulls,
                     check,
                     self.parallel,
-                    true,
+                    Advance::All,
                 );
             }
             self.time_secs = end_secs;

@@ -333,6 +333,24 @@ impl Engine {
         }
     }
 
+    /// A copy that steps on the CPU: the GPU engine's batch system without
+    /// its device (the same f32 arithmetic as [`EngineKind::Batch`]); a
+    /// plain clone of the CPU engines. For a pre-roll whose end state a
+    /// run starts from (the app's settling on the head), so that the
+    /// batch and GPU engines start alike and no device is built for it.
+    pub fn cpu_copy(&self) -> Self {
+        match self {
+            Self::Batch {
+                system, strands, ..
+            } => Self::Batch {
+                system: system.clone(),
+                strands: strands.clone(),
+                gpu: None,
+            },
+            Self::Reference(_) => self.clone(),
+        }
+    }
+
     /// The GPU engine's device side, with [`EngineKind::Gpu`].
     pub fn gpu_side(&self) -> Option<&GpuSide> {
         match self {
