@@ -14,8 +14,8 @@
 //! none.
 //!
 //! So before its first frame such a run settles: a copy of the engine
-//! (on the CPU: the GPU engine's batch system) steps [`SETTLE_SECS`] on
-//! the still head (contact pushing the hair out,
+//! (on the CPU: the GPU engine's batch system) steps [`SETTLE_SECS`]
+//! (at most [`SETTLE_FRAMES_MAX`] frames) on the still head (contact pushing the hair out,
 //! gravity draping it), and the run starts from the copy's shapes at rest
 //! (velocities zero). The run's own clock, guard record and head are
 //! untouched: the settling is not part of the simulation the user plays,
@@ -45,6 +45,15 @@ pub fn settles_on_head(style: &Style) -> bool {
 /// (100–400 simulated strands on the reference engine).
 pub const SETTLE_SECS: f64 = 3.0;
 
+/// Most frames a settling steps: 180, [`SETTLE_SECS`] at 60 Hz. A style
+/// stepping finer settles for less than 3 s: settling is where a run
+/// begins, and must not cost more than 3 s of a 60 Hz run. Uncapped, a
+/// style of 1e-5 s frames (the window's test of values beyond every
+/// slider) stepped 300,000 frames of 100-element strands before its
+/// first: about 11 minutes on two cores, most of the app's unit tests'
+/// time (2 s with the cap).
+pub const SETTLE_FRAMES_MAX: usize = 180;
+
 /// Settles `engine`'s strands on its collider (see the module docs);
 /// nothing without a collider.
 pub fn settle_on_head(engine: &mut Engine) {
@@ -56,7 +65,7 @@ pub fn settle_on_head(engine: &mut Engine) {
     // settled on the device, the two started up to 0.7 mm apart on the
     // straight example, after 180 frames of landing hair's contact).
     let mut probe = engine.cpu_copy();
-    let frames = (SETTLE_SECS / probe.settings().dt_secs).ceil() as usize;
+    let frames = ((SETTLE_SECS / probe.settings().dt_secs).ceil() as usize).min(SETTLE_FRAMES_MAX);
     let still = RigidMotion::default();
     for _ in 0..frames {
         probe.step_frame(&still);
