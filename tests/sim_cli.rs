@@ -22,6 +22,11 @@ fn load_style(path: &str) -> Style {
 /// Runs `helixhair sim` with `args` plus `--json FILE`, checks it succeeded
 /// and returns the parsed report.
 fn sim_json(name: &str, args: &[&str]) -> Value {
+    sim_json_and_output(name, args).0
+}
+
+/// [`sim_json`] with what the run printed ([`describe`]).
+fn sim_json_and_output(name: &str, args: &[&str]) -> (Value, String) {
     let out = scratch_dir(name).join("report.json");
     let out_str = out.to_str().expect("a UTF-8 temp path");
     let mut all = vec!["sim"];
@@ -31,7 +36,9 @@ fn sim_json(name: &str, args: &[&str]) -> Value {
     assert!(output.status.success(), "{args:?}: {}", describe(&output));
     let text = std::fs::read_to_string(&out).expect("the JSON report exists");
     let _ = std::fs::remove_dir_all(out.parent().unwrap_or(Path::new(".")));
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: invalid JSON ({e}):\n{text}"))
+    let report = serde_json::from_str(&text)
+        .unwrap_or_else(|e| panic!("{args:?}: invalid JSON ({e}):\n{text}"));
+    (report, describe(&output))
 }
 
 fn num(v: &Value, key: &str) -> f64 {
@@ -914,10 +921,7 @@ fn block_diagonal_hands_the_jerk_on_long_draped_hair_to_exact_and_says_so() {
     for style in JERK_NOT_HELD {
         for engine in ["reference", "batch"] {
             let case = format!("{style} {engine}");
-            let out = scratch_dir("block-jerk-handed").join("report.json");
-            let out_arg = out.to_string_lossy().into_owned();
-            let output = run_helixhair(&[
-                "sim",
+            let args = [
                 "--style",
                 style,
                 "--engine",
@@ -929,17 +933,12 @@ fn block_diagonal_hands_the_jerk_on_long_draped_hair_to_exact_and_says_so() {
                 "--steps",
                 "300",
                 "--accept-resets",
-                "--json",
-                &out_arg,
-            ]);
-            assert!(output.status.success(), "{case}: {}", describe(&output));
-            let text = describe(&output);
+            ];
+            let (report, text) = sim_json_and_output("block-jerk-handed", &args);
             assert!(
                 text.contains("Block-diagonal could not hold this style"),
                 "{case}: {text}"
             );
-            let json = std::fs::read_to_string(&out).expect("the JSON report exists");
-            let report: Value = serde_json::from_str(&json).expect("a JSON report");
             let handed = report["guard"]["block_handed_to_exact"].as_u64();
             assert!(handed.is_some_and(|n| n > 0), "{case}: {}", report["guard"]);
             assert_tips_hang(&report, &case);

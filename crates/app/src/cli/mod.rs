@@ -253,6 +253,8 @@ fn run_sim(args: &SimArgs, stdout: &mut dyn Write, stderr: &mut dyn Write) -> an
                 let collider = head_collider(&head)
                     .context("cannot build the default head's collision field")?;
                 sim.engine_mut().set_collider(Some(Arc::new(collider)));
+            }
+            if settles_on_head(&style) {
                 settle_on_head(sim.engine_mut());
             }
             head

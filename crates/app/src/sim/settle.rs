@@ -14,10 +14,10 @@
 //! none.
 //!
 //! So before its first frame such a run settles: a copy of the engine
-//! (on the CPU: the GPU engine's batch system) steps [`SETTLE_SECS`]
-//! (at most [`SETTLE_FRAMES_MAX`] frames) on the still head (contact pushing the hair out,
-//! gravity draping it), and the run starts from the copy's shapes at rest
-//! (velocities zero). The run's own clock, guard record and head are
+//! (on the CPU: the GPU engine's batch system) steps [`SETTLE_SECS`] (at
+//! most [`SETTLE_FRAMES_MAX`] frames) on the still head (contact pushing
+//! the hair out, gravity draping it), and the run starts from the copy's
+//! shapes at rest (velocities zero). The run's own clock, guard record and head are
 //! untouched: the settling is not part of the simulation the user plays,
 //! only where it begins. Imported grooms are not settled: their rest
 //! shapes were solved against the head's push already (`import`'s

@@ -72,7 +72,7 @@ impl BatchSystem {
         // the device stepped it with the settings' own solver. The guard
         // judges every batch in the last substep's pass.
         let held = self.groups.iter().any(Group::any_held);
-        for group in self.groups.iter_mut().filter(|g| g.any_held()) {
+        for group in &mut self.groups {
             group.restore_held();
         }
         let substeps = self.settings.substeps;
