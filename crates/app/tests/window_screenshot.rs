@@ -67,6 +67,37 @@ fn the_preview_shows_hair_and_panels_during_a_head_shake() {
     shows_hair_and_panels(&["--preview"], "preview");
 }
 
+/// Runs the window with `args` on `display` (runtime folder `runtime`)
+/// and returns what it printed, or `None` after skipping where the
+/// window could not open; panics where it failed otherwise.
+fn run_window(
+    args: &[&std::ffi::OsStr],
+    display: &str,
+    runtime: &Path,
+) -> Option<(String, String)> {
+    let output = Command::new(env!("CARGO_BIN_EXE_helixhair"))
+        .args(args)
+        .env("DISPLAY", display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", runtime)
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+        )
+        .output()
+        .expect("helixhair starts");
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    if !output.status.success() {
+        if stderr.contains("cannot open") {
+            skip_or_fail(&format!("the window did not open: {stderr}"));
+            return None;
+        }
+        panic!("helixhair failed:\n{stdout}\n{stderr}");
+    }
+    Some((stdout, stderr))
+}
+
 fn shows_hair_and_panels(extra: &[&str], name: &str) {
     let Some((display, _xvfb)) = display() else {
         skip_or_fail("no X display and no Xvfb to start");
@@ -76,36 +107,23 @@ fn shows_hair_and_panels(extra: &[&str], name: &str) {
     let out = std::env::temp_dir().join(format!("helixhair-window-{id}.png"));
     let runtime = std::env::temp_dir().join(format!("helixhair-xdg-{id}"));
     std::fs::create_dir_all(&runtime).unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_helixhair"))
-        .args([
-            "--play",
-            "shake",
-            "--frames",
-            "60",
-            "--guides",
-            "24",
-            "--screenshot",
-        ])
-        .arg(&out)
-        .args(extra)
-        .env("DISPLAY", &display)
-        .env_remove("WAYLAND_DISPLAY")
-        .env("XDG_RUNTIME_DIR", &runtime)
-        .env(
-            "WGPU_BACKEND",
-            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
-        )
-        .output()
-        .expect("helixhair starts");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    if !output.status.success() {
-        if stderr.contains("cannot open") {
-            skip_or_fail(&format!("the window did not open: {stderr}"));
-            return;
-        }
-        panic!("helixhair failed:\n{stdout}\n{stderr}");
-    }
+    let mut args: Vec<&std::ffi::OsStr> = [
+        "--play",
+        "shake",
+        "--frames",
+        "60",
+        "--guides",
+        "24",
+        "--screenshot",
+    ]
+    .iter()
+    .map(std::ffi::OsStr::new)
+    .collect();
+    args.push(out.as_os_str());
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
+    let Some((stdout, _)) = run_window(&args, &display, &runtime) else {
+        return;
+    };
     assert!(stdout.contains("frame time"), "{stdout}");
     let image = image::open(Path::new(&out)).expect("a PNG").to_rgba8();
     assert!(
@@ -131,6 +149,79 @@ fn shows_hair_and_panels(extra: &[&str], name: &str) {
     );
     let _ = std::fs::remove_file(&out);
     let _ = std::fs::remove_dir_all(&runtime);
+}
+
+/// A groom of `count` imported curled guides on the default head's crown,
+/// on the batch engine, as RON.
+fn imported_guides_on_the_gpu(count: usize) -> String {
+    let mut strands = String::new();
+    for i in 0..count {
+        // A spiral over the crown, 10 cm from the head's centre.
+        let polar = 0.2 + 1.1 * (i as f64 + 0.5) / count as f64;
+        let azimuth = i as f64 * 2.399_963;
+        let d = [
+            polar.sin() * azimuth.sin(),
+            polar.cos(),
+            polar.sin() * azimuth.cos(),
+        ];
+        let p = d.map(|x| 0.1 * x);
+        strands.push_str(&format!(
+            "(root: (position_m: ({}, {}, {}), direction: ({}, {}, {}), reference: (0.0, 0.0, 1.0)), \
+             element_length_m: 0.03, strains: [{k}, {k}, {k}, {k}, {k}, {k}], \
+             natural: [{k}, {k}, {k}, {k}, {k}, {k}]),\n",
+            p[0], p[1], p[2], d[0], d[1], d[2],
+            k = "(0.0, 30.0, 4.0)"
+        ));
+    }
+    format!(
+        "(version: 1, name: \"guides\", engine: Batch, groups: [(name: \"imported\", \
+         params: (length_m: 0.18, elements: 6), \
+         imported: (source: \"guides.obj\", head: None, collider: None, strands: [{strands}]))])"
+    )
+}
+
+/// An imported groom of guides on the GPU engine (`--engine gpu`) is
+/// drawn from the engine's own buffers (issue 31): the window says so and
+/// shows the hair.
+#[test]
+fn a_groom_of_guides_on_the_gpu_engine_is_drawn_from_its_buffers() {
+    let Some((display, _xvfb)) = display() else {
+        skip_or_fail("no X display and no Xvfb to start");
+        return;
+    };
+    let id = format!("device-{}", std::process::id());
+    let dir = std::env::temp_dir().join(format!("helixhair-window-{id}"));
+    std::fs::create_dir_all(dir.join("xdg")).unwrap();
+    let style = dir.join("guides.ron");
+    std::fs::write(&style, imported_guides_on_the_gpu(300)).unwrap();
+    let out = dir.join("shot.png");
+    let mut args: Vec<&std::ffi::OsStr> = vec!["--style".as_ref(), style.as_os_str()];
+    args.extend(
+        [
+            "--engine",
+            "gpu",
+            "--play",
+            "shake",
+            "--frames",
+            "30",
+            "--screenshot",
+        ]
+        .map(std::ffi::OsStr::new),
+    );
+    args.push(out.as_os_str());
+    let Some((stdout, stderr)) = run_window(&args, &display, &dir.join("xdg")) else {
+        return;
+    };
+    assert!(stdout.contains("gpu engine"), "{stdout}");
+    assert!(
+        stdout.contains("hair: 300 strands drawn from the GPU engine's buffers"),
+        "{stdout}\n{stderr}"
+    );
+    let image = image::open(&out).expect("a PNG").to_rgba8();
+    let hair = fraction(&image, (0.35, 0.65), (0.15, 0.85), is_hair);
+    eprintln!("device-drawn hair covers {hair:.3} of the view");
+    assert!(hair > 0.03, "only {hair:.3} of the view is hair-coloured");
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

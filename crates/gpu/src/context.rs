@@ -93,6 +93,13 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
+    /// Whether `other` is this very device (a clone of this context), not
+    /// merely an equal-looking one: wgpu's ids repeat across instances, so
+    /// two devices of two instances can compare equal.
+    pub fn same_device(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.health, &other.health)
+    }
+
     /// A device with no window, on the adapter the environment picks.
     pub fn new_headless() -> Result<Self, DeviceError> {
         let instance =

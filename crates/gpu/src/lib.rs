@@ -17,15 +17,20 @@
 //!   fails where `HELIXHAIR_REQUIRE_GPU=1` (CI), so CI cannot pass by
 //!   skipping.
 //!
+//! - [`readback`]: a buffer read back to the CPU, and a bind group of
+//!   whole buffers.
+//!
 //! The crate depends on wgpu, pollster and thiserror only.
 
 #![warn(missing_docs)]
 
 pub mod context;
+pub mod readback;
 pub mod require;
 pub mod upload;
 
 pub use context::{DeviceError, DeviceHealth, GpuContext};
+pub use readback::{bind_buffers, map_and_wait, read_bytes};
 pub use require::{
     HIDDEN_ADAPTER_ENV, REQUIRE_GPU_VAR, context_or_skip, gpu_required, skip_or_fail,
 };

@@ -312,3 +312,40 @@ fn a_guard_switched_back_on_judges_the_frame_it_sees_not_one_it_missed() {
     }
     assert_eq!(system.guard_reset_count(), 0);
 }
+
+/// The GPU engine's device holds the frame's end the engine reports, the
+/// guard's recoveries included (a renderer draws from it,
+/// `gpu::curves`): after every frame of the Block-diagonal blow-up, the
+/// device's state is the batch system's, bit for bit.
+#[cfg(feature = "gpu")]
+#[test]
+fn the_gpu_engine_device_holds_the_state_the_guard_left() {
+    use std::sync::Arc;
+
+    use helixhair_physics::StrandModel;
+    use helixhair_physics::engine::GpuSide;
+
+    if helixhair_gpu::context_or_skip("the GPU engine's device after the guard").is_none() {
+        return;
+    }
+    let still = at_rest(glam::DMat3::IDENTITY);
+    let mut system = exploding_curls(Some(Guard::default()));
+    let model = Arc::new(
+        StrandModel::new(&hanging_curl(10), system.settings().quadrature_points)
+            .expect("valid params"),
+    );
+    let strands = vec![
+        (model.clone(), horizontal_root()),
+        (model, horizontal_root()),
+    ];
+    let mut side = GpuSide::new();
+    let mut event_frames = 0;
+    for frame in 0..120 {
+        side.step_frame(&mut system, &strands, &still);
+        event_frames += usize::from(!system.last_guard_events().is_empty());
+        let device = side.device().expect("the device builds");
+        let (q, v) = device.read_state().expect("reads back");
+        assert_eq!((q, v), system.state_flat(), "frame {frame}");
+    }
+    assert!(event_frames > 0, "the guard never stepped in");
+}

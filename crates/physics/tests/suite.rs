@@ -22,6 +22,7 @@ mod f64_instance;
 mod failure_modes;
 mod fit;
 mod geometry;
+mod gpu_curves;
 mod gpu_dense;
 mod gpu_engine;
 mod gpu_layout;

@@ -2,8 +2,9 @@
 //! uses), without a GPU, and the uniform structs the shaders declare have
 //! the sizes of their Rust twins in `gpu_data`.
 
+use helixhair_render::gpu::device_hair::{RibbonParamsGpu, RibbonStrandGpu};
 use helixhair_render::gpu::gpu_data::{Lighting, View};
-use helixhair_render::gpu::shaders::{ALL, composed};
+use helixhair_render::gpu::shaders::{ALL, ALONE, RIBBONS, composed};
 
 fn validate(name: &str, source: &str) -> naga::Module {
     let module = naga::front::wgsl::parse_str(source)
@@ -32,6 +33,22 @@ fn every_shader_validates() {
     for file in ALL {
         validate(file.name, &composed(&file));
     }
+    for file in ALONE {
+        validate(file.name, file.source);
+    }
+}
+
+#[test]
+fn the_ribbon_pass_structs_match_their_rust_twins() {
+    let module = validate(RIBBONS.name, RIBBONS.source);
+    assert_eq!(
+        struct_size(&module, "RibbonParams") as usize,
+        size_of::<RibbonParamsGpu>()
+    );
+    assert_eq!(
+        struct_size(&module, "RibbonStrand") as usize,
+        size_of::<RibbonStrandGpu>()
+    );
 }
 
 #[test]
@@ -43,7 +60,7 @@ fn every_wgsl_file_in_the_shaders_folder_is_compiled() {
         .filter(|n| n.ends_with(".wgsl") && n != "common.wgsl")
         .collect();
     on_disk.sort();
-    let mut compiled: Vec<&str> = ALL.iter().map(|f| f.name).collect();
+    let mut compiled: Vec<&str> = ALL.iter().chain(&ALONE).map(|f| f.name).collect();
     compiled.sort();
     assert_eq!(on_disk, compiled);
 }

@@ -105,8 +105,8 @@ pub struct SimArgs {
     pub style: PathBuf,
     /// Physics engine, instead of the style's `engine`: reference (f64,
     /// every solver, stability guard), batch (f32 SIMD on all cores,
-    /// exact or block only) or gpu (the batch engine with Exact's substeps
-    /// on the GPU; the CPU steps what the GPU cannot, and the summary says
+    /// exact or block only) or gpu (the batch engine with its substeps on
+    /// the GPU; the CPU steps what the GPU cannot, and the summary says
     /// why).
     #[arg(long, value_name = "ENGINE", value_parser = parse_engine)]
     pub engine: Option<EngineKind>,

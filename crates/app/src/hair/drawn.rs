@@ -91,22 +91,10 @@ pub fn follow_guides(strand: &mut [Vec3], blended: &[Vec3]) {
     clump_onto(strand, blended, 1.0);
 }
 
-/// Keeps a strand (root first) out of the head, root to tip: each point
-/// keeps its step from the previous one, and is pushed out to the shell
-/// when that step would enter the head. A strand that the physics let fall
-/// through the skull thus slides over the scalp the way it was heading,
-/// instead of being projected onto whatever surface is nearest.
+/// Keeps a strand (root first) out of the head ([`HeadShell::drape`] with
+/// [`HEAD_GAP_M`]): the same rule the device's ribbon pass applies.
 pub fn drape_over(points: &mut [Vec3], shell: &HeadShell) {
-    let Some(&root) = points.first() else {
-        return;
-    };
-    let (mut before, mut placed) = (root, root);
-    for p in &mut points[1..] {
-        let step = *p - before;
-        before = *p;
-        placed = shell.push_out(placed + step, HEAD_GAP_M);
-        *p = placed;
-    }
+    shell.drape(points, HEAD_GAP_M);
 }
 
 /// Ribbon width at the root for `drawn` strands, metres: a real fibre is

@@ -113,6 +113,20 @@ pub fn blend_sources(lengths_m: &[f64], guides: &[(usize, f64, &[f64])]) -> Vec<
 }
 
 impl DrawnStrand {
+    /// The guide this strand is drawn as, unchanged, if it is one: each
+    /// element takes that guide's same element whole, with nothing added,
+    /// no clumping and no following (an imported guide drawn as
+    /// simulated). Such a strand's curve is its guide's, which the GPU
+    /// engine can write on the device (`physics::gpu::curves`).
+    pub fn own_guide(&self) -> Option<usize> {
+        let guide = self.sources.first()?.first()?.guide;
+        let whole = self.sources.iter().enumerate().all(|(e, sources)| {
+            matches!(sources.as_slice(), [s] if s.guide == guide && s.element == e && s.weight == 1.0)
+        });
+        let unchanged = self.base.iter().all(|b| *b == DVec3::ZERO);
+        (whole && unchanged && self.clump.is_none() && self.follow.is_empty()).then_some(guide)
+    }
+
     /// Its strains now, from every guide's strains `q` (indexed by guide).
     pub fn strains(&self, q: &[Vec<DVec3>]) -> Vec<DVec3> {
         self.sources

@@ -21,6 +21,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::Context as _;
+use glam::Mat4;
 use helixhair_render::{Light, Scene};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
@@ -31,6 +32,7 @@ use crate::style::Style;
 
 use super::{HEADLESS_HINT, WindowArgs};
 use crate::window::live::drawn::DrawnCache;
+use crate::window::live::live_sim::LiveSim;
 use crate::window::panels::files::import_dialog::{ImportDialog, open_material};
 use crate::window::panels::ui::draw;
 use crate::window::panels::view_state::ViewState;
@@ -48,6 +50,9 @@ const SCREENSHOT_FRAMES: u32 = 120;
 /// Opens the window and runs until it is closed (or `--frames` are done).
 pub fn run_window(args: &WindowArgs) -> anyhow::Result<()> {
     let mut app = start_state(args)?;
+    if let Some(kind) = args.engine {
+        app.edit_style(|style| style.engine = kind);
+    }
     if args.compare {
         app.set_compare(Some(CompareMethods::default()));
     }
@@ -164,6 +169,11 @@ impl Handler {
                 .record_frame_time(now.duration_since(last).as_secs_f64());
         }
         self.profile.start();
+        // The GPU engine steps on the window's device, so that the hair
+        // can be drawn from its own buffers (a no-op once it does).
+        self.app
+            .sim_mut()
+            .set_gpu_context(Some(open.gpu.context().clone()));
         self.app.step_frame();
         self.profile.lap(1);
         let head = self.app.sim().engine().head();
@@ -171,16 +181,48 @@ impl Handler {
             .app
             .head_mesh()
             .posed(head.world_from_body.as_mat3(), head.position_m.as_vec3());
-        let runs = std::iter::once(self.app.sim()).chain(self.app.compare().map(|c| &c.0));
         let preview = wants_preview(self.args.preview, open.gpu.is_software(), self.interacting);
         let quality = quality(self.args.render_strands, self.view.view_px, preview);
-        for (slot, run) in runs.enumerate() {
-            let Some(hair) = self.drawn.strands(
-                self.app.doc().style(),
-                self.app.head_mesh(),
-                run.engine(),
-                quality.render_strands,
-            ) else {
+        let world_from_head = Mat4::from_translation(head.position_m.as_vec3())
+            * Mat4::from_mat3(head.world_from_body.as_mat3());
+        let runs = 1 + usize::from(self.app.compare().is_some());
+        for slot in 0..runs {
+            let Some(run) = run_of(&self.app, slot) else {
+                continue;
+            };
+            let (style, head_of_style) = (self.app.doc().style(), self.app.head_mesh());
+            let max = quality.render_strands;
+            if !self.drawn.prepare(style, head_of_style, run.engine(), max) {
+                continue;
+            }
+            // The main run on the GPU engine draws from the engine's own
+            // buffers where its layout allows; else the drawn hair is
+            // rebuilt on the CPU.
+            if slot == 0 {
+                let view = (&head_mesh, self.view.camera, world_from_head);
+                let drawn = draw_from_device(
+                    &mut self.drawn,
+                    &mut self.app,
+                    &mut open.gpu,
+                    view,
+                    &quality,
+                )?;
+                self.app.record_drawing(drawn.map(|(_, n)| n));
+                if let Some((texture, _)) = drawn {
+                    self.profile.lap(2);
+                    self.view.textures[slot] = Some(texture);
+                    if self.args.profile {
+                        open.gpu.wait_idle();
+                    }
+                    self.profile.lap(3);
+                    continue;
+                }
+            }
+            let Some(run) = run_of(&self.app, slot) else {
+                continue;
+            };
+            let (style, head_of_style) = (self.app.doc().style(), self.app.head_mesh());
+            let Some(hair) = self.drawn.strands(style, head_of_style, run.engine(), max) else {
                 continue;
             };
             self.profile.lap(2);
@@ -190,7 +232,7 @@ impl Handler {
                 camera: self.view.camera,
                 light: Light::default(),
             };
-            self.view.textures[slot] = Some(open.gpu.draw_scene(slot, &scene, &quality)?);
+            self.view.textures[slot] = Some(open.gpu.draw_scene(slot, &scene, None, &quality)?);
             if self.args.profile {
                 open.gpu.wait_idle();
             }
@@ -257,6 +299,10 @@ impl Handler {
             ms(r.median_physics_secs(n)),
             r.element_steps_per_sec(n).unwrap_or(0.0)
         );
+        match r.drawn_on_device() {
+            Some(n) => println!("hair: {n} strands drawn from the GPU engine's buffers"),
+            None => println!("hair: drawn strands rebuilt on the CPU from the guides"),
+        }
         if self.args.profile {
             println!("{}", self.profile.line(n));
         }
@@ -310,6 +356,58 @@ impl ApplicationHandler for Handler {
             open.gpu.window.request_redraw();
         }
     }
+}
+
+/// The run picture `slot` shows: 0 the main run, 1 the compare view's.
+fn run_of(app: &AppState, slot: usize) -> Option<&LiveSim> {
+    match slot {
+        0 => Some(app.sim()),
+        _ => app.compare().map(|c| &c.0),
+    }
+}
+
+/// Draws the main run's hair into picture 0 from the GPU engine's own
+/// buffers on the window's device ([`crate::window::live::device_plan`]),
+/// where the engine steps there and the layout [`DrawnCache::prepare`]
+/// made allows it, with the strands drawn; `None` where the CPU must
+/// rebuild the drawn hair. The view is the posed head, the camera and the
+/// head's pose.
+fn draw_from_device(
+    drawn: &mut DrawnCache,
+    app: &mut AppState,
+    gpu: &mut WindowGpu,
+    (head_mesh, camera, world_from_head): (
+        &helixhair_render::HeadMesh,
+        helixhair_render::OrbitCamera,
+        Mat4,
+    ),
+    quality: &crate::window::present::preview::Quality,
+) -> anyhow::Result<Option<(egui::TextureId, usize)>> {
+    let Some((plan, shell)) = drawn.device_plan(app.sim().engine()) else {
+        return Ok(None);
+    };
+    let Some(side) = app.sim_mut().engine_mut().gpu_side_mut() else {
+        return Ok(None);
+    };
+    let window = gpu.context().clone();
+    let Some(device) = side
+        .device_mut()
+        .filter(|d| d.context().same_device(&window))
+    else {
+        return Ok(None);
+    };
+    let mut ranges = Vec::new();
+    let Ok(strands) = plan.strands(device, &mut ranges, shell, world_from_head) else {
+        return Ok(None);
+    };
+    let scene = Scene {
+        hair: &plan.hair,
+        head: head_mesh,
+        camera,
+        light: Light::default(),
+    };
+    let texture = gpu.draw_scene(0, &scene, Some(&strands), quality)?;
+    Ok(Some((texture, plan.guides.len())))
 }
 
 #[cfg(test)]

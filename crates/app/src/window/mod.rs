@@ -106,6 +106,10 @@ pub struct WindowArgs {
     /// and quit.
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
+    /// Physics engine: reference, batch or gpu, set in the style as the
+    /// engine menu sets it (an edit, undoable; saved only if you save).
+    #[arg(long, value_name = "ENGINE", value_parser = crate::sim::engine_arg::parse_engine)]
+    pub engine: Option<helixhair_physics::engine::EngineKind>,
 }
 
 fn parse_clip(name: &str) -> Result<Clip, String> {

@@ -10,10 +10,15 @@
 //! once, and the batch system's guard judges the frame's end and
 //! recovers a failing strand on the CPU with its usual policy (the
 //! measure and the retries are the batch engine's, so the two engines
-//! judge alike). A strand the guard changed, or a state set from outside,
-//! goes back to the device before the next frame. The device is built on
+//! judge alike). A state set from outside goes back to the device before
+//! the next frame. The device is built on
 //! the first frame and again after anything it holds changes (strands,
-//! collider, contact); a clone of the engine builds its own.
+//! collider, contact); a clone of the engine builds its own. It is built on
+//! a headless device of its own, or on the one [`GpuSide::use_context`]
+//! gives (a window's, whose renderer then draws the strands from the
+//! engine's own buffers, [`crate::gpu::curves`]). After a frame the guard
+//! changed, the changed state goes back to the device at once, so the
+//! device always holds the frame's end the engine reports.
 //!
 //! Where the GPU cannot take the frame, the batch engine steps it on the
 //! CPU and [`GpuSide::note`] says why, once in words: no adapter or a
@@ -34,6 +39,10 @@ use crate::settings::Method;
 pub struct GpuSide {
     #[cfg(feature = "gpu")]
     device: Option<Box<crate::gpu::GpuEngine>>,
+    /// The device to build on (a window's, so that its renderer draws
+    /// from the engine's buffers); `None`: a headless one of its own.
+    #[cfg(feature = "gpu")]
+    context: Option<Box<crate::gpu::GpuContext>>,
     /// The device must be built again before the next frame.
     stale: bool,
     /// The batch system's state must go to the device before the next
@@ -51,6 +60,8 @@ impl GpuSide {
         Self {
             #[cfg(feature = "gpu")]
             device: None,
+            #[cfg(feature = "gpu")]
+            context: None,
             stale: true,
             upload: true,
             failed: false,
@@ -78,6 +89,33 @@ impl GpuSide {
     #[cfg(feature = "gpu")]
     pub fn device(&self) -> Option<&crate::gpu::GpuEngine> {
         self.device.as_deref().filter(|_| !self.failed)
+    }
+
+    /// The device, once built and working, to write its curves
+    /// ([`crate::gpu::GpuEngine::write_curves`]). At a frame's end it holds
+    /// the batch system's state, the guard's recoveries included.
+    #[cfg(feature = "gpu")]
+    pub fn device_mut(&mut self) -> Option<&mut crate::gpu::GpuEngine> {
+        if self.failed {
+            return None;
+        }
+        self.device.as_deref_mut()
+    }
+
+    /// Builds the device on `context` from the next frame on (a window's
+    /// device, shared with its renderer), or on a headless device of its
+    /// own with `None`. A different device rebuilds.
+    #[cfg(feature = "gpu")]
+    pub fn use_context(&mut self, context: Option<crate::gpu::GpuContext>) {
+        let same = match (&self.context, &context) {
+            (Some(a), Some(b)) => a.same_device(b),
+            (None, None) => true,
+            _ => false,
+        };
+        if !same {
+            self.context = context.map(Box::new);
+            self.stale = true;
+        }
     }
 
     /// Why the GPU cannot take `system`'s frames, if it cannot.
@@ -134,7 +172,11 @@ impl GpuSide {
             let models: Vec<BatchModel> = strands.iter().map(|(m, _)| BatchModel::new(m)).collect();
             let roots: Vec<RootPose> = strands.iter().map(|(_, r)| *r).collect();
             let collider = system.collider().map(|c| &**c);
-            let built = GpuContext::new_headless()
+            let context = match &self.context {
+                Some(ctx) => Ok((**ctx).clone()),
+                None => GpuContext::new_headless(),
+            };
+            let built = context
                 .map_err(GpuError::from)
                 .and_then(|ctx| GpuEngine::new(ctx, system.settings(), &models, &roots, collider));
             match built {
@@ -158,7 +200,15 @@ impl GpuSide {
             return;
         };
         match system.step_frame_offloaded(head, device, self.upload) {
-            Ok(changed) => self.upload = changed,
+            Ok(changed) => {
+                // The device holds the frame's end as the guard left it, so
+                // that what is drawn from it is what the frame reports.
+                if changed {
+                    let (q, v) = system.state_flat();
+                    device.set_state(&q, &v);
+                }
+                self.upload = false;
+            }
             Err(e) => {
                 self.failed = true;
                 self.device = None;
@@ -196,6 +246,8 @@ impl Clone for GpuSide {
         Self {
             failed: self.failed,
             note: self.note.clone(),
+            #[cfg(feature = "gpu")]
+            context: self.context.clone(),
             ..Self::new()
         }
     }

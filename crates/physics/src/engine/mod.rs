@@ -359,6 +359,15 @@ impl Engine {
         }
     }
 
+    /// The GPU engine's device side, to give it a device or write its
+    /// curves, with [`EngineKind::Gpu`].
+    pub fn gpu_side_mut(&mut self) -> Option<&mut GpuSide> {
+        match self {
+            Self::Batch { gpu, .. } => gpu.as_mut(),
+            Self::Reference(_) => None,
+        }
+    }
+
     /// With [`EngineKind::Gpu`], what steps the frames, in words: "physics
     /// on the GPU (adapter)", or why the CPU batch engine steps them.
     pub fn gpu_note(&self) -> Option<&str> {

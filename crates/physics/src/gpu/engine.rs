@@ -42,6 +42,7 @@
 use std::borrow::Cow;
 use std::ops::Range;
 
+use super::curves::{CurveStage, EngineBuffers};
 use super::kernels::{
     COMMON_WGSL, GpuState, bind_all, dispatch_dims, read_vec4, scratch_buffer, storage_buffer,
     submit_step, uniform_buffer, wait,
@@ -60,6 +61,10 @@ use crate::settings::{Method, SimSettings, StepScheme};
 
 /// `shaders/physics/engine.wgsl`: the engine's step, after `common.wgsl`.
 pub const ENGINE_WGSL: &str = include_str!("../../../../shaders/physics/engine.wgsl");
+
+/// `shaders/physics/curves.wgsl`: the drawn centrelines, after
+/// `engine.wgsl` ([`super::curves`]).
+pub const CURVES_WGSL: &str = include_str!("../../../../shaders/physics/curves.wgsl");
 
 /// GMRES's vectors per element in the `krylov` buffer (WGSL `KRYLOV_SLOTS`).
 pub const KRYLOV_SLOTS: usize = 22;
@@ -101,7 +106,7 @@ const WORKGROUP: u32 = 64;
 
 /// The full source of the engine's kernel module.
 pub fn engine_source() -> String {
-    format!("{COMMON_WGSL}\n{ENGINE_WGSL}")
+    format!("{COMMON_WGSL}\n{ENGINE_WGSL}\n{CURVES_WGSL}")
 }
 
 fn f4(v: glam::DVec3) -> [f32; 4] {
@@ -120,10 +125,15 @@ pub struct GpuEngine {
     params: EngineParamsGpu,
     strands: Vec<StrandGpu>,
     params_buffer: wgpu::Buffer,
+    strands_buffer: wgpu::Buffer,
+    elements_buffer: wgpu::Buffer,
     q_buffer: wgpu::Buffer,
     v_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    module: wgpu::ShaderModule,
     pipeline: wgpu::ComputePipeline,
+    /// The drawn centrelines' stage, built on the first ask.
+    curves: Option<CurveStage>,
     time_secs: f64,
 }
 
@@ -286,10 +296,14 @@ impl GpuEngine {
             params,
             strands,
             params_buffer,
+            strands_buffer,
+            elements_buffer,
             q_buffer,
             v_buffer,
             bind_group,
+            module,
             pipeline,
+            curves: None,
             time_secs: 0.0,
         })
     }
@@ -386,6 +400,34 @@ impl GpuEngine {
     /// Waits for every submitted step to finish (for timing).
     pub fn wait(&self) -> Result<(), GpuError> {
         wait(&self.ctx)
+    }
+
+    /// Writes every strand's centreline from the current state into the
+    /// curves' points buffer, each element cut `sampling[s]` times
+    /// ([`super::curves`], which gives the buffer's layout), and returns
+    /// the stage that holds it. The stage is built again only when the
+    /// counts change. Nothing waits: a renderer's passes submitted after
+    /// this on the same queue see the points.
+    pub fn write_curves(&mut self, sampling: &[u32]) -> Result<&CurveStage, GpuError> {
+        assert_eq!(sampling.len(), self.strands.len(), "one count per strand");
+        if self
+            .curves
+            .as_ref()
+            .is_none_or(|c| c.sampling() != sampling)
+        {
+            let elements: Vec<usize> = self.strands.iter().map(|s| s.elements as usize).collect();
+            let buffers = EngineBuffers {
+                params: &self.params_buffer,
+                strands: &self.strands_buffer,
+                elements: &self.elements_buffer,
+                q: &self.q_buffer,
+            };
+            let stage = CurveStage::new(&self.ctx, &self.module, &buffers, &elements, sampling)?;
+            self.curves = Some(stage);
+        }
+        let stage = self.curves.as_ref().expect("built above");
+        stage.submit(&self.ctx);
+        Ok(stage)
     }
 
     /// Reads (q, q̇) back: one vec4 per element, strand after strand.

@@ -343,33 +343,12 @@ pub(crate) fn read_vec4(
     ctx: &GpuContext,
     buffer: &wgpu::Buffer,
 ) -> Result<Vec<[f32; 4]>, GpuError> {
-    let device = &ctx.device;
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: buffer.size(),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
-    ctx.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = sender.send(r);
-    });
-    wait(ctx)?;
-    receiver
-        .recv()
-        .map_err(|e| GpuError::Readback(e.to_string()))?
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    let view = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    let data = bytemuck::cast_slice(&view).to_vec();
-    drop(view);
-    staging.unmap();
-    Ok(data)
+    let bytes = helixhair_gpu::read_bytes(&ctx.device, &ctx.queue, buffer);
+    // A lost device or a failed operation first: a readback error is then
+    // only its consequence.
+    ctx.check()?;
+    let bytes = bytes.map_err(GpuError::Readback)?;
+    Ok(bytemuck::cast_slice(&bytes).to_vec())
 }
 
 /// The bind group of a kernel whose binding 0 is a uniform buffer and
@@ -403,19 +382,7 @@ pub(crate) fn bind_all(
         label: Some(label),
         entries: &entries,
     });
-    let bind_entries: Vec<wgpu::BindGroupEntry> = buffers
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect();
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout: &layout,
-        entries: &bind_entries,
-    });
+    let bind_group = helixhair_gpu::bind_buffers(device, label, &layout, buffers);
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &[Some(&layout)],
@@ -434,17 +401,29 @@ pub(crate) fn submit_step(
     stages: &[(&wgpu::ComputePipeline, (u32, u32))],
 ) {
     ctx.queue.write_buffer(buffer, 0, bytes);
+    submit_pass(ctx, "step", &[bind_group], stages);
+}
+
+/// Submits one compute pass of `stages` (each pipeline with its
+/// workgroup counts along x and y) with `bind_groups` bound as groups 0,
+/// 1, …. Nothing waits.
+pub(crate) fn submit_pass(
+    ctx: &GpuContext,
+    label: &str,
+    bind_groups: &[&wgpu::BindGroup],
+    stages: &[(&wgpu::ComputePipeline, (u32, u32))],
+) {
     let mut encoder = ctx
         .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("step"),
-        });
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
     {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("step"),
+            label: Some(label),
             timestamp_writes: None,
         });
-        pass.set_bind_group(0, bind_group, &[]);
+        for (index, group) in bind_groups.iter().enumerate() {
+            pass.set_bind_group(index as u32, *group, &[]);
+        }
         for (pipeline, (x, y)) in stages {
             pass.set_pipeline(pipeline);
             pass.dispatch_workgroups(*x, *y, 1);

@@ -12,6 +12,9 @@
 //!   Block-diagonal (velocity-implicit with GMRES, the head's implicit
 //!   contact, each strand's own constants) on the GPU; [`engine_twin`] its
 //!   CPU twin, the batch engine's step at f32 one strand wide.
+//! - [`curves`]: the strands' centrelines written on the engine's device
+//!   for a renderer (the points buffer's layout is documented there), and
+//!   the CPU twin of that stage.
 //! - [`kernels`]: [`GpuSystem`], the velocity-explicit Dense kernel (one
 //!   strand's constants shared by all), and the buffer and dispatch
 //!   helpers both paths use.
@@ -27,6 +30,7 @@
 //! `docs/gpu.md` explains the stage split and how a renderer reads the
 //! state without a readback.
 
+pub mod curves;
 pub mod dense_kernels;
 pub mod dense_twin;
 pub mod engine;

@@ -30,8 +30,14 @@ pub struct FrameUniforms {
 impl FrameUniforms {
     /// The uniforms that draw `scene` with `settings`.
     pub fn new(scene: &Scene<'_>, settings: &RenderSettings) -> Self {
+        Self::within(scene, settings, scene.bounds_m())
+    }
+
+    /// [`Self::new`] with the light's view fitted to the box `(lo, hi)`
+    /// (world, metres) instead of the scene's own bounds: for hair whose
+    /// points are on the device and not read back.
+    pub fn within(scene: &Scene<'_>, settings: &RenderSettings, (lo, hi): (Vec3, Vec3)) -> Self {
         let s = settings;
-        let (lo, hi) = scene.bounds_m();
         let towards_light = scene.light.direction.normalize_or(Vec3::Y);
         let light_view = LightView::fit(towards_light, lo, hi);
         let ribbon = [scene.hair.root_width_m, scene.hair.tip_width_m, 0.0, 0.0];
@@ -107,6 +113,16 @@ impl IndexedGeometry {
             indices: buffer(bytemuck::cast_slice(indices), wgpu::BufferUsages::INDEX),
             count: indices.len() as u32,
         })
+    }
+
+    /// Geometry in buffers already on the device: `indices` holds `count`
+    /// `u32` indices into `vertices`.
+    pub fn from_buffers(vertices: wgpu::Buffer, indices: wgpu::Buffer, count: usize) -> Self {
+        Self {
+            vertices,
+            indices,
+            count: count as u32,
+        }
     }
 
     /// Binds the buffers and draws every triangle.

@@ -2,6 +2,7 @@
 //! structs, the shaders, the pipelines and the offscreen renderer.
 
 pub mod context;
+pub mod device_hair;
 pub mod frame_data;
 pub mod gpu_data;
 pub mod offscreen;

@@ -16,7 +16,10 @@
 
 use helixhair_gpu::upload_buffer;
 
+use glam::Vec3;
+
 use super::context::{GpuContext, GpuError};
+use super::device_hair::{DeviceRibbons, DeviceStrands};
 use super::frame_data::{FrameUniforms, IndexedGeometry, head_vertices};
 use super::passes::Pipelines;
 use super::readback::{RgbaImage, copy_to_buffer, read_buffer};
@@ -34,6 +37,9 @@ pub struct OffscreenRenderer {
     pipelines: Pipelines,
     targets: Targets,
     sampler: wgpu::Sampler,
+    /// The pass that builds ribbons from points on the device, made on
+    /// the first [`Self::draw_device`].
+    device_ribbons: Option<DeviceRibbons>,
 }
 
 /// The bind groups of one frame.
@@ -94,6 +100,7 @@ impl OffscreenRenderer {
             pipelines,
             targets,
             sampler,
+            device_ribbons: None,
         })
     }
 
@@ -155,8 +162,23 @@ impl OffscreenRenderer {
 
     /// Draws `scene` and returns the picture.
     pub fn render(&mut self, scene: &Scene<'_>) -> Result<RgbaImage, GpuError> {
+        self.draw(scene);
+        self.read_picture()
+    }
+
+    /// [`Self::draw_device`] and returns the picture.
+    pub fn render_device(
+        &mut self,
+        scene: &Scene<'_>,
+        strands: &DeviceStrands<'_>,
+    ) -> Result<RgbaImage, GpuError> {
+        self.draw_device(scene, strands);
+        self.read_picture()
+    }
+
+    /// Reads back the picture the last draw submitted.
+    fn read_picture(&mut self) -> Result<RgbaImage, GpuError> {
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
-        self.encode(scene, &mut encoder);
         copy_to_buffer(&mut encoder, &self.targets.picture, &self.targets.readback);
         self.gpu.queue.submit([encoder.finish()]);
         let picture = read_buffer(
@@ -177,6 +199,33 @@ impl OffscreenRenderer {
         // then only its consequence, and a picture read back is not trusted.
         self.gpu.check()?;
         picture
+    }
+
+    /// Draws `scene`'s head with the hair of `strands`, whose points are
+    /// already on this renderer's device ([`super::device_hair`]: built into
+    /// ribbons there, never read back), into the picture texture, and
+    /// submits it. `scene.hair` gives the ribbon widths and the scalp's
+    /// tint (its points are not drawn); the light's view fits the head
+    /// grown by [`DeviceStrands::reach_m`].
+    pub fn draw_device(&mut self, scene: &Scene<'_>, strands: &DeviceStrands<'_>) {
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        let mut ribbons = self
+            .device_ribbons
+            .take()
+            .unwrap_or_else(|| DeviceRibbons::new(&self.gpu.device));
+        let hair = ribbons.encode(&self.gpu.device, &self.gpu.queue, strands, &mut encoder);
+        let (lo, hi) = scene.head.mesh.bounds_m();
+        let reach = Vec3::splat(strands.reach_m.max(0.0));
+        let uniforms = FrameUniforms::within(scene, &self.settings, (lo - reach, hi + reach));
+        self.encode_with(scene, &uniforms, hair, &mut encoder);
+        self.gpu.queue.submit([encoder.finish()]);
+        self.device_ribbons = Some(ribbons);
+    }
+
+    /// The device ribbon pass, once [`Self::draw_device`] has run (tests
+    /// read its vertices).
+    pub fn device_ribbons(&self) -> Option<&DeviceRibbons> {
+        self.device_ribbons.as_ref()
     }
 
     /// Draws `scene` into the picture texture and submits it, without
@@ -228,10 +277,24 @@ impl OffscreenRenderer {
     /// Records the shadow and main passes of `scene` into `encoder`.
     fn encode(&mut self, scene: &Scene<'_>, encoder: &mut wgpu::CommandEncoder) {
         let (device, queue) = (&self.gpu.device, &self.gpu.queue);
-        let bindings = self.bindings(&FrameUniforms::new(scene, &self.settings));
         let (strand_vertices, strand_indices) = ribbon_mesh(scene.hair);
         let hair =
             IndexedGeometry::upload(device, queue, "strands", &strand_vertices, &strand_indices);
+        let uniforms = FrameUniforms::new(scene, &self.settings);
+        self.encode_with(scene, &uniforms, hair.as_ref(), encoder);
+    }
+
+    /// Records the shadow and main passes of `scene`'s head with `hair`'s
+    /// ribbons into `encoder`.
+    fn encode_with(
+        &self,
+        scene: &Scene<'_>,
+        uniforms: &FrameUniforms,
+        hair: Option<&IndexedGeometry>,
+        encoder: &mut wgpu::CommandEncoder,
+    ) {
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
+        let bindings = self.bindings(uniforms);
         let head = IndexedGeometry::upload(
             device,
             queue,
@@ -243,7 +306,7 @@ impl OffscreenRenderer {
         let t = &self.targets;
         let p = &self.pipelines;
         // Without shadows the light's passes only clear their targets.
-        let shadow_hair = hair.as_ref().filter(|_| self.settings.shadows);
+        let shadow_hair = hair.filter(|_| self.settings.shadows);
         // Cleared to the far plane: no hair.
         let far = wgpu::Color {
             r: 1.0,
@@ -287,7 +350,7 @@ impl OffscreenRenderer {
         pass.set_bind_group(2, &bindings.opacity, &[]);
         pass.set_pipeline(&p.backdrop);
         pass.draw(0..3, 0..1);
-        for (pipeline, geometry) in [(&p.head, &head), (&p.hair, &hair)] {
+        for (pipeline, geometry) in [(&p.head, head.as_ref()), (&p.hair, hair)] {
             if let Some(geometry) = geometry {
                 pass.set_pipeline(pipeline);
                 geometry.draw(&mut pass);

@@ -71,18 +71,7 @@ pub fn read_buffer(
     height_px: u32,
 ) -> Result<RgbaImage, GpuError> {
     let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        // The receiver waits below; a send can only fail if it is gone.
-        let _ = sender.send(result);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| GpuError::Readback(e.to_string()))?
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    helixhair_gpu::map_and_wait(device, slice).map_err(GpuError::Readback)?;
     let padded = padded_bytes_per_row(width_px) as usize;
     let tight = 4 * width_px as usize;
     let mut rgba = Vec::with_capacity(tight * height_px as usize);

@@ -44,6 +44,17 @@ pub const BACKDROP: ShaderFile = ShaderFile {
 /// Every pass's file.
 pub const ALL: [ShaderFile; 4] = [HAIR, HAIR_SHADOW, HEAD, BACKDROP];
 
+/// Ribbons built from strand points on the device (`stage_ribbons`,
+/// [`super::device_hair`]): a compute pass, compiled alone (it declares
+/// its own bindings and none of `common.wgsl`'s).
+pub const RIBBONS: ShaderFile = ShaderFile {
+    name: "ribbons.wgsl",
+    source: include_str!("../../../../shaders/ribbons.wgsl"),
+};
+
+/// The files compiled without `common.wgsl`.
+pub const ALONE: [ShaderFile; 1] = [RIBBONS];
+
 /// The source a pass is compiled from: the common part, then the file.
 pub fn composed(file: &ShaderFile) -> String {
     format!("{COMMON}\n// ---- {} ----\n{}", file.name, file.source)

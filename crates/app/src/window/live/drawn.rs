@@ -10,8 +10,10 @@
 //! and the strands are rebuilt from the guides' strains every frame.
 
 use helixhair_physics::engine::Engine;
+use helixhair_render::head_shell::HeadShell;
 use helixhair_render::{HairStrands, HeadMesh};
 
+use super::device_plan::DevicePlan;
 use crate::hair::drawn::drawn_hair;
 use crate::hair::layout::DrawnLayout;
 use crate::head::groom::Groom;
@@ -24,6 +26,9 @@ pub struct DrawnCache {
     source: Option<(Style, usize)>,
     groom: Option<Groom>,
     layout: Option<DrawnLayout>,
+    /// The layout's plan for drawing from the GPU engine's buffers, made
+    /// with the layout (`None` inside: the layout cannot be).
+    plan: Option<Option<DevicePlan>>,
 }
 
 impl DrawnCache {
@@ -38,20 +43,56 @@ impl DrawnCache {
         engine: &Engine,
         max_strands: usize,
     ) -> Option<HairStrands> {
+        if !self.prepare(style, head, engine, max_strands) {
+            return None;
+        }
+        Some(drawn_hair(
+            self.groom.as_ref()?,
+            self.layout.as_ref()?,
+            engine,
+        ))
+    }
+
+    /// Makes the groom and layout of [`Self::strands`] for these arguments
+    /// if they are not made yet; whether `engine` simulates the style's
+    /// guides (else nothing can be drawn from it yet).
+    pub fn prepare(
+        &mut self,
+        style: &Style,
+        head: &HeadMesh,
+        engine: &Engine,
+        max_strands: usize,
+    ) -> bool {
         let key = (style.clone(), max_strands);
         if self.source.as_ref() != Some(&key) {
             self.groom = Some(Groom::new(style.clone(), head.clone()));
             self.layout = None;
             self.source = Some(key);
         }
-        let groom = self.groom.as_ref()?;
+        let Some(groom) = self.groom.as_ref() else {
+            return false;
+        };
         if groom.grown.strand_count() != engine.strand_count() {
-            return None;
+            return false;
         }
         if !self.layout.as_ref().is_some_and(|l| l.matches(engine)) {
             self.layout = Some(DrawnLayout::new(groom, engine, max_strands));
+            self.plan = None;
         }
-        Some(drawn_hair(groom, self.layout.as_ref()?, engine))
+        true
+    }
+
+    /// The plan for drawing the layout [`Self::prepare`] last made from
+    /// `engine`'s own GPU buffers ([`DevicePlan`]), with the groom's shell,
+    /// where the layout allows it: made once per layout.
+    pub fn device_plan(&mut self, engine: &Engine) -> Option<(&DevicePlan, &HeadShell)> {
+        let groom = self.groom.as_ref()?;
+        let layout = self.layout.as_ref().filter(|l| l.matches(engine))?;
+        let plan = self
+            .plan
+            .get_or_insert_with(|| DevicePlan::new(layout, engine))
+            .as_ref()?;
+        Some((plan, &groom.shell))
     }
 }
 

@@ -27,6 +27,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 use helixhair_physics::engine::{Engine, EngineKind};
+use helixhair_physics::gpu::GpuContext;
 use helixhair_physics::{Energies, GuardEvent, HeadTrajectory, Method, RigidMotion, StageTimes};
 use helixhair_render::{HeadMesh, StrandBuffers};
 
@@ -53,6 +54,9 @@ pub struct LiveSim {
     collider: Option<HeadCollider>,
     /// The engine's strands (group, number, base parameters of each).
     strands: Vec<StyleStrand>,
+    /// The device the GPU engine steps on (the window's), handed to every
+    /// engine this run makes before its first frame.
+    gpu_context: Option<Box<GpuContext>>,
 }
 
 /// A head trajectory read `offset_secs` later than asked.
@@ -90,6 +94,7 @@ impl LiveSim {
             method_override,
             clock_offset_secs: 0.0,
             collider: None,
+            gpu_context: None,
         })
     }
 
@@ -240,6 +245,21 @@ impl LiveSim {
         self.strands = strands;
         if let Some(c) = &self.collider {
             c.attach(&mut self.engine);
+        }
+        self.hand_device();
+    }
+
+    /// Steps the GPU engine on `context` (the window's device, so that
+    /// the hair can be drawn from the engine's buffers), this engine and
+    /// every one the run makes later; `None`: a headless device of its own.
+    pub fn set_gpu_context(&mut self, context: Option<GpuContext>) {
+        self.gpu_context = context.map(Box::new);
+        self.hand_device();
+    }
+
+    fn hand_device(&mut self) {
+        if let Some(side) = self.engine.gpu_side_mut() {
+            side.use_context(self.gpu_context.as_deref().cloned());
         }
     }
 

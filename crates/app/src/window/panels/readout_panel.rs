@@ -69,6 +69,10 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
         None => "f64".to_owned(),
     };
     ui.label(format!("engine: {} ({how})", app.sim().kind().label()));
+    ui.label(match r.drawn_on_device() {
+        Some(n) => format!("hair: {n} strands drawn from the GPU engine's buffers"),
+        None => "hair: drawn strands rebuilt on the CPU from the guides".to_owned(),
+    });
     ui.separator();
     let history: Vec<&PhysicsSample> = r.history().collect();
     if batch {

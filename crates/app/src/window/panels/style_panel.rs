@@ -163,7 +163,7 @@ fn engine_selector(ui: &mut Ui, style: &mut Style) {
                             "f32 SIMD on all cores: Exact or Block-diagonal, thousands of strands"
                         }
                         EngineKind::Gpu => {
-                            "the batch engine with Exact's substeps on the GPU; the CPU steps \
+                            "the batch engine with its substeps (Exact or Block-diagonal) on the GPU; the CPU steps \
                              what the GPU cannot (the status line says why)"
                         }
                     });

@@ -27,6 +27,7 @@
 use std::sync::Arc;
 
 use anyhow::Context as _;
+use helixhair_render::gpu::device_hair::DeviceStrands;
 use helixhair_render::gpu::readback::{copy_to_buffer, read_buffer};
 use helixhair_render::{GpuContext, OffscreenRenderer, RenderSettings, RgbaImage, Scene};
 use winit::window::Window;
@@ -129,6 +130,13 @@ impl WindowGpu {
         })
     }
 
+    /// The window's device, which the GPU engine steps on so that its
+    /// strands are drawn from its own buffers
+    /// ([`crate::window::live::device_plan`]).
+    pub fn context(&self) -> &GpuContext {
+        &self.gpu
+    }
+
     /// Adapter name and backend, for the readouts.
     pub fn adapter_label(&self) -> String {
         self.gpu.adapter_label()
@@ -160,10 +168,13 @@ impl WindowGpu {
     /// `quality`'s size, samples and shadows, and returns the egui texture
     /// showing it. Each slot keeps a renderer per quality (full and
     /// preview), made when first needed.
+    /// With `device`, the hair is drawn from strand points on this device
+    /// instead of `scene.hair`'s ([`OffscreenRenderer::draw_device`]).
     pub fn draw_scene(
         &mut self,
         slot: usize,
         scene: &Scene<'_>,
+        device: Option<&DeviceStrands<'_>>,
         quality: &Quality,
     ) -> anyhow::Result<egui::TextureId> {
         let [w, h] = quality.picture_px;
@@ -192,7 +203,10 @@ impl WindowGpu {
         };
         let (_, _, _, renderer, id) = &mut self.scenes[index];
         renderer.resize(w, h)?;
-        renderer.draw(scene);
+        match device {
+            Some(strands) => renderer.draw_device(scene, strands),
+            None => renderer.draw(scene),
+        }
         let view = renderer.picture_view_unorm();
         self.egui.renderer.update_egui_texture_from_wgpu_texture(
             &self.device,

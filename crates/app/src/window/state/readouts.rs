@@ -40,6 +40,9 @@ pub struct Readouts {
     physics: VecDeque<PhysicsSample>,
     guard_log: VecDeque<String>,
     guard_total: usize,
+    /// How the last frame's hair was drawn: from the GPU engine's own
+    /// buffers (`Some(strands)`) or rebuilt on the CPU (`None`).
+    drawn_on_device: Option<usize>,
 }
 
 fn push_capped<T>(ring: &mut VecDeque<T>, value: T, cap: usize) {
@@ -53,6 +56,18 @@ impl Readouts {
     /// Records the wall time between two displayed frames.
     pub fn record_frame(&mut self, secs: f64) {
         push_capped(&mut self.frames_secs, secs, HISTORY_FRAMES);
+    }
+
+    /// Records how the frame's hair was drawn: from the GPU engine's
+    /// buffers, that many strands, or (`None`) rebuilt on the CPU.
+    pub fn record_drawing(&mut self, on_device: Option<usize>) {
+        self.drawn_on_device = on_device;
+    }
+
+    /// Strands the last frame drew from the GPU engine's buffers, if it
+    /// drew from them.
+    pub fn drawn_on_device(&self) -> Option<usize> {
+        self.drawn_on_device
     }
 
     /// Records one physics frame and its guard events (`label` says which

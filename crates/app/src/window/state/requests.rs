@@ -45,6 +45,11 @@ impl AppState {
         &self.sim
     }
 
+    /// The main run, to hand its engine the window's device.
+    pub fn sim_mut(&mut self) -> &mut LiveSim {
+        &mut self.sim
+    }
+
     /// The compare view's second run and its methods, when on.
     pub fn compare(&self) -> Option<&(LiveSim, CompareMethods)> {
         self.compare.as_ref()
@@ -122,6 +127,11 @@ impl AppState {
     /// Records the wall time between two displayed frames, seconds.
     pub fn record_frame_time(&mut self, secs: f64) {
         self.readouts.record_frame(secs);
+    }
+
+    /// Records how the frame's hair was drawn ([`Readouts::record_drawing`]).
+    pub fn record_drawing(&mut self, on_device: Option<usize>) {
+        self.readouts.record_drawing(on_device);
     }
 
     /// Pauses a running simulation, or runs a paused one.

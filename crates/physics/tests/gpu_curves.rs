@@ -1,0 +1,170 @@
+//! The drawn centrelines the GPU engine writes on its device
+//! (`stage_curves`, `shaders/physics/curves.wgsl`) against their CPU twin,
+//! the batch engine's sweep at f32, and the twin against the known shape
+//! of a Super-Helix: the f64 boundary points of `frames_and_points`, the
+//! helix h(σ, k) inside each element, and a circle of radius 1/κ for a
+//! strand of constant bend.
+//!
+//! Policy: with no adapter the tests print why and pass, unless
+//! `HELIXHAIR_REQUIRE_GPU=1` (set by `.ci/run`), where they fail.
+#![cfg(feature = "gpu")]
+
+use crate::common;
+
+use common::gpu::context;
+use common::shake;
+use common::shake_scene::{curly_25_cm, head_roots, straight_30_cm};
+use glam::DVec3;
+use helixhair_physics::batch::layout::BatchModel;
+use helixhair_physics::batch::vec::V3;
+use helixhair_physics::geometry::helix::centreline_and_jacobian;
+use helixhair_physics::geometry::shape::frames_and_points;
+use helixhair_physics::gpu::GpuEngine;
+use helixhair_physics::gpu::curves::{curve_point_count, stage_curves};
+use helixhair_physics::{
+    NaturalShape, RigidMotion, RootPose, SimSettings, StrandModel, StrandParams,
+};
+
+/// GPU against twin, on the same strains, metres: the same f32 operations
+/// in another order, with the GPU's own cos and sin (lavapipe's are
+/// llvmpipe's polynomials), over 12–15 elements of up to 16 pieces each.
+const CURVE_TWIN_TOL_M: f32 = 2e-6;
+
+/// Twin (f32) against the f64 shape, metres: f32 round-off carried over
+/// the 30 cm strand's up to 12 × 16 pieces (about 200 steps of 6e-8 m).
+const CURVE_F64_TOL_M: f64 = 1e-5;
+
+/// 30 cm straight and 25 cm curly strands, and a 10-element curl, each on
+/// the two roots of the shake scene.
+fn models() -> (Vec<StrandModel>, Vec<RootPose>) {
+    let curl = StrandParams {
+        elements: 10,
+        natural_shape: NaturalShape::Helix {
+            radius_m: 0.02,
+            step_m: 0.05,
+        },
+        ..StrandParams::default()
+    };
+    let (mut models, mut roots) = (Vec::new(), Vec::new());
+    for params in [straight_30_cm(), curly_25_cm(), curl] {
+        let model = StrandModel::new(&params, 5).expect("valid params");
+        for root in head_roots() {
+            models.push(model.clone());
+            roots.push(root);
+        }
+    }
+    (models, roots)
+}
+
+/// The f64 shape of `model` at `root` with strains `q`, cut `samples`
+/// times per element: p_Q + R_Q h(σ, k_Q) at each piece's start, then the
+/// tip (head coordinates).
+fn f64_curve(model: &StrandModel, root: &RootPose, q: &[DVec3], samples: u32) -> Vec<DVec3> {
+    let motion = RigidMotion::at_rest(root.position_m, root.head_from_root);
+    let (frames, points) = frames_and_points(model, q, &motion);
+    let mut out = Vec::new();
+    for (e, &k) in q.iter().enumerate() {
+        let piece_m = model.lengths_m[e] / f64::from(samples);
+        for j in 0..samples {
+            let h = centreline_and_jacobian(f64::from(j) * piece_m, k).0;
+            out.push(root.position_m + points[e] + frames[e] * h);
+        }
+    }
+    out.push(root.position_m + points[q.len()]);
+    out
+}
+
+#[test]
+fn the_device_curves_match_their_twin_and_the_helix_shape() {
+    let Some(ctx) = context() else { return };
+    let (models, roots) = models();
+    let batch: Vec<BatchModel> = models.iter().map(BatchModel::new).collect();
+    let settings = SimSettings {
+        substeps: 1,
+        ..SimSettings::default()
+    };
+    let mut engine = GpuEngine::new(ctx.clone(), &settings, &batch, &roots, None).expect("engine");
+    let head = shake();
+    for _ in 0..30 {
+        engine.step_frame(&head);
+    }
+    // Straight strands cut once per element, curls more: every count the
+    // stage takes, including the CPU's most (16).
+    let sampling: Vec<u32> = [1, 3, 16, 4, 7, 2].to_vec();
+    let (points, ranges) = {
+        let stage = engine.write_curves(&sampling).expect("curves");
+        (
+            stage.read_points(&ctx).expect("read"),
+            stage.ranges().to_vec(),
+        )
+    };
+    let (q, _) = engine.read_state().expect("state");
+    let (mut worst_twin, mut worst_f64) = (0.0f32, 0.0f64);
+    for (s, (model, root)) in batch.iter().zip(&roots).enumerate() {
+        let strains: Vec<[f32; 4]> = q[engine.elements_of(s)].to_vec();
+        let lanes: Vec<V3<f32>> = strains.iter().map(|k| V3::new(k[0], k[1], k[2])).collect();
+        let mut twin = Vec::new();
+        stage_curves(model, root, &lanes, sampling[s], &mut twin);
+        assert_eq!(
+            ranges[s].len(),
+            curve_point_count(model.elements(), sampling[s])
+        );
+        assert_eq!(twin.len(), ranges[s].len());
+        let device = &points[ranges[s].clone()];
+        for (a, b) in device.iter().zip(&twin) {
+            assert_eq!(a[3], 1.0, "w = 1");
+            let d = (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f32::max);
+            worst_twin = worst_twin.max(d);
+        }
+        let k64: Vec<DVec3> = strains
+            .iter()
+            .map(|k| DVec3::new(k[0].into(), k[1].into(), k[2].into()))
+            .collect();
+        let exact = f64_curve(&models[s], root, &k64, sampling[s]);
+        for (a, b) in twin.iter().zip(&exact) {
+            let p = DVec3::new(a[0].into(), a[1].into(), a[2].into());
+            worst_f64 = worst_f64.max(p.distance(*b));
+        }
+    }
+    eprintln!("curves: GPU vs twin {worst_twin:.2e} m, twin vs f64 {worst_f64:.2e} m");
+    assert!(
+        worst_twin <= CURVE_TWIN_TOL_M,
+        "GPU vs twin {worst_twin:e} m"
+    );
+    assert!(worst_f64 <= CURVE_F64_TOL_M, "twin vs f64 {worst_f64:e} m");
+}
+
+/// A strand bent by the same curvature κ in every element, with no twist,
+/// lies on a circle of radius 1/κ: the known answer the twin's pieces must
+/// keep, however finely they cut.
+#[test]
+fn a_constant_bend_draws_a_circle_of_radius_one_over_kappa() {
+    let kappa = 10.0f32;
+    let params = StrandParams {
+        length_m: 0.3,
+        elements: 8,
+        ..StrandParams::default()
+    };
+    let model = BatchModel::new(&StrandModel::new(&params, 5).expect("valid params"));
+    let root = RootPose::from_direction(DVec3::ZERO, DVec3::X, DVec3::Z);
+    let q = vec![V3::new(0.0, kappa, 0.0); model.elements()];
+    for samples in [1, 5, 16] {
+        let mut curve = Vec::new();
+        stage_curves(&model, &root, &q, samples, &mut curve);
+        // The circle through the root, tangent to the root's direction,
+        // bending about the frame's second axis.
+        let frame = root.head_from_root.as_mat3();
+        let (t, b) = (frame.x_axis, frame.y_axis);
+        let normal = b.cross(t);
+        let centre = normal / kappa;
+        for p in &curve {
+            let r = (glam::Vec3::new(p[0], p[1], p[2]) - centre).length();
+            assert!(
+                (r - 1.0 / kappa).abs() < 2e-6,
+                "{samples} pieces: radius {r} m, expected {} m",
+                1.0 / kappa
+            );
+        }
+        assert_eq!(curve.len(), curve_point_count(model.elements(), samples));
+    }
+}
