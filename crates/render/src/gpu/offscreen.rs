@@ -13,6 +13,11 @@
 //!    backdrop, head, hair; resolved into the picture.
 //! 4. The picture is copied into a buffer and read back
 //!    ([`super::readback`]).
+//!
+//! [`OffscreenRenderer::draw_device`] replaces step 1's strands with a
+//! compute pass over strand points already on the device
+//! ([`super::device_hair`]): the ribbons are built there, and nothing of
+//! the hair is uploaded.
 
 use helixhair_gpu::upload_buffer;
 
