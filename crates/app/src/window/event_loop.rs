@@ -397,7 +397,7 @@ fn draw_from_device(
         return Ok(None);
     };
     let mut ranges = Vec::new();
-    let Ok(strands) = plan.strands(device, &mut ranges, shell, world_from_head) else {
+    let Some(strands) = plan.strands(device, &mut ranges, shell, world_from_head) else {
         return Ok(None);
     };
     let scene = Scene {

@@ -31,7 +31,7 @@ use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
 
-use super::kernels::{dispatch_dims, read_vec4, storage_buffer, submit_pass};
+use super::kernels::{dispatch_dims, read_vec4, scratch_buffer, storage_buffer, submit_pass};
 use super::{GpuContext, GpuError};
 use crate::batch::forward::{FrameState, advance};
 use crate::batch::layout::{BatchModel, RootMotion};
@@ -115,7 +115,8 @@ impl CurveStage {
             bytemuck::cast_slice(&table)
         };
         let table_buffer = storage_buffer(ctx, "curve strands", table_bytes)?;
-        let points = storage_buffer(ctx, "curve points", &vec![0; next.max(1) * 16])?;
+        // Every point is written by each dispatch before anything reads it.
+        let points = scratch_buffer(ctx, "curve points", next.max(1) * 16)?;
         let device = &ctx.device;
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("stage_curves"),

@@ -87,18 +87,23 @@ impl DevicePlan {
 
     /// The curves of `device` (whose strands are this plan's guides) as
     /// the renderer takes them, kept out of `shell`, posed by the head's
-    /// `world_from_head`; the points stay on the device.
+    /// `world_from_head`; the points stay on the device. `None` where the
+    /// device holds other strands than the plan's guides (an edit not yet
+    /// stepped) or could not write them: the CPU draws that frame.
     pub fn strands<'a>(
         &'a self,
         device: &'a mut GpuEngine,
         ranges: &'a mut Vec<std::ops::Range<usize>>,
         shell: &'a HeadShell,
         world_from_head: Mat4,
-    ) -> Result<DeviceStrands<'a>, helixhair_physics::gpu::GpuError> {
-        let stage = device.write_curves(&self.sampling)?;
+    ) -> Option<DeviceStrands<'a>> {
+        if device.strand_count() != self.sampling.len() {
+            return None;
+        }
+        let stage = device.write_curves(&self.sampling).ok()?;
         ranges.clear();
         ranges.extend(self.guides.iter().map(|&g| stage.ranges()[g].clone()));
-        Ok(DeviceStrands {
+        Some(DeviceStrands {
             points: stage.points(),
             ranges,
             colours: &self.hair.colours,
