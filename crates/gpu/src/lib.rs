@@ -17,8 +17,8 @@
 //!   fails where `HELIXHAIR_REQUIRE_GPU=1` (CI), so CI cannot pass by
 //!   skipping.
 //!
-//! - [`readback`]: a buffer read back to the CPU, and a bind group of
-//!   whole buffers.
+//! - [`readback`]: a buffer read back to the CPU, a bind group of whole
+//!   buffers, and a dispatch's workgroup counts.
 //!
 //! The crate depends on wgpu, pollster and thiserror only.
 
@@ -30,7 +30,7 @@ pub mod require;
 pub mod upload;
 
 pub use context::{DeviceError, DeviceHealth, GpuContext};
-pub use readback::{bind_buffers, map_and_wait, read_bytes};
+pub use readback::{bind_buffers, dispatch_dims, map_and_wait, read_bytes};
 pub use require::{
     HIDDEN_ADAPTER_ENV, REQUIRE_GPU_VAR, context_or_skip, gpu_required, skip_or_fail,
 };

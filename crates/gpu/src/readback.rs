@@ -1,6 +1,8 @@
 //! Reading what the GPU wrote: a buffer copied into a staging buffer,
 //! mapped, and waited for. The physics reads its state back with it, the
-//! renderer its pictures, tests what a pass wrote.
+//! renderer its pictures, tests what a pass wrote. Beside it, the two
+//! plain helpers every compute pass of both needs: a bind group of whole
+//! buffers, and workgroup counts split over two dimensions.
 
 /// Maps `slice` (of a `MAP_READ` buffer) for reading and waits until it is
 /// mapped or mapping failed: what wgpu said, in words.
@@ -43,6 +45,15 @@ pub fn read_bytes(
         .to_vec();
     staging.unmap();
     Ok(bytes)
+}
+
+/// Workgroup counts (x, y) for `groups` workgroups (at least one), split
+/// over y past `limits`' per-dimension count; a kernel reads them back as
+/// one index, `id.x + id.y * num_workgroups.x * workgroup_size`.
+pub fn dispatch_dims(limits: &wgpu::Limits, groups: u32) -> (u32, u32) {
+    let groups = groups.max(1);
+    let x = groups.min(limits.max_compute_workgroups_per_dimension);
+    (x, groups.div_ceil(x))
 }
 
 /// A bind group of `buffers`, each bound whole at its index in the slice,

@@ -66,7 +66,7 @@ pub fn ribbon_mesh(hair: &HairStrands) -> (Vec<StrandVertex>, Vec<u32>) {
         if points.len() < 2 {
             continue;
         }
-        let colour = hair.colours.get(i).copied().unwrap_or(Vec3::splat(0.2));
+        let colour = strand_colour(&hair.colours, i);
         let seed = strand_random(i as u32);
         let first = vertices.len() as u32;
         for ((p, t), along) in points
@@ -83,12 +83,24 @@ pub fn ribbon_mesh(hair: &HairStrands) -> (Vec<StrandVertex>, Vec<u32>) {
                 });
             }
         }
-        for k in 0..points.len() as u32 - 1 {
-            let a = first + 2 * k;
-            indices.extend([a, a + 1, a + 2, a + 1, a + 3, a + 2]);
-        }
+        ribbon_indices(first, points.len() as u32, &mut indices);
     }
     (vertices, indices)
+}
+
+/// Strand `index`'s colour in `colours`, dark grey where it has none.
+pub fn strand_colour(colours: &[Vec3], index: usize) -> Vec3 {
+    colours.get(index).copied().unwrap_or(Vec3::splat(0.2))
+}
+
+/// Appends the two triangles of each segment of a ribbon of `points`
+/// points (two vertices each, sides alternating) whose first vertex is
+/// `first_vertex`: nothing for fewer than two points.
+pub fn ribbon_indices(first_vertex: u32, points: u32, indices: &mut Vec<u32>) {
+    for k in 0..points.saturating_sub(1) {
+        let a = first_vertex + 2 * k;
+        indices.extend([a, a + 1, a + 2, a + 1, a + 3, a + 2]);
+    }
 }
 
 #[cfg(test)]

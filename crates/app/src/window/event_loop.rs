@@ -22,6 +22,7 @@ use std::time::Instant;
 
 use anyhow::Context as _;
 use glam::Mat4;
+use helixhair_physics::gpu::GpuEngine;
 use helixhair_render::{Light, Scene};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
@@ -171,9 +172,7 @@ impl Handler {
         self.profile.start();
         // The GPU engine steps on the window's device, so that the hair
         // can be drawn from its own buffers (a no-op once it does).
-        self.app
-            .sim_mut()
-            .set_gpu_context(Some(open.gpu.context().clone()));
+        self.app.sim_mut().set_gpu_context(open.gpu.context());
         self.app.step_frame();
         self.profile.lap(1);
         let head = self.app.sim().engine().head();
@@ -389,11 +388,8 @@ fn draw_from_device(
     let Some(side) = app.sim_mut().engine_mut().gpu_side_mut() else {
         return Ok(None);
     };
-    let window = gpu.context().clone();
-    let Some(device) = side
-        .device_mut()
-        .filter(|d| d.context().same_device(&window))
-    else {
+    let on_window = |d: &&mut GpuEngine| d.context().same_device(gpu.context());
+    let Some(device) = side.device_mut().filter(on_window) else {
         return Ok(None);
     };
     let mut ranges = Vec::new();

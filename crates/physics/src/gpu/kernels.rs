@@ -436,9 +436,7 @@ pub(crate) fn submit_pass(
 /// over y past the device's per-dimension limit (the kernels' `flat_index`
 /// reads them back as one index).
 pub(crate) fn dispatch_dims(ctx: &GpuContext, groups: u32) -> (u32, u32) {
-    let groups = groups.max(1);
-    let x = groups.min(ctx.limits.max_compute_workgroups_per_dimension);
-    (x, groups.div_ceil(x))
+    helixhair_gpu::dispatch_dims(&ctx.limits, groups)
 }
 
 /// Refuses a buffer of `bytes` larger than one storage binding may be.

@@ -24,11 +24,11 @@ use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
-use helixhair_gpu::{bind_buffers, upload_buffer};
+use helixhair_gpu::{bind_buffers, dispatch_dims, upload_buffer};
 
 use super::frame_data::IndexedGeometry;
 use crate::head_shell::HeadShell;
-use crate::ribbons::strand_random;
+use crate::ribbons::{ribbon_indices, strand_colour, strand_random};
 
 use super::shaders::RIBBONS;
 
@@ -90,13 +90,39 @@ const _: () = assert!(size_of::<RibbonStrandGpu>() == 32);
 
 /// What the layout decides: the strands, colours and shell it was made
 /// for.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 struct LayoutKey {
     ranges: Vec<Range<usize>>,
     colours: Vec<Vec3>,
     shell: Option<(HeadShell, f32)>,
     /// The points buffer itself (a new one needs a new bind group).
     points: wgpu::Buffer,
+}
+
+impl LayoutKey {
+    /// The key of `strands`' layout.
+    fn of(strands: &DeviceStrands<'_>) -> Self {
+        Self {
+            ranges: strands.ranges.to_vec(),
+            colours: strands.colours.to_vec(),
+            shell: strands.shell.map(|(s, gap)| (s.clone(), gap)),
+            points: strands.points.clone(),
+        }
+    }
+
+    /// Whether `strands` has this layout, compared in place (every frame,
+    /// without copying the strands' tables).
+    fn matches(&self, strands: &DeviceStrands<'_>) -> bool {
+        let shell = match (&self.shell, strands.shell) {
+            (Some((a, gap_a)), Some((b, gap_b))) => a == b && *gap_a == gap_b,
+            (None, None) => true,
+            _ => false,
+        };
+        self.ranges == strands.ranges
+            && self.colours == strands.colours
+            && shell
+            && self.points == *strands.points
+    }
 }
 
 /// The pass and the buffers of one layout (module docs).
@@ -147,15 +173,13 @@ impl DeviceRibbons {
         strands: &DeviceStrands<'_>,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Option<&IndexedGeometry> {
-        let key = LayoutKey {
-            ranges: strands.ranges.to_vec(),
-            colours: strands.colours.to_vec(),
-            shell: strands.shell.map(|(s, gap)| (s.clone(), gap)),
-            points: strands.points.clone(),
-        };
-        if self.layout.as_ref().is_none_or(|(k, _)| *k != key) {
+        if self
+            .layout
+            .as_ref()
+            .is_none_or(|(k, _)| !k.matches(strands))
+        {
             let built = build(device, queue, &self.pipeline, strands)?;
-            self.layout = Some((key, built));
+            self.layout = Some((LayoutKey::of(strands), built));
         }
         let (_, built) = self.layout.as_ref()?;
         let params = RibbonParamsGpu {
@@ -167,15 +191,14 @@ impl DeviceRibbons {
             shell_columns: HeadShell::COLUMNS as u32,
         };
         queue.write_buffer(&built.params, 0, bytemuck::bytes_of(&params));
-        let groups = built.strand_count.div_ceil(64).max(1);
-        let x = groups.min(device.limits().max_compute_workgroups_per_dimension);
+        let (x, y) = dispatch_dims(&device.limits(), built.strand_count.div_ceil(64));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("stage_ribbons"),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &built.bind_group, &[]);
-        pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
+        pass.dispatch_workgroups(x, y, 1);
         drop(pass);
         Some(&built.geometry)
     }
@@ -200,7 +223,7 @@ fn build(
     let mut vertex_count = 0u32;
     for (i, range) in strands.ranges.iter().enumerate() {
         let count = range.len() as u32;
-        let colour = strands.colours.get(i).copied().unwrap_or(Vec3::splat(0.2));
+        let colour = strand_colour(strands.colours, i);
         table.push(RibbonStrandGpu {
             first_point: range.start as u32,
             point_count: count,
@@ -211,10 +234,7 @@ fn build(
         if count < 2 {
             continue;
         }
-        for k in 0..count - 1 {
-            let a = vertex_count + 2 * k;
-            indices.extend([a, a + 1, a + 2, a + 1, a + 3, a + 2]);
-        }
+        ribbon_indices(vertex_count, count, &mut indices);
         vertex_count += 2 * count;
     }
     if indices.is_empty() {

@@ -251,9 +251,17 @@ impl LiveSim {
 
     /// Steps the GPU engine on `context` (the window's device, so that
     /// the hair can be drawn from the engine's buffers), this engine and
-    /// every one the run makes later; `None`: a headless device of its own.
-    pub fn set_gpu_context(&mut self, context: Option<GpuContext>) {
-        self.gpu_context = context.map(Box::new);
+    /// every one the run makes later. Nothing happens where it already
+    /// does (the window hands it every frame).
+    pub fn set_gpu_context(&mut self, context: &GpuContext) {
+        if self
+            .gpu_context
+            .as_deref()
+            .is_some_and(|held| held.same_device(context))
+        {
+            return;
+        }
+        self.gpu_context = Some(Box::new(context.clone()));
         self.hand_device();
     }
 
