@@ -180,20 +180,21 @@ fn imported_guides_on_the_gpu(count: usize) -> String {
     )
 }
 
-/// An imported groom of guides on the GPU engine (`--engine gpu`) is
-/// drawn from the engine's own buffers (issue 31): the window says so and
-/// shows the hair.
-#[test]
-fn a_groom_of_guides_on_the_gpu_engine_is_drawn_from_its_buffers() {
+/// Plays a shake for `frames` frames with `--engine gpu` on `style` and
+/// returns the window's summary and the fraction of the view that is
+/// hair-coloured; `None` where the window cannot run here (said).
+fn play_on_the_gpu_engine(
+    name: &str,
+    style: &std::path::Path,
+    frames: &str,
+) -> Option<(String, f64)> {
     let Some((display, _xvfb)) = display() else {
         skip_or_fail("no X display and no Xvfb to start");
-        return;
+        return None;
     };
-    let id = format!("device-{}", std::process::id());
+    let id = format!("{name}-{}", std::process::id());
     let dir = std::env::temp_dir().join(format!("helixhair-window-{id}"));
     std::fs::create_dir_all(dir.join("xdg")).unwrap();
-    let style = dir.join("guides.ron");
-    std::fs::write(&style, imported_guides_on_the_gpu(300)).unwrap();
     let out = dir.join("shot.png");
     let mut args: Vec<&std::ffi::OsStr> = vec!["--style".as_ref(), style.as_os_str()];
     args.extend(
@@ -203,25 +204,59 @@ fn a_groom_of_guides_on_the_gpu_engine_is_drawn_from_its_buffers() {
             "--play",
             "shake",
             "--frames",
-            "30",
+            frames,
             "--screenshot",
         ]
         .map(std::ffi::OsStr::new),
     );
     args.push(out.as_os_str());
-    let Some((stdout, stderr)) = run_window(&args, &display, &dir.join("xdg")) else {
-        return;
-    };
-    assert!(stdout.contains("gpu engine"), "{stdout}");
-    assert!(
-        stdout.contains("hair: 300 strands drawn from the GPU engine's buffers"),
-        "{stdout}\n{stderr}"
-    );
+    let (stdout, stderr) = run_window(&args, &display, &dir.join("xdg"))?;
+    assert!(stdout.contains("gpu engine"), "{stdout}\n{stderr}");
     let image = image::open(&out).expect("a PNG").to_rgba8();
     let hair = fraction(&image, (0.35, 0.65), (0.15, 0.85), is_hair);
+    let _ = std::fs::remove_dir_all(&dir);
+    Some((stdout, hair))
+}
+
+/// An imported groom of guides on the GPU engine (`--engine gpu`) is
+/// drawn from the engine's own buffers (issue 31): the window says so and
+/// shows the hair.
+#[test]
+fn a_groom_of_guides_on_the_gpu_engine_is_drawn_from_its_buffers() {
+    let dir = std::env::temp_dir().join(format!("helixhair-guides-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let style = dir.join("guides.ron");
+    std::fs::write(&style, imported_guides_on_the_gpu(300)).unwrap();
+    let Some((stdout, hair)) = play_on_the_gpu_engine("device", &style, "30") else {
+        return;
+    };
+    assert!(
+        stdout.contains("hair: 300 strands drawn from the GPU engine's buffers"),
+        "{stdout}"
+    );
     eprintln!("device-drawn hair covers {hair:.3} of the view");
     assert!(hair > 0.03, "only {hair:.3} of the view is hair-coloured");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A groomed example on the GPU engine (ringlets clumped onto their
+/// guides with curls of their own) is drawn from the engine's buffers too:
+/// its drawn strands are blended, swept and shaped on the device.
+#[test]
+fn a_groomed_example_on_the_gpu_engine_is_drawn_from_its_buffers() {
+    let style = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/styles/groomed/curly.ron"
+    );
+    let Some((stdout, hair)) = play_on_the_gpu_engine("groomed", style.as_ref(), "20") else {
+        return;
+    };
+    assert!(
+        stdout.contains("strands drawn from the GPU engine's buffers"),
+        "{stdout}"
+    );
+    eprintln!("device-drawn groomed curls cover {hair:.3} of the view");
+    assert!(hair > 0.03, "only {hair:.3} of the view is hair-coloured");
 }
 
 #[test]

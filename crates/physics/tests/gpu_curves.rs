@@ -3,7 +3,9 @@
 //! the batch engine's sweep at f32, and the twin against the known shape
 //! of a Super-Helix: the f64 boundary points of `frames_and_points`, the
 //! helix h(σ, k) inside each element, and a circle of radius 1/κ for a
-//! strand of constant bend.
+//! strand of constant bend. Blended curves (a drawn strand between
+//! guides, with a base of its own) against the f64 shape of the blended
+//! strains, computed here from the engine's state.
 //!
 //! Policy: with no adapter the tests print why and pass, unless
 //! `HELIXHAIR_REQUIRE_GPU=1` (set by `.ci/run`), where they fail.
@@ -16,11 +18,10 @@ use common::shake;
 use common::shake_scene::{curly_25_cm, head_roots, straight_30_cm};
 use glam::DVec3;
 use helixhair_physics::batch::layout::BatchModel;
-use helixhair_physics::batch::vec::V3;
 use helixhair_physics::geometry::helix::centreline_and_jacobian;
 use helixhair_physics::geometry::shape::frames_and_points;
 use helixhair_physics::gpu::GpuEngine;
-use helixhair_physics::gpu::curves::{curve_point_count, stage_curves};
+use helixhair_physics::gpu::curves::{BlendElement, CurveBlend, curve_point_count, stage_curves};
 use helixhair_physics::{
     NaturalShape, RigidMotion, RootPose, SimSettings, StrandModel, StrandParams,
 };
@@ -33,6 +34,10 @@ const CURVE_TWIN_TOL_M: f32 = 2e-6;
 /// Twin (f32) against the f64 shape, metres: f32 round-off carried over
 /// the 30 cm strand's up to 12 × 16 pieces (about 200 steps of 6e-8 m).
 const CURVE_F64_TOL_M: f64 = 1e-5;
+
+/// Mean strain magnitude, relative: f32 round-off of a sum of a dozen
+/// lengths (about 12 × 6e-8), with the GPU's own square root.
+const STRAIN_TOL: f32 = 1e-5;
 
 /// 30 cm straight and 25 cm curly strands, and a 10-element curl, each on
 /// the two roots of the shake scene.
@@ -91,47 +96,108 @@ fn the_device_curves_match_their_twin_and_the_helix_shape() {
     // Straight strands cut once per element, curls more: every count the
     // stage takes, including the CPU's most (16).
     let sampling: Vec<u32> = [1, 3, 16, 4, 7, 2].to_vec();
-    let (points, ranges) = {
-        let stage = engine.write_curves(&sampling).expect("curves");
+    let lengths: Vec<&[f64]> = models.iter().map(|m| m.lengths_m.as_slice()).collect();
+    let mut blend = CurveBlend::engine_strands(&roots, &lengths, &sampling);
+    // Two drawn strands: one between strands 0 and 2 (straight and curly,
+    // 0.25 / 0.75) from strand 1's root, one with a base of its own on
+    // strand 4's elements, each element reading its sources' element at
+    // the same index (the curly model is shorter: its last).
+    let (n0, n2, n4) = (
+        models[0].elements(),
+        models[2].elements(),
+        models[4].elements(),
+    );
+    let starts: Vec<u32> = (0..batch.len())
+        .map(|s| engine.elements_of(s).start as u32)
+        .collect();
+    let first = |s: usize| starts[s];
+    let between = blend.push(
+        &roots[1],
+        5,
+        (0..n0).map(|e| BlendElement {
+            length_m: models[0].lengths_m[e],
+            base: DVec3::ZERO,
+            sources: [
+                (first(0) + e as u32, 0.25),
+                (first(2) + e.min(n2 - 1) as u32, 0.75),
+            ],
+        }),
+    );
+    let based = blend.push(
+        &roots[0],
+        3,
+        (0..n4).map(|e| BlendElement {
+            length_m: models[4].lengths_m[e],
+            base: DVec3::new(2.0, -5.0, 1.0 + e as f64),
+            sources: [(first(4) + e as u32, 1.0)],
+        }),
+    );
+    let (points, strains, ranges) = {
+        let stage = engine.write_curves(&blend).expect("curves");
         (
             stage.read_points(&ctx).expect("read"),
+            stage.read_strains(&ctx).expect("read"),
             stage.ranges().to_vec(),
         )
     };
+    assert_eq!(ranges.len(), batch.len() + 2);
     let (q, _) = engine.read_state().expect("state");
-    let (mut worst_twin, mut worst_f64) = (0.0f32, 0.0f64);
-    for (s, (model, root)) in batch.iter().zip(&roots).enumerate() {
-        let strains: Vec<[f32; 4]> = q[engine.elements_of(s)].to_vec();
-        let lanes: Vec<V3<f32>> = strains.iter().map(|k| V3::new(k[0], k[1], k[2])).collect();
+    let q64 = |i: usize| DVec3::new(q[i][0].into(), q[i][1].into(), q[i][2].into());
+    // The f64 strains of every curve, blended here from the state.
+    let mut curves: Vec<(StrandModel, RootPose, Vec<DVec3>, u32)> = (0..batch.len())
+        .map(|s| {
+            let k = engine.elements_of(s).map(q64).collect();
+            (models[s].clone(), roots[s], k, sampling[s])
+        })
+        .collect();
+    let f = |s: usize| first(s) as usize;
+    let k_between = (0..n0)
+        .map(|e| 0.25 * q64(f(0) + e) + 0.75 * q64(f(2) + e.min(n2 - 1)))
+        .collect();
+    curves.push((models[0].clone(), roots[1], k_between, 5));
+    let k_based = (0..n4)
+        .map(|e| DVec3::new(2.0, -5.0, 1.0 + e as f64) + q64(f(4) + e))
+        .collect();
+    curves.push((models[4].clone(), roots[0], k_based, 3));
+    assert_eq!((between, based), (batch.len(), batch.len() + 1));
+
+    let (mut worst_twin, mut worst_f64, mut worst_strain) = (0.0f32, 0.0f64, 0.0f32);
+    for (c, (model, root, k64, samples)) in curves.iter().enumerate() {
         let mut twin = Vec::new();
-        stage_curves(model, root, &lanes, sampling[s], &mut twin);
+        let strain = stage_curves(&blend, c, &q, &mut twin);
         assert_eq!(
-            ranges[s].len(),
-            curve_point_count(model.elements(), sampling[s])
+            ranges[c].len(),
+            curve_point_count(model.elements(), *samples)
         );
-        assert_eq!(twin.len(), ranges[s].len());
-        let device = &points[ranges[s].clone()];
+        assert_eq!(twin.len(), ranges[c].len());
+        let device = &points[ranges[c].clone()];
         for (a, b) in device.iter().zip(&twin) {
             assert_eq!(a[3], 1.0, "w = 1");
             let d = (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f32::max);
             worst_twin = worst_twin.max(d);
         }
-        let k64: Vec<DVec3> = strains
-            .iter()
-            .map(|k| DVec3::new(k[0].into(), k[1].into(), k[2].into()))
-            .collect();
-        let exact = f64_curve(&models[s], root, &k64, sampling[s]);
+        let exact = f64_curve(model, root, k64, *samples);
         for (a, b) in twin.iter().zip(&exact) {
             let p = DVec3::new(a[0].into(), a[1].into(), a[2].into());
             worst_f64 = worst_f64.max(p.distance(*b));
         }
+        let mean = k64.iter().map(|k| k.length()).sum::<f64>() / k64.len() as f64;
+        worst_strain = worst_strain
+            .max(((strains[c] - strain).abs()).max((strain - mean as f32).abs()) / mean as f32);
     }
-    eprintln!("curves: GPU vs twin {worst_twin:.2e} m, twin vs f64 {worst_f64:.2e} m");
+    eprintln!(
+        "curves: GPU vs twin {worst_twin:.2e} m, twin vs f64 {worst_f64:.2e} m, \
+         mean strain {worst_strain:.2e} relative"
+    );
     assert!(
         worst_twin <= CURVE_TWIN_TOL_M,
         "GPU vs twin {worst_twin:e} m"
     );
     assert!(worst_f64 <= CURVE_F64_TOL_M, "twin vs f64 {worst_f64:e} m");
+    assert!(
+        worst_strain <= STRAIN_TOL,
+        "mean strain {worst_strain:e} relative"
+    );
 }
 
 /// A strand bent by the same curvature κ in every element, with no twist,
@@ -145,12 +211,16 @@ fn a_constant_bend_draws_a_circle_of_radius_one_over_kappa() {
         elements: 8,
         ..StrandParams::default()
     };
-    let model = BatchModel::new(&StrandModel::new(&params, 5).expect("valid params"));
+    let model = StrandModel::new(&params, 5).expect("valid params");
     let root = RootPose::from_direction(DVec3::ZERO, DVec3::X, DVec3::Z);
-    let q = vec![V3::new(0.0, kappa, 0.0); model.elements()];
+    let n = model.elements();
+    // One strand of n elements at the front of an engine's state.
+    let q = vec![[0.0, kappa, 0.0, 0.0]; n];
     for samples in [1, 5, 16] {
+        let blend = CurveBlend::engine_strands(&[root], &[&model.lengths_m], &[samples]);
         let mut curve = Vec::new();
-        stage_curves(&model, &root, &q, samples, &mut curve);
+        let strain = stage_curves(&blend, 0, &q, &mut curve);
+        assert_eq!(strain, kappa);
         // The circle through the root, tangent to the root's direction,
         // bending about the frame's second axis.
         let frame = root.head_from_root.as_mat3();
@@ -165,6 +235,6 @@ fn a_constant_bend_draws_a_circle_of_radius_one_over_kappa() {
                 1.0 / kappa
             );
         }
-        assert_eq!(curve.len(), curve_point_count(model.elements(), samples));
+        assert_eq!(curve.len(), curve_point_count(n, samples));
     }
 }

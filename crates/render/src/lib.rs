@@ -46,6 +46,7 @@ pub mod rng;
 pub mod scalp_sampling;
 pub mod scene;
 pub mod strand_buffers;
+pub mod strand_shape;
 
 pub use camera::OrbitCamera;
 pub use gpu::context::{GpuContext, GpuError};

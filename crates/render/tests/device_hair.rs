@@ -127,6 +127,7 @@ fn device_ribbons_match_the_cpu_drape_and_ribbons_and_draw_the_same_picture() {
         shell: Some((&shell, GAP_M)),
         world_from_head,
         reach_m: 0.25,
+        shaping: None,
     };
     let hair = cpu_hair(&points, &ranges, &colours, &shell, pose);
     let posed_head = head.posed(rotation, position);
@@ -195,19 +196,7 @@ fn device_ribbons_match_the_cpu_drape_and_ribbons_and_draw_the_same_picture() {
     // round-off turns (short segments where the drape presses points
     // together) can change the subset: scattered pixels differ (measured:
     // 2 % of them by more than 8 levels), the picture does not.
-    let mean_difference = from_device
-        .rgba
-        .iter()
-        .zip(&from_cpu.rgba)
-        .map(|(a, b)| f64::from(a.abs_diff(*b)))
-        .sum::<f64>()
-        / from_cpu.rgba.len() as f64;
-    let differing = from_device
-        .rgba
-        .chunks_exact(4)
-        .zip(from_cpu.rgba.chunks_exact(4))
-        .filter(|(a, b)| a.iter().zip(*b).any(|(x, y)| x.abs_diff(*y) > 8))
-        .count();
+    let (mean_difference, differing) = from_device.difference(&from_cpu, 8);
     eprintln!(
         "device ribbons: pictures differ by {mean_difference:.2} levels on average, \
          {differing} pixels by more than 8"

@@ -6,7 +6,6 @@ use glam::{DVec3, Vec3};
 use helixhair_render::head_generate::default_head;
 use helixhair_render::head_shell::HeadShell;
 
-use crate::hair::curl_variation::clump_onto;
 use crate::hair::drawn::{drape_over, drawn_hair_full, root_width_m};
 use crate::hair::layout::DEFAULT_DRAWN_STRANDS;
 use crate::head::coil::{CoilLeadIn, coil_along};
@@ -249,21 +248,4 @@ fn simulated_guides_rest_on_the_head_through_its_collider() {
         deepest > -0.03,
         "a guide point is {deepest} m inside the head"
     );
-}
-
-#[test]
-fn clumping_gathers_a_strand_onto_its_guide_towards_the_tip() {
-    let guide: Vec<Vec3> = (0..11)
-        .map(|k| Vec3::new(0.0, -0.01 * k as f32, 0.0))
-        .collect();
-    let mut strand: Vec<Vec3> = guide.iter().map(|p| *p + Vec3::X * 0.02).collect();
-    clump_onto(&mut strand, &guide, 0.8);
-    // The root stays; the offset shrinks linearly along the length to
-    // 1 − 0.8 of itself at the tip.
-    assert_eq!(strand[0], Vec3::new(0.02, 0.0, 0.0));
-    for (k, p) in strand.iter().enumerate() {
-        let want = 0.02 * (1.0 - 0.8 * k as f32 / 10.0);
-        assert!((p.x - want).abs() < 1e-6, "point {k}: {p}");
-        assert!((p.y + 0.01 * k as f32).abs() < 1e-6, "point {k}: {p}");
-    }
 }

@@ -31,7 +31,10 @@ use helixhair_render::interpolate::{Interpolation, guide_weights};
 use helixhair_render::rng::SplitMix64;
 use helixhair_render::scalp_sampling::poisson_disk_on_scalp;
 
+use helixhair_render::strand_shape::{Clump, Shaping};
+
 use crate::hair::colours::strand_colours;
+use crate::hair::curl_variation::curl_variation;
 use crate::hair::strain_blend::{DrawnStrand, blend_sources};
 use crate::head::coil::CoilLeadIn;
 use crate::head::groom::{Groom, placement_scalp, root_strains, scalp_root};
@@ -80,6 +83,13 @@ pub struct DrawnLayout {
     pub strands: Vec<DrawnStrand>,
     /// One colour per strand, linear RGB.
     pub colours: Vec<Vec3>,
+    /// The guides (simulation indices) that strands clump onto or follow,
+    /// each once, in order: the indices of [`Self::shapings`].
+    pub shape_guides: Vec<usize>,
+    /// How each strand is shaped by its guides after it is swept (its
+    /// `clump` and `follow`, with its curl's own phase and radius), guides
+    /// named by their place in [`Self::shape_guides`].
+    pub shapings: Vec<Shaping>,
     /// Element count of every guide the layout was made for.
     guide_elements: Vec<usize>,
 }
@@ -237,7 +247,49 @@ impl DrawnLayout {
             }
             first = end;
         }
+        layout.shape_by_guides();
         layout
+    }
+
+    /// Fills [`Self::shape_guides`] and [`Self::shapings`] from the
+    /// strands' clumps and follows.
+    fn shape_by_guides(&mut self) {
+        let mut slot_of = std::collections::BTreeMap::new();
+        for strand in &self.strands {
+            for g in strand
+                .clump
+                .iter()
+                .map(|c| c.0)
+                .chain(strand.follow.iter().map(|f| f.0))
+            {
+                slot_of.entry(g).or_insert(0);
+            }
+        }
+        for (slot, value) in slot_of.values_mut().enumerate() {
+            *value = slot;
+        }
+        self.shape_guides = slot_of.keys().copied().collect();
+        self.shapings = self
+            .strands
+            .iter()
+            .enumerate()
+            .map(|(index, strand)| {
+                let (phase_rad, curl_scale) = curl_variation(index);
+                Shaping {
+                    clump: strand.clump.map(|(g, amount)| Clump {
+                        guide: slot_of[&g],
+                        amount: amount as f32,
+                        phase_rad,
+                        curl_scale,
+                    }),
+                    follow: strand
+                        .follow
+                        .iter()
+                        .map(|&(g, w)| (slot_of[&g], w as f32))
+                        .collect(),
+                }
+            })
+            .collect();
     }
 
     /// Whether `engine` still simulates the guides this layout was made

@@ -403,7 +403,7 @@ fn draw_from_device(
         light: Light::default(),
     };
     let texture = gpu.draw_scene(0, &scene, Some(&strands), quality)?;
-    Ok(Some((texture, plan.guides.len())))
+    Ok(Some((texture, plan.drawn_count())))
 }
 
 #[cfg(test)]

@@ -42,7 +42,7 @@
 use std::borrow::Cow;
 use std::ops::Range;
 
-use super::curves::{CurveStage, EngineBuffers};
+use super::curves::{CurveBlend, CurveStage};
 use super::kernels::{
     COMMON_WGSL, GpuState, bind_all, dispatch_dims, read_vec4, scratch_buffer, storage_buffer,
     submit_step, uniform_buffer, wait,
@@ -125,8 +125,6 @@ pub struct GpuEngine {
     params: EngineParamsGpu,
     strands: Vec<StrandGpu>,
     params_buffer: wgpu::Buffer,
-    strands_buffer: wgpu::Buffer,
-    elements_buffer: wgpu::Buffer,
     q_buffer: wgpu::Buffer,
     v_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
@@ -296,8 +294,6 @@ impl GpuEngine {
             params,
             strands,
             params_buffer,
-            strands_buffer,
-            elements_buffer,
             q_buffer,
             v_buffer,
             bind_group,
@@ -402,27 +398,15 @@ impl GpuEngine {
         wait(&self.ctx)
     }
 
-    /// Writes every strand's centreline from the current state into the
-    /// curves' points buffer, each element cut `sampling[s]` times
-    /// ([`super::curves`], which gives the buffer's layout), and returns
-    /// the stage that holds it. The stage is built again only when the
-    /// counts change. Nothing waits: a renderer's passes submitted after
-    /// this on the same queue see the points.
-    pub fn write_curves(&mut self, sampling: &[u32]) -> Result<&CurveStage, GpuError> {
-        assert_eq!(sampling.len(), self.strands.len(), "one count per strand");
-        if self
-            .curves
-            .as_ref()
-            .is_none_or(|c| c.sampling() != sampling)
-        {
-            let elements: Vec<usize> = self.strands.iter().map(|s| s.elements as usize).collect();
-            let buffers = EngineBuffers {
-                params: &self.params_buffer,
-                strands: &self.strands_buffer,
-                elements: &self.elements_buffer,
-                q: &self.q_buffer,
-            };
-            let stage = CurveStage::new(&self.ctx, &self.module, &buffers, &elements, sampling)?;
+    /// Writes `blend`'s curves from the current state into the curves'
+    /// points buffer ([`super::curves`], which gives the buffer's layout)
+    /// and returns the stage that holds it. The stage is built again only
+    /// when the blend changes. Nothing waits: a renderer's passes
+    /// submitted after this on the same queue see the points.
+    pub fn write_curves(&mut self, blend: &CurveBlend) -> Result<&CurveStage, GpuError> {
+        if self.curves.as_ref().is_none_or(|c| c.blend() != blend) {
+            let elements = self.strands.iter().map(|s| s.elements as usize).sum();
+            let stage = CurveStage::new(&self.ctx, &self.module, &self.q_buffer, elements, blend)?;
             self.curves = Some(stage);
         }
         let stage = self.curves.as_ref().expect("built above");

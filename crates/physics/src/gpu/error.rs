@@ -72,6 +72,15 @@ pub enum GpuError {
         /// Lavapipe's bound.
         budget: usize,
     },
+    /// A curve to draw reads a strain the engine does not hold (a layout
+    /// made for other strands).
+    #[error("a drawn curve reads element {element} of an engine of {engine_elements} elements")]
+    CurveSource {
+        /// The element read.
+        element: usize,
+        /// The engine's element count.
+        engine_elements: usize,
+    },
     /// Mapping a buffer for readback failed.
     #[error("reading GPU memory back failed: {0}")]
     Readback(String),

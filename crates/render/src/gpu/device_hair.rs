@@ -16,6 +16,10 @@
 //! That CPU path, on the same points, is the pass's reference
 //! (`tests/device_hair.rs`).
 //!
+//! Where the strands ask for it ([`DeviceStrands::shaping`]), they are
+//! first shaped by their guides on the device ([`super::device_shape`]:
+//! clumped, curled, following) and the ribbons read the shaped points.
+//!
 //! The strand table, index buffer, vertex buffer and shell are made once
 //! per layout (ranges, colours, shell) and kept; each frame only the pose
 //! is written and the pass dispatched.
@@ -26,6 +30,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use helixhair_gpu::{bind_buffers, dispatch_dims, upload_buffer};
 
+use super::device_shape::{DeviceShaper, DeviceShaping};
 use super::frame_data::IndexedGeometry;
 use crate::head_shell::HeadShell;
 use crate::ribbons::{ribbon_indices, strand_colour, strand_random};
@@ -49,6 +54,9 @@ pub struct DeviceStrands<'a> {
     /// The longest strand, metres: how far from the head the hair can
     /// reach, for the light's view (the points are not read back).
     pub reach_m: f32,
+    /// How the strands are shaped by their guides first
+    /// ([`super::device_shape`]); `None`: drawn as their points are.
+    pub shaping: Option<DeviceShaping<'a>>,
 }
 
 /// WGSL `RibbonParams`.
@@ -95,24 +103,25 @@ struct LayoutKey {
     ranges: Vec<Range<usize>>,
     colours: Vec<Vec3>,
     shell: Option<(HeadShell, f32)>,
-    /// The points buffer itself (a new one needs a new bind group).
+    /// The points buffer the ribbons read (a new one needs a new bind
+    /// group).
     points: wgpu::Buffer,
 }
 
 impl LayoutKey {
-    /// The key of `strands`' layout.
-    fn of(strands: &DeviceStrands<'_>) -> Self {
+    /// The key of `strands`' layout, its ribbons read from `points`.
+    fn of(strands: &DeviceStrands<'_>, points: &wgpu::Buffer) -> Self {
         Self {
             ranges: strands.ranges.to_vec(),
             colours: strands.colours.to_vec(),
             shell: strands.shell.map(|(s, gap)| (s.clone(), gap)),
-            points: strands.points.clone(),
+            points: points.clone(),
         }
     }
 
-    /// Whether `strands` has this layout, compared in place (every frame,
-    /// without copying the strands' tables).
-    fn matches(&self, strands: &DeviceStrands<'_>) -> bool {
+    /// Whether `strands` read from `points` has this layout, compared in
+    /// place (every frame, without copying the strands' tables).
+    fn matches(&self, strands: &DeviceStrands<'_>, points: &wgpu::Buffer) -> bool {
         let shell = match (&self.shell, strands.shell) {
             (Some((a, gap_a)), Some((b, gap_b))) => a == b && *gap_a == gap_b,
             (None, None) => true,
@@ -121,7 +130,7 @@ impl LayoutKey {
         self.ranges == strands.ranges
             && self.colours == strands.colours
             && shell
-            && self.points == *strands.points
+            && self.points == *points
     }
 }
 
@@ -130,6 +139,8 @@ impl LayoutKey {
 pub struct DeviceRibbons {
     pipeline: wgpu::ComputePipeline,
     layout: Option<(LayoutKey, Built)>,
+    /// The shaping passes, made on the first shaped strands.
+    shaper: Option<DeviceShaper>,
 }
 
 #[derive(Debug)]
@@ -161,11 +172,15 @@ impl DeviceRibbons {
         Self {
             pipeline,
             layout: None,
+            shaper: None,
         }
     }
 
-    /// Records the pass that builds `strands`' ribbons into `encoder` and
-    /// returns the geometry the hair passes draw (`None`: nothing to draw).
+    /// Records the passes that shape `strands` (where they ask for it) and
+    /// build their ribbons into `encoder`, and returns the geometry the
+    /// hair passes draw (`None`: nothing to draw, or a shaping the device
+    /// cannot hold, which [`super::device_shape::shape_table`] tells
+    /// beforehand).
     pub fn encode(
         &mut self,
         device: &wgpu::Device,
@@ -173,13 +188,22 @@ impl DeviceRibbons {
         strands: &DeviceStrands<'_>,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Option<&IndexedGeometry> {
+        let points = match &strands.shaping {
+            Some(shaping) => self
+                .shaper
+                .get_or_insert_with(|| DeviceShaper::new(device))
+                .encode(device, queue, strands.points, shaping, encoder)
+                .ok()?
+                .clone(),
+            None => strands.points.clone(),
+        };
         if self
             .layout
             .as_ref()
-            .is_none_or(|(k, _)| !k.matches(strands))
+            .is_none_or(|(k, _)| !k.matches(strands, &points))
         {
-            let built = build(device, queue, &self.pipeline, strands)?;
-            self.layout = Some((LayoutKey::of(strands), built));
+            let built = build(device, queue, &self.pipeline, strands, &points)?;
+            self.layout = Some((LayoutKey::of(strands, &points), built));
         }
         let (_, built) = self.layout.as_ref()?;
         let params = RibbonParamsGpu {
@@ -217,6 +241,7 @@ fn build(
     queue: &wgpu::Queue,
     pipeline: &wgpu::ComputePipeline,
     strands: &DeviceStrands<'_>,
+    points: &wgpu::Buffer,
 ) -> Option<Built> {
     let mut table = Vec::with_capacity(strands.ranges.len());
     let mut indices = Vec::new();
@@ -283,13 +308,7 @@ fn build(
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let buffers = [
-        &params,
-        strands.points,
-        &table_buffer,
-        &shell_buffer,
-        &vertices,
-    ];
+    let buffers = [&params, points, &table_buffer, &shell_buffer, &vertices];
     let bind_group = bind_buffers(
         device,
         "stage_ribbons",

@@ -3,6 +3,7 @@
 
 pub mod context;
 pub mod device_hair;
+pub mod device_shape;
 pub mod frame_data;
 pub mod gpu_data;
 pub mod offscreen;

@@ -18,6 +18,27 @@ pub struct RgbaImage {
 }
 
 impl RgbaImage {
+    /// The mean absolute difference per channel from `other` (same size),
+    /// in 8-bit levels, and how many pixels differ by more than
+    /// `levels` in some channel: how two renderings of the same scene are
+    /// compared.
+    pub fn difference(&self, other: &Self, levels: u8) -> (f64, usize) {
+        let mean = self
+            .rgba
+            .iter()
+            .zip(&other.rgba)
+            .map(|(a, b)| f64::from(a.abs_diff(*b)))
+            .sum::<f64>()
+            / self.rgba.len().max(1) as f64;
+        let differing = self
+            .rgba
+            .chunks_exact(4)
+            .zip(other.rgba.chunks_exact(4))
+            .filter(|(a, b)| a.iter().zip(*b).any(|(x, y)| x.abs_diff(*y) > levels))
+            .count();
+        (mean, differing)
+    }
+
     /// The pixel at column `x`, row `y` (0 at the top).
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
         let i = 4 * (y as usize * self.width_px as usize + x as usize);

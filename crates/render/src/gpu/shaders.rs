@@ -52,8 +52,16 @@ pub const RIBBONS: ShaderFile = ShaderFile {
     source: include_str!("../../../../shaders/ribbons.wgsl"),
 };
 
+/// Drawn strands shaped by their guides on the device
+/// (`stage_guide_shapes`, `stage_shape`, [`super::device_shape`]): compute
+/// passes, compiled alone.
+pub const STRAND_SHAPE: ShaderFile = ShaderFile {
+    name: "strand_shape.wgsl",
+    source: include_str!("../../../../shaders/strand_shape.wgsl"),
+};
+
 /// The files compiled without `common.wgsl`.
-pub const ALONE: [ShaderFile; 1] = [RIBBONS];
+pub const ALONE: [ShaderFile; 2] = [RIBBONS, STRAND_SHAPE];
 
 /// The source a pass is compiled from: the common part, then the file.
 pub fn composed(file: &ShaderFile) -> String {
