@@ -41,6 +41,7 @@
 //! curl is the one it keeps).
 
 use std::ops::Range;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use bytemuck::{Pod, Zeroable};
 
@@ -106,12 +107,44 @@ pub fn curve_point_count(elements: usize, samples: u32) -> usize {
 
 /// The curves [`CurveStage`] writes (module docs): built once per layout
 /// and handed in every frame.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct CurveBlend {
     strands: Vec<CurveStrandGpu>,
     elements: Vec<CurveElementGpu>,
     sources: Vec<CurveSourceGpu>,
     ranges: Vec<Range<usize>>,
+    /// Which build this is: new at every change, kept by a clone, so the
+    /// stage knows the blend it holds without comparing its tables (a
+    /// groom's are megabytes) every frame.
+    id: u64,
+}
+
+/// A new [`CurveBlend::id`].
+fn next_blend_id() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(0);
+    NEXT.fetch_add(1, Ordering::Relaxed)
+}
+
+impl Default for CurveBlend {
+    fn default() -> Self {
+        Self {
+            strands: Vec::new(),
+            elements: Vec::new(),
+            sources: Vec::new(),
+            ranges: Vec::new(),
+            id: next_blend_id(),
+        }
+    }
+}
+
+impl PartialEq for CurveBlend {
+    /// The same curves: the same build, or equal tables.
+    fn eq(&self, other: &Self) -> bool {
+        self.id == other.id
+            || (self.strands == other.strands
+                && self.elements == other.elements
+                && self.sources == other.sources)
+    }
 }
 
 /// One element of a curve being pushed: its length (m), the strain added
@@ -176,6 +209,7 @@ impl CurveBlend {
                 pad: [0; 2],
             });
         }
+        self.id = next_blend_id();
         let elements = self.elements.len() - first_element;
         let first_point = self.ranges.last().map_or(0, |r| r.end);
         let samples = samples.max(1);

@@ -63,11 +63,16 @@ impl DrawnCache {
         engine: &Engine,
         max_strands: usize,
     ) -> bool {
-        let key = (style.clone(), max_strands);
-        if self.source.as_ref() != Some(&key) {
+        // Compared in place: a groom's style is megabytes, cloned only on
+        // a change.
+        let same = self
+            .source
+            .as_ref()
+            .is_some_and(|(s, m)| s == style && *m == max_strands);
+        if !same {
             self.groom = Some(Groom::new(style.clone(), head.clone()));
             self.layout = None;
-            self.source = Some(key);
+            self.source = Some((style.clone(), max_strands));
         }
         let Some(groom) = self.groom.as_ref() else {
             return false;
