@@ -58,7 +58,7 @@ pub fn curl_period_m(mean_strain_per_m: f32) -> Option<f32> {
 /// What a guide gives the strands shaped by it: its curve, the period of
 /// its curl, its curve's centreline over that period (empty for straight
 /// hair) and its shape resampled at [`FOLLOW_POINTS`] as offsets from its
-/// root. The CPU's `stage_guide_shapes`.
+/// root ([`stage_guide_shapes`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GuideShape {
     /// The guide's curve, root first.
@@ -71,19 +71,17 @@ pub struct GuideShape {
     pub shape: Vec<Vec3>,
 }
 
-impl GuideShape {
-    /// The shape of a guide with `curve` whose strains have mean magnitude
-    /// `mean_strain_per_m` (m⁻¹).
-    pub fn new(curve: Vec<Vec3>, mean_strain_per_m: f32) -> Self {
-        let period_m = curl_period_m(mean_strain_per_m);
-        let axis = period_m.map_or_else(Vec::new, |p| centreline(&curve, p));
-        let shape = resampled_shape(&curve, FOLLOW_POINTS);
-        Self {
-            curve,
-            period_m,
-            axis,
-            shape,
-        }
+/// The shape of a guide with `curve` whose strains have mean magnitude
+/// `mean_strain_per_m` (m⁻¹): the CPU twin of `stage_guide_shapes`.
+pub fn stage_guide_shapes(curve: Vec<Vec3>, mean_strain_per_m: f32) -> GuideShape {
+    let period_m = curl_period_m(mean_strain_per_m);
+    let axis = period_m.map_or_else(Vec::new, |p| centreline(&curve, p));
+    let shape = resampled_shape(&curve, FOLLOW_POINTS);
+    GuideShape {
+        curve,
+        period_m,
+        axis,
+        shape,
     }
 }
 
@@ -119,8 +117,8 @@ impl Shaping {
 }
 
 /// Shapes `strand` (root first) as `shaping` says, from `guides` (the
-/// indices `shaping` names): the CPU's `stage_shape`.
-pub fn shape_strand(strand: &mut [Vec3], shaping: &Shaping, guides: &[GuideShape]) {
+/// indices `shaping` names): the CPU twin of `stage_shape`.
+pub fn stage_shape(strand: &mut [Vec3], shaping: &Shaping, guides: &[GuideShape]) {
     if let Some(clump) = shaping.clump {
         let guide = &guides[clump.guide];
         match guide.period_m {

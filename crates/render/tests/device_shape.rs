@@ -1,6 +1,6 @@
 //! Drawn strands shaped by their guides on the device
 //! (`shaders/strand_shape.wgsl`) against their CPU reference on the same
-//! points ([`GuideShape::new`] then [`shape_strand`]): curls clumped onto
+//! points ([`stage_guide_shapes`] then [`stage_shape`], the twins): curls clumped onto
 //! a curled guide with a phase and radius of their own, straight strands
 //! clumped onto a straight guide, strands following a blend of three
 //! guides, one doing both and one left alone. Then the whole device path
@@ -21,7 +21,7 @@ use helixhair_render::gpu::gpu_data::StrandVertex;
 use helixhair_render::head_generate::default_head;
 use helixhair_render::head_shell::HeadShell;
 use helixhair_render::ribbons::ribbon_mesh;
-use helixhair_render::strand_shape::{Clump, GuideShape, Shaping, shape_strand};
+use helixhair_render::strand_shape::{Clump, GuideShape, Shaping, stage_guide_shapes, stage_shape};
 use helixhair_render::{HairStrands, StrandBuffers};
 
 /// Device against CPU, per shaped point, metres: the same f32 loops in the
@@ -186,14 +186,14 @@ fn cpu_shaped(l: &Layout) -> Vec<Vec<Vec3>> {
     let guides: Vec<GuideShape> = l
         .guides
         .iter()
-        .map(|&c| GuideShape::new(l.curves[c].clone(), l.strains[c]))
+        .map(|&c| stage_guide_shapes(l.curves[c].clone(), l.strains[c]))
         .collect();
     l.strands
         .iter()
         .zip(&l.shapings)
         .map(|(&c, shaping)| {
             let mut curve = l.curves[c].clone();
-            shape_strand(&mut curve, shaping, &guides);
+            stage_shape(&mut curve, shaping, &guides);
             curve
         })
         .collect()

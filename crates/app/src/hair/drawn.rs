@@ -15,7 +15,7 @@
 use glam::{DVec3, Vec3};
 use helixhair_physics::engine::Engine;
 use helixhair_render::head_shell::HeadShell;
-use helixhair_render::strand_shape::{GuideShape, shape_strand};
+use helixhair_render::strand_shape::{GuideShape, stage_guide_shapes, stage_shape};
 use helixhair_render::{HairStrands, StrandBuffers};
 
 use crate::hair::layout::DrawnLayout;
@@ -59,7 +59,7 @@ pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairS
         .map(|&g| {
             let model = engine.strand_model(g);
             let curve = to_f32(&strand_curve(engine.root(g), &model.lengths_m, &q[g])).collect();
-            GuideShape::new(curve, mean_strain_per_m(&q[g]))
+            stage_guide_shapes(curve, mean_strain_per_m(&q[g]))
         })
         .collect();
     let mut strands = StrandBuffers::default();
@@ -72,7 +72,7 @@ pub fn drawn_hair(groom: &Groom, layout: &DrawnLayout, engine: &Engine) -> HairS
             &strand.lengths_m,
             &strains,
         )));
-        shape_strand(&mut curve, shaping, &guides);
+        stage_shape(&mut curve, shaping, &guides);
         drape_over(&mut curve, &groom.shell);
         strands.push_strand(curve.iter().map(|&p| rotation * p + position));
     }
