@@ -11,8 +11,8 @@
 //! # One step
 //!
 //! [`HairSystem::step_frame`] runs, for every strand (in parallel), the
-//! stages of [`step`]: **reconstruct** ([`reconstruct`]), **forces**
-//! ([`forces`]), **mass** ([`mass`]), **solve** ([`solve`]: Dense,
+//! stages of [`step`]: **reconstruct** ([`step::reconstruct`]), **forces**
+//! ([`step::forces`]), **mass** ([`step::mass`]), **solve** ([`step::solve`]: Dense,
 //! Block-diagonal, Exact or Iterative) and **integrate**. Everything is f64
 //! and O(N) per strand except the dense solve.
 //!
@@ -25,7 +25,7 @@
 //! Block-diagonal step as a wgpu compute kernel (`shaders/physics/engine.wgsl`,
 //! its CPU twin `gpu::engine_twin`), and `gpu::GpuSystem` the Dense
 //! kernel with a workgroup per strand (twins `gpu::twin`,
-//! `gpu::dense_twin`); [`batch::dense`] is Dense's f32 arithmetic.
+//! `gpu::dense_twin`); [`batch::step::dense`] is Dense's f32 arithmetic.
 //!
 //! This crate knows nothing of rendering, windows or file formats; its
 //! parameter types derive serde so that callers can embed them in theirs.

@@ -71,7 +71,7 @@ pub struct DrawnStrand {
     pub clump: Option<(usize, f64)>,
     /// Guides (simulation index, weight) whose blended shape the strand's
     /// tip follows, for groups that do not clump (see
-    /// [`crate::hair::drawn::follow_guides`]); empty: none.
+    /// [`helixhair_render::strand_shape::follow_guides`]); empty: none.
     pub follow: Vec<(usize, f64)>,
 }
 

@@ -1,6 +1,6 @@
 //! RON files other than styles (motion files, stroke files) read with the
 //! style's error locating: every error names the file, the line and the
-//! field (`shot.ron:7:20: field `keys[2].time_secs`: …`), and a save is
+//! field (``shot.ron:7:20: field `keys[2].time_secs`: …``), and a save is
 //! atomic.
 //!
 //! A file kind gives its noun ([`RonFile::WHAT`], "motion file") and its

@@ -3,30 +3,30 @@
 //! # Modules
 //!
 //! Window-free logic, tested without a display:
-//! [`app_state`] (everything the window shows and edits, stepped once per
-//! frame), [`document`] (the style, its file, unsaved marker, undo via
-//! [`undo`]), [`presets`], [`live_sim`] (the simulation following edits
-//! without a reset, shapes kept by [`resample`]), [`head_motion`] (the
+//! `app_state` (everything the window shows and edits, stepped once per
+//! frame), `document` (the style, its file, unsaved marker, undo via
+//! `undo`), `presets`, `live_sim` (the simulation following edits
+//! without a reset, shapes kept by `resample`), `head_motion` (the
 //! user's head pose and the built-in motions, with velocities and
-//! accelerations for the physics), [`collision`] (the head collider
-//! handed to the physics), [`readouts`], [`default_style`] and
-//! [`viewport`] (camera gestures, render strands from guides) and
-//! [`drawn`] (styles with `render` sections, drawn as `helixhair render`
+//! accelerations for the physics), `collision` (the head collider
+//! handed to the physics), `readouts`, `default_style` and
+//! `viewport` (camera gestures, render strands from guides) and
+//! `drawn` (styles with `render` sections, drawn as `helixhair render`
 //! draws them).
 //!
-//! Files in and out: [`export_job`] (File → Export frame… and Record
-//! animation…, through `sim --export`'s code), [`import_job`] (File →
+//! Files in and out: `export_job` (File → Export frame… and Record
+//! animation…, through `sim --export`'s code), `import_job` (File →
 //! Import groom… and dropped grooms, through `import`'s code),
-//! [`motion_recorder`] (head drags recorded as a motion file), all run by
-//! [`job`] on a worker thread with a progress bar and Cancel; [`set_rest`]
+//! `motion_recorder` (head drags recorded as a motion file), all run by
+//! `job` on a worker thread with a progress bar and Cancel; `set_rest`
 //! ("set current shape as rest": the sag-free solve of the import on the
 //! hair as it is now).
 //!
-//! With a display: [`event_loop`] (winit), [`window_gpu`] (surface, 3D
-//! pictures), [`screenshot`], [`egui_paint`] and [`panel_layer`] (egui
-//! painted, the panels cached where they do not change), [`preview`] (the
-//! interactive preview's choices) and the egui panels ([`ui`], [`tool_bar`],
-//! [`file_menu`], [`style_panel`], [`readout_panel`], [`file_picker`]).
+//! With a display: `event_loop` (winit), `window_gpu` (surface, 3D
+//! pictures), `screenshot`, `egui_paint` and `panel_layer` (egui
+//! painted, the panels cached where they do not change), `preview` (the
+//! interactive preview's choices) and the egui panels (`ui`, `tool_bar`,
+//! `file_menu`, `style_panel`, `readout_panel`, `file_picker`).
 //!
 //! # Without a display
 //!

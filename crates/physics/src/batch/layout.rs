@@ -228,7 +228,7 @@ impl<T: Real> ContactInertia<T> {
 }
 
 /// A 6×6 twist-to-wrench matrix H (as four 3×3 blocks) moved to an origin
-/// `delta` from the current one: with S = [δ]×, a twist about the new
+/// `delta` from the current one: with S = \[δ\]×, a twist about the new
 /// origin is (a − Sb, b) and a wrench (f, τ − δ × f), so H′ = XᵀHX with
 /// X = [[𝟙, S], [0, 𝟙]]. The Exact elimination's articulated inertia and
 /// the contact's point inertias ([`ContactInertia`]) move by it.

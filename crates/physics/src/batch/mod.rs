@@ -36,11 +36,11 @@
 //!   [`geometry`]; products with a sample's Jacobian taken in the element's
 //!   frame), then one tip-to-root sweep that forms each element's
 //!   block from suffix sums ([`suffix`]) and solves it
-//!   ([`block_diagonal`]), or runs the O(N) elimination ([`exact`]) and a
+//!   ([`step::block_diagonal`]), or runs the O(N) elimination ([`step::exact`]) and a
 //!   third, root-to-tip sweep. Per-element data is written in place: at
 //!   8 lanes an element's record is about 1.9 KB, and copying it was 15% of
 //!   a step.
-//! - **Velocity-implicit Exact** ([`implicit`], the default
+//! - **Velocity-implicit Exact** ([`step::implicit`], the default
 //!   `StepScheme::VelocityImplicit`, as in the f64 reference): the
 //!   derivative G = −∂Q/∂q̇ of the centrifugal, Coriolis and root-rotation
 //!   forces joins the step matrix. Sweep 3 gives Δv₀ = P⁻¹ rhs without
@@ -49,7 +49,7 @@
 //!   product, Givens rotation and stopping test is a [`Lanes`] value, so
 //!   each strand runs its own GMRES inside the batch's SIMD arithmetic.
 //!   Each iteration re-solves with the elimination sweep 2 stored
-//!   ([`exact::solve_again`]: two light sweeps) and forms G z by
+//!   ([`step::exact::solve_again`]: two light sweeps) and forms G z by
 //!   polarisation, two kinematic sweeps with rates q̇ ± cz
 //!   ([`velocity_terms`]). `StepScheme::VelocityExplicit` (and 0
 //!   corrections) runs the explicit step bit for bit as before.
@@ -68,7 +68,7 @@
 //!   at the sample (Exact's elimination and Block-diagonal's blocks alike);
 //!   the module derives where. Without a collider the sweep has no such
 //!   stage at all.
-//! - **Hair–hair model** ([`volume`], [`pull`], when
+//! - **Hair–hair model** ([`volume`], [`volume::pull`], when
 //!   `SimSettings::interaction` is on): once per frame, before the
 //!   steps, an f32 sweep per batch gathers every lane's quadrature samples
 //!   (position, velocity, mass), the shared f64 code of
@@ -78,9 +78,9 @@
 //!   to the head). The step takes the friction as it takes air drag: the
 //!   force k − μρS (ṙ − c) at each sample (c the root's rigid velocity there)
 //!   and hμ in the mass scale, through the step hook
-//!   ([`contact::SampleHook::sample_force`]); without the model the
-//!   sample loop compiles as before. The guard counts the pull's work
-//!   ([`volume_read`]).
+//!   ([`forward::SampleHook::sample_force`]); without the model the
+//!   sample loop compiles as before. The guard's measure sums the pull's
+//!   force and power with the other external forces ([`measure`]).
 //! - **Guard** ([`guard`], on by default): after each frame, each strand is
 //!   measured and checked as [`crate::guard`] checks (finite, true speed,
 //!   energy against the root's work); one that fails is stepped again from
@@ -100,7 +100,7 @@
 //! comparison with the f64 reference is like with like. External forces
 //! (`Strand::set_external_forces`) are not supported here yet.
 //!
-//! [`dense`] holds an f32 Dense step (the whole 3N×3N step matrix,
+//! [`step::dense`] holds an f32 Dense step (the whole 3N×3N step matrix,
 //! Cholesky-factored) for one strand or a batch: the arithmetic of the GPU
 //! Dense kernel's CPU twin; [`BatchSystem`] itself steps Block-diagonal and
 //! Exact (Exact gives Dense's answer in O(N)).

@@ -18,7 +18,7 @@
 //!
 //! [`sag_free`](mod@sag_free) then solves the natural strains q⁰ that make the fitted
 //! shape a static equilibrium under gravity (and the head's contact push,
-//! by the law of the engine that will step it: [`rest_contact`]), so
+//! by the law of the engine that will step it: [`crate::engine::Engine::rest_contact`]), so
 //! an imported groom keeps its shape instead of sagging, and
 //! [`sag_free_stiffened`] stiffens a strand whose equilibrium is unstable
 //! by the least that holds it. `docs/import.md` teaches all three with the

@@ -260,7 +260,7 @@ impl GpuSystem {
         per_element * self.elements.len() + size_of::<RootPoseGpu>()
     }
 
-    /// The frame state buffer (binding 5: one [`FrameGpu`] per element,
+    /// The frame state buffer (binding 5: one [`super::layout::FrameGpu`] per element,
     /// strand-major), for a renderer to read points from on the GPU.
     pub fn frames_buffer(&self) -> &wgpu::Buffer {
         &self.scratch[0]

@@ -13,7 +13,7 @@
 //! its strains in m⁻¹ (what sets a curl's period,
 //! [`crate::strand_shape::curl_period_m`]). [`DeviceShaping::curves`] gives
 //! every curve's points, guides and drawn strands alike; a drawn strand
-//! and a guide are never the same curve. It writes [`DeviceShaper::shaped`],
+//! and a guide are never the same curve. It writes the shaped points ([`DeviceShaper::encode`] returns their buffer),
 //! indexed as the points: the drawn strands' shaped points at their own
 //! curves' ranges, which the ribbon pass then reads.
 

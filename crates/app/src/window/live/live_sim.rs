@@ -119,7 +119,7 @@ impl LiveSim {
     }
 
     /// Sets the head collider (also kept across rebuilds); hair grown on
-    /// the scalp then settles on it ([`LiveSim::settle_grown_hair`]).
+    /// the scalp then settles on it (`LiveSim::settle_grown_hair`).
     pub fn set_collider(&mut self, collider: Option<HeadCollider>) {
         if let Some(c) = &collider {
             c.attach(&mut self.engine);

@@ -43,9 +43,9 @@
 //! - a lane with a larger term, or a non-finite one, is left to the exact
 //!   test;
 //! - the f32 reach is at least the exact test's f64 one: the speed is
-//!   raised by [`REACH_SLACK`] of the sum of every term's magnitude (far
+//!   raised by `REACH_SLACK` of the sum of every term's magnitude (far
 //!   above the f32 rounding of the head's surface velocity and the
-//!   difference) and a floor, the skin by [`SKIN_MARGIN_M`].
+//!   difference) and a floor, the skin by `SKIN_MARGIN_M`.
 
 use std::cmp::Ordering;
 
