@@ -404,7 +404,7 @@ impl GpuEngine {
     /// when the blend changes. Nothing waits: a renderer's passes
     /// submitted after this on the same queue see the points.
     pub fn write_curves(&mut self, blend: &CurveBlend) -> Result<&CurveStage, GpuError> {
-        if self.curves.as_ref().is_none_or(|c| c.blend() != blend) {
+        if !self.curves.as_mut().is_some_and(|c| c.holds(blend)) {
             let elements = self.strands.iter().map(|s| s.elements as usize).sum();
             let stage = CurveStage::new(&self.ctx, &self.module, &self.q_buffer, elements, blend)?;
             self.curves = Some(stage);
