@@ -238,3 +238,29 @@ fn a_constant_bend_draws_a_circle_of_radius_one_over_kappa() {
         assert_eq!(curve.len(), curve_point_count(n, samples));
     }
 }
+
+/// Blends are equal by their tables: a clone, or the same layout built
+/// again; a push makes another. (The stage's build id, which spares the
+/// per-frame comparison, must never make unequal blends equal.)
+#[test]
+fn blends_are_equal_by_their_tables() {
+    let lengths = [0.02; 4];
+    let root = RootPose::from_direction(DVec3::ZERO, DVec3::NEG_Y, DVec3::Z);
+    let blend =
+        |lengths: &[f64]| CurveBlend::engine_strands(&[root, root], &[lengths, lengths], &[1, 3]);
+    let a = blend(&lengths);
+    assert_eq!(a.clone(), a);
+    assert_eq!(blend(&lengths), a);
+    assert_ne!(blend(&[0.02; 5]), a);
+    let mut c = a.clone();
+    let element = BlendElement {
+        length_m: 0.02,
+        base: DVec3::ZERO,
+        sources: [(0, 1.0)],
+    };
+    c.push(&root, 2, [element]);
+    assert_ne!(c, a);
+    // Strand 0: 4 × 1 + 1 points; strand 1: 4 × 3 + 1; the new curve 2 + 1.
+    assert_eq!(c.ranges(), [0..5, 5..18, 18..21]);
+    assert_eq!(c.elements_read(), 8);
+}

@@ -433,39 +433,3 @@ pub fn stage_curves(blend: &CurveBlend, c: usize, q: &[[f32; 4]], out: &mut Vec<
     out.push(point(&s));
     strain_sum / cs.elements.max(1) as f32
 }
-
-#[cfg(test)]
-mod tests {
-    use glam::DVec3;
-
-    use super::*;
-
-    fn blend(lengths_m: &[f64]) -> CurveBlend {
-        let root = RootPose::from_direction(DVec3::ZERO, DVec3::NEG_Y, DVec3::Z);
-        CurveBlend::engine_strands(&[root, root], &[lengths_m, lengths_m], &[1, 3])
-    }
-
-    #[test]
-    fn blends_are_equal_by_build_or_by_tables() {
-        let a = blend(&[0.02; 4]);
-        // A clone is the same build; an equal build is equal by its tables.
-        assert_eq!(a.clone().id, a.id);
-        let b = blend(&[0.02; 4]);
-        assert_ne!(a.id, b.id);
-        assert_eq!(a, b);
-        assert_ne!(a, blend(&[0.02; 5]));
-        // A push is a new build with other tables.
-        let mut c = a.clone();
-        let root = RootPose::from_direction(DVec3::X, DVec3::NEG_Y, DVec3::Z);
-        let element = BlendElement {
-            length_m: 0.02,
-            base: DVec3::ZERO,
-            sources: [(0, 1.0)],
-        };
-        c.push(&root, 2, [element]);
-        assert_ne!(c.id, a.id);
-        assert_ne!(c, a);
-        assert_eq!(c.ranges()[2], 18..21);
-        assert_eq!(c.elements_read(), 8);
-    }
-}
