@@ -45,7 +45,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use bytemuck::{Pod, Zeroable};
 
-use super::kernels::{dispatch_dims, read_vec4, scratch_buffer, storage_buffer, submit_pass};
+use super::kernels::{
+    at_least_one, dispatch_dims, read_pod, read_vec4, scratch_buffer, storage_buffer, submit_pass,
+};
 use super::layout::Mat3Gpu;
 use super::{GpuContext, GpuError};
 use crate::batch::forward::{FrameState, advance};
@@ -167,21 +169,31 @@ impl CurveBlend {
         let mut blend = Self::default();
         let mut first = 0u32;
         for ((root, lengths), &samples) in roots.iter().zip(lengths_m).zip(sampling) {
-            blend.push(
-                root,
-                samples,
-                lengths
-                    .iter()
-                    .enumerate()
-                    .map(|(e, &length_m)| BlendElement {
-                        length_m,
-                        base: glam::DVec3::ZERO,
-                        sources: [(first + e as u32, 1.0)],
-                    }),
-            );
+            blend.push_strand(root, lengths, samples, first);
             first += lengths.len() as u32;
         }
         blend
+    }
+
+    /// Adds an engine strand drawn as it is: grown from `root` with
+    /// `lengths_m`, its elements the engine's from `first_element` on,
+    /// each cut `samples` times; returns its index.
+    pub fn push_strand(
+        &mut self,
+        root: &RootPose,
+        lengths_m: &[f64],
+        samples: u32,
+        first_element: u32,
+    ) -> usize {
+        let own = lengths_m
+            .iter()
+            .enumerate()
+            .map(|(e, &length_m)| BlendElement {
+                length_m,
+                base: glam::DVec3::ZERO,
+                sources: [(first_element + e as u32, 1.0)],
+            });
+        self.push(root, samples, own)
     }
 
     /// Adds a curve grown from `root`, each element cut `samples` times;
@@ -264,16 +276,6 @@ pub struct CurveStage {
     curve_group: wgpu::BindGroup,
 }
 
-/// The bytes of `items`, or of one zeroed item where there are none: a
-/// storage binding holds at least one element.
-fn bytes_of<T: Pod>(items: &[T]) -> Vec<u8> {
-    if items.is_empty() {
-        vec![0; size_of::<T>()]
-    } else {
-        bytemuck::cast_slice(items).to_vec()
-    }
-}
-
 impl CurveStage {
     /// The stage writing `blend`'s curves from `q` (the engine's strains,
     /// `engine_elements` of them), built from `module` (the engine's).
@@ -290,9 +292,9 @@ impl CurveStage {
                 engine_elements,
             });
         }
-        let strands = storage_buffer(ctx, "curve strands", &bytes_of(&blend.strands))?;
-        let elements = storage_buffer(ctx, "curve elements", &bytes_of(&blend.elements))?;
-        let sources = storage_buffer(ctx, "curve sources", &bytes_of(&blend.sources))?;
+        let strands = storage_buffer(ctx, "curve strands", &at_least_one(&blend.strands))?;
+        let elements = storage_buffer(ctx, "curve elements", &at_least_one(&blend.elements))?;
+        let sources = storage_buffer(ctx, "curve sources", &at_least_one(&blend.sources))?;
         let point_count = blend.ranges.last().map_or(0, |r| r.end);
         // Every point and strain is written by each dispatch before
         // anything reads it; the strains' length is the curve count.
@@ -384,11 +386,7 @@ impl CurveStage {
 
     /// Reads the mean strains back (tests and tools).
     pub fn read_strains(&self, ctx: &GpuContext) -> Result<Vec<f32>, GpuError> {
-        let bytes = helixhair_gpu::read_bytes(&ctx.device, &ctx.queue, &self.strains);
-        ctx.check()?;
-        Ok(bytemuck::pod_collect_to_vec(
-            &bytes.map_err(GpuError::Readback)?,
-        ))
+        read_pod(ctx, &self.strains)
     }
 }
 

@@ -44,8 +44,8 @@ use std::ops::Range;
 
 use super::curves::{CurveBlend, CurveStage};
 use super::kernels::{
-    COMMON_WGSL, GpuState, bind_all, dispatch_dims, read_vec4, scratch_buffer, storage_buffer,
-    submit_step, uniform_buffer, wait,
+    COMMON_WGSL, GpuState, at_least_one, bind_all, dispatch_dims, read_vec4, scratch_buffer,
+    storage_buffer, submit_step, uniform_buffer, wait,
 };
 use super::layout::{
     ElementConstGpu, ElementDataGpu, EliminationGpu, EngineParamsGpu, Mat3Gpu, StrandGpu,
@@ -434,15 +434,5 @@ impl SubstepOffload for GpuEngine {
 
     fn download(&mut self) -> Result<GpuState, String> {
         self.read_state().map_err(|e| e.to_string())
-    }
-}
-
-/// The bytes of `items`, or of one zeroed item where there are none: a
-/// storage binding holds at least one element.
-fn at_least_one<T: bytemuck::Pod>(items: &[T]) -> Cow<'_, [u8]> {
-    if items.is_empty() {
-        Cow::Owned(vec![0; size_of::<T>()])
-    } else {
-        Cow::Borrowed(bytemuck::cast_slice(items))
     }
 }

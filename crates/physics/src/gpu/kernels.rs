@@ -343,12 +343,31 @@ pub(crate) fn read_vec4(
     ctx: &GpuContext,
     buffer: &wgpu::Buffer,
 ) -> Result<Vec<[f32; 4]>, GpuError> {
+    read_pod(ctx, buffer)
+}
+
+/// Copies `buffer` (items of `T`) back to the CPU through a staging
+/// buffer.
+pub(crate) fn read_pod<T: bytemuck::Pod>(
+    ctx: &GpuContext,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<T>, GpuError> {
     let bytes = helixhair_gpu::read_bytes(&ctx.device, &ctx.queue, buffer);
     // A lost device or a failed operation first: a readback error is then
     // only its consequence.
     ctx.check()?;
     let bytes = bytes.map_err(GpuError::Readback)?;
-    Ok(bytemuck::cast_slice(&bytes).to_vec())
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}
+
+/// The bytes of `items`, or of one zeroed item where there are none: a
+/// storage binding holds at least one element.
+pub(crate) fn at_least_one<T: bytemuck::Pod>(items: &[T]) -> std::borrow::Cow<'_, [u8]> {
+    if items.is_empty() {
+        std::borrow::Cow::Owned(vec![0; size_of::<T>()])
+    } else {
+        std::borrow::Cow::Borrowed(bytemuck::cast_slice(items))
+    }
 }
 
 /// The bind group of a kernel whose binding 0 is a uniform buffer and

@@ -142,7 +142,8 @@ pub fn shape_table(
 struct ShapeKey {
     curves: Vec<Range<usize>>,
     guides: Vec<usize>,
-    table: Vec<ShapeStrandGpu>,
+    strands: Vec<usize>,
+    shapings: Vec<Shaping>,
     points: wgpu::Buffer,
     strains: wgpu::Buffer,
 }
@@ -227,25 +228,29 @@ impl DeviceShaper {
         shaping: &DeviceShaping<'_>,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<&wgpu::Buffer, ShapeError> {
-        let table = shape_table(
-            shaping.curves.len(),
-            shaping.guides,
-            shaping.strands,
-            shaping.shapings,
-        )?;
+        // Compared in place every frame; the table is made and checked
+        // only when the layout changes.
         let same = self.layout.as_ref().is_some_and(|(k, _)| {
             k.curves == shaping.curves
                 && k.guides == shaping.guides
-                && k.table == table
+                && k.strands == shaping.strands
+                && k.shapings == shaping.shapings
                 && k.points == *points
                 && k.strains == *shaping.strains
         });
         if !same {
+            let table = shape_table(
+                shaping.curves.len(),
+                shaping.guides,
+                shaping.strands,
+                shaping.shapings,
+            )?;
             let built = self.build(device, queue, points, shaping, &table);
             let key = ShapeKey {
                 curves: shaping.curves.to_vec(),
                 guides: shaping.guides.to_vec(),
-                table,
+                strands: shaping.strands.to_vec(),
+                shapings: shaping.shapings.to_vec(),
                 points: points.clone(),
                 strains: shaping.strains.clone(),
             };

@@ -85,71 +85,62 @@ impl DevicePlan {
                 same.then_some(g)
             })
             .collect();
-        let (blend, drawn, guides, shapings) =
-            match all_guides {
-                Some(drawn) => {
-                    let roots: Vec<_> = (0..n).map(|g| *engine.root(g)).collect();
-                    let lengths: Vec<&[f64]> = (0..n).map(guide_lengths).collect();
-                    let sampling: Vec<u32> = (0..n)
-                        .map(|g| natural_pieces(guide_lengths(g), guide_natural(g)))
-                        .collect();
-                    let blend = CurveBlend::engine_strands(&roots, &lengths, &sampling);
-                    (blend, drawn, Vec::new(), Vec::new())
+        let (blend, drawn, guides, shapings) = match all_guides {
+            Some(drawn) => {
+                let roots: Vec<_> = (0..n).map(|g| *engine.root(g)).collect();
+                let lengths: Vec<&[f64]> = (0..n).map(guide_lengths).collect();
+                let sampling: Vec<u32> = (0..n)
+                    .map(|g| natural_pieces(guide_lengths(g), guide_natural(g)))
+                    .collect();
+                let blend = CurveBlend::engine_strands(&roots, &lengths, &sampling);
+                (blend, drawn, Vec::new(), Vec::new())
+            }
+            None => {
+                let mut blend = CurveBlend::default();
+                let mut guides = Vec::with_capacity(layout.shape_guides.len());
+                for &g in &layout.shape_guides {
+                    let samples = natural_pieces(guide_lengths(g), guide_natural(g));
+                    let root = engine.root(g);
+                    guides.push(blend.push_strand(
+                        root,
+                        guide_lengths(g),
+                        samples,
+                        first_element[g],
+                    ));
                 }
-                None => {
-                    let mut blend = CurveBlend::default();
-                    let mut guides = Vec::with_capacity(layout.shape_guides.len());
-                    for &g in &layout.shape_guides {
-                        let samples = natural_pieces(guide_lengths(g), guide_natural(g));
-                        let own = guide_lengths(g).iter().enumerate().map(|(e, &length_m)| {
-                            BlendElement {
-                                length_m,
-                                base: DVec3::ZERO,
-                                sources: [(first_element[g] + e as u32, 1.0f32)],
-                            }
+                // Every guide's natural strains, which a drawn strand
+                // blends as it blends their strains (for how finely it
+                // is cut).
+                let naturals: Vec<Vec<DVec3>> = (0..n).map(|g| guide_natural(g).to_vec()).collect();
+                let mut drawn = Vec::with_capacity(layout.strands.len());
+                for strand in &layout.strands {
+                    if strand.sources.iter().flatten().any(|s| {
+                        s.guide >= n || s.element >= engine.strand_model(s.guide).elements()
+                    }) {
+                        return None;
+                    }
+                    let natural = strand.strains(&naturals);
+                    let samples = natural_pieces(&strand.lengths_m, &natural);
+                    let elements = strand
+                        .lengths_m
+                        .iter()
+                        .zip(&strand.base)
+                        .zip(&strand.sources)
+                        .map(|((&length_m, &base), sources)| BlendElement {
+                            length_m,
+                            base,
+                            sources: sources
+                                .iter()
+                                .map(|s| {
+                                    (first_element[s.guide] + s.element as u32, s.weight as f32)
+                                })
+                                .collect::<Vec<_>>(),
                         });
-                        guides.push(blend.push(engine.root(g), samples, own));
-                    }
-                    let mut drawn = Vec::with_capacity(layout.strands.len());
-                    for strand in &layout.strands {
-                        if strand.sources.iter().flatten().any(|s| {
-                            s.guide >= n || s.element >= engine.strand_model(s.guide).elements()
-                        }) {
-                            return None;
-                        }
-                        // Its natural strains, for how finely it is cut.
-                        let natural: Vec<DVec3> = strand
-                            .sources
-                            .iter()
-                            .zip(&strand.base)
-                            .map(|(sources, &base)| {
-                                base + sources
-                                    .iter()
-                                    .map(|s| s.weight * guide_natural(s.guide)[s.element])
-                                    .sum::<DVec3>()
-                            })
-                            .collect();
-                        let samples = natural_pieces(&strand.lengths_m, &natural);
-                        let elements = strand
-                            .lengths_m
-                            .iter()
-                            .zip(&strand.base)
-                            .zip(&strand.sources)
-                            .map(|((&length_m, &base), sources)| BlendElement {
-                                length_m,
-                                base,
-                                sources: sources
-                                    .iter()
-                                    .map(|s| {
-                                        (first_element[s.guide] + s.element as u32, s.weight as f32)
-                                    })
-                                    .collect::<Vec<_>>(),
-                            });
-                        drawn.push(blend.push(&strand.root, samples, elements));
-                    }
-                    (blend, drawn, guides, layout.shapings.clone())
+                    drawn.push(blend.push(&strand.root, samples, elements));
                 }
-            };
+                (blend, drawn, guides, layout.shapings.clone())
+            }
+        };
         let reach_m = layout
             .strands
             .iter()
