@@ -10,6 +10,7 @@ use crate::common;
 use common::*;
 use glam::DVec3;
 use helixhair_physics::batch::{BatchSystem, FlatState, SubstepOffload};
+use helixhair_physics::frame_balance::{KineticEnergy, StrandMeasure};
 use helixhair_physics::guard::speed_bound_m_per_s;
 use helixhair_physics::{
     Guard, GuardAction, Method, Oscillation, RigidMotion, RootPose, SimSettings, StepScheme,
@@ -159,6 +160,13 @@ impl SubstepOffload for CpuOffload {
     }
     fn download(&mut self) -> Result<FlatState, String> {
         Ok(self.0.state_flat())
+    }
+    fn measure(
+        &mut self,
+        head: &RigidMotion,
+        judged_by: KineticEnergy,
+    ) -> Result<Vec<(StrandMeasure, bool)>, String> {
+        Ok(self.0.measure_strands(head, judged_by))
     }
 }
 

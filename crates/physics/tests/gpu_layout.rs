@@ -12,6 +12,7 @@ use helixhair_physics::gpu::dense_kernels::{
 use helixhair_physics::gpu::engine::{BLOCK_SLOTS, KRYLOV_SLOTS, engine_source};
 use helixhair_physics::gpu::kernels::kernel_source;
 use helixhair_physics::gpu::layout::*;
+use helixhair_physics::gpu::measure::{BlockRecordGpu, StrandMeasureGpu};
 use wgpu::naga;
 
 fn module(method: Method) -> naga::Module {
@@ -178,6 +179,13 @@ fn the_engine_kernel_validates_and_its_host_structs_match() {
     ]);
     check!(&engine, "Elimination", EliminationGpu, [
         w_top => "w_top", w_bottom => "w_bottom", s_inv => "s_inv", rhs => "rhs",
+    ]);
+    check!(&engine, "StrandMeasure", StrandMeasureGpu, [
+        energies => "energies", sums => "sums", momentum => "momentum", angular => "angular",
+        force => "force", torque => "torque", first_moment => "first_moment",
+    ]);
+    check!(&engine, "BlockRecord", BlockRecordGpu, [
+        u => "u", beta => "beta", span => "span", first => "first", second => "second",
     ]);
     assert_eq!(constant_u32(&engine, "KRYLOV_SLOTS") as usize, KRYLOV_SLOTS);
     assert_eq!(constant_u32(&engine, "BLOCK_SLOTS") as usize, BLOCK_SLOTS);

@@ -26,6 +26,7 @@ mod gpu_curves;
 mod gpu_dense;
 mod gpu_engine;
 mod gpu_layout;
+mod gpu_measure;
 mod gpu_parity;
 mod guard_acceleration_jump;
 mod guards;

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::contact::{LaneContact, NearCells, SkinTest};
 use super::forward::NoContact;
-use super::guard::{check_lanes, measure_lanes, set_at_rest};
+use super::guard::{check_lanes, finite_lanes, measure_lanes, set_at_rest};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
@@ -61,6 +61,11 @@ pub(super) struct Group {
     /// judgement kept them.
     kept_at: Option<RigidMotion>,
 }
+
+/// One batch's lanes' end-of-frame measures and whether each lane's state
+/// is finite, as the device that stepped them found them (`None`: a
+/// padding lane, not judged).
+pub(crate) type LaneEnds = [Option<(StrandMeasure, bool)>; LANES];
 
 /// Which batches a [`Group::step`] steps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -324,6 +329,13 @@ impl Group {
         self.standing.iter().any(|s| s.hold_frames > 0)
     }
 
+    /// Whether a lane is pinned in its rest pose.
+    pub(super) fn any_pinned(&self) -> bool {
+        self.standing
+            .iter()
+            .any(|s| s.lanes.iter().any(|lane| lane.pinned))
+    }
+
     /// Puts every batch that holds a retry's step back at the frame's
     /// start ([`Self::save_checkpoint`]): a state stepped elsewhere with
     /// the settings' own step is not what such a batch steps.
@@ -416,6 +428,7 @@ impl Group {
         check: Option<&FrameCheck<'_>>,
         parallel: bool,
         advance: Advance,
+        measured: Option<&[LaneEnds]>,
     ) {
         let n = self.n;
         // Kept samples from the last frame describe the state no more.
@@ -428,11 +441,14 @@ impl Group {
         )| {
             let kind = kinds.of(standing);
             let pull = pulls.and_then(|(volume, group)| volume.pull(group, b));
-            if advance.steps(standing) {
+            let steps_here = advance.steps(standing);
+            if steps_here {
                 step_one_batch(
                     model, env, motion, roots, kind, contact, pull, q, v, scratch,
                 );
             }
+            // Measured where it was stepped, if there.
+            let given = measured.filter(|_| !steps_here).map(|ends| &ends[b]);
             if let Some(check) = check {
                 let rest_q = &rest_q[b * n..(b + 1) * n];
                 let batch = BatchState {
@@ -442,7 +458,9 @@ impl Group {
                     q,
                     v,
                 };
-                judge_batch(check, env, batch, measures, standing, kind, pull, kept);
+                judge_batch(
+                    check, env, batch, measures, standing, kind, pull, kept, given,
+                );
             }
         };
         if parallel {
@@ -532,12 +550,15 @@ struct BatchState<'a> {
 /// ([`super::retry`]). With the hair–hair model on (`pull`), the
 /// measure's samples are kept in `kept` for the model's next gather
 /// (emptied if a lane failed: the retry changes it, and the gather sweeps
-/// that batch itself). Not inlined: folded into the step's closure it made
+/// that batch itself). With `given`, the lanes' end measures and
+/// finiteness come from where the batch was stepped (the GPU engine's
+/// device, [`super::BatchSystem::step_frame_offloaded`]) instead of a
+/// sweep here. Not inlined: folded into the step's closure it made
 /// the whole step twice as slow (one function too large for the compiler
 /// to keep the step's lanes in registers), guard on or off.
 #[expect(
     clippy::too_many_arguments,
-    reason = "the batch, its standing, the step it took and the model's samples"
+    reason = "the batch, its standing, the step it took, the model's samples and the given ends"
 )]
 #[inline(never)]
 fn judge_batch(
@@ -549,6 +570,7 @@ fn judge_batch(
     kind: BatchStep,
     pull: Option<SamplePull<'_>>,
     kept: &mut Vec<[V3<Lanes>; 2]>,
+    given: Option<&LaneEnds>,
 ) {
     let BatchState {
         model,
@@ -565,40 +587,58 @@ fn judge_batch(
     for (lane, _) in standing.lanes.iter().enumerate().filter(|(_, s)| s.pinned) {
         set_at_rest(q, v, lane, lane_of(rest_q, lane));
     }
-    let motions = carried(check.motion, roots);
-    let root = RootMotion::<Lanes>::gather(&motions);
-    let contact = check.contact.as_ref();
-    let samples = pull.is_some().then(|| {
-        kept.resize(q.len() * model.nodes.len(), [V3::zero(); 2]);
-        kept.as_mut_slice()
-    });
-    let end = measure_lanes(
-        model,
-        env,
-        &root,
-        &motions,
-        q,
-        v,
-        contact,
-        pull.as_ref(),
-        samples,
-        check.kinetic,
-    );
     let judged_by = if kind.is_block_diagonal() {
         check.kinetic
     } else {
         KineticEnergy::True
     };
-    let failed = check_lanes(
-        check.guard,
-        q,
-        v,
-        measures,
-        &mut standing.retry_from,
-        &end,
-        check.frame,
-        judged_by,
-    );
+    let failed = if let Some(given) = given {
+        let finite = std::array::from_fn(|lane| given[lane].is_none_or(|(_, finite)| finite));
+        let end = |lane: usize| given[lane].map(|(measure, _)| measure);
+        let retry_from = &mut standing.retry_from;
+        check_lanes(
+            check.guard,
+            finite,
+            measures,
+            retry_from,
+            end,
+            check.frame,
+            judged_by,
+        )
+    } else {
+        let motions = carried(check.motion, roots);
+        let root = RootMotion::<Lanes>::gather(&motions);
+        let contact = check.contact.as_ref();
+        let samples = pull.is_some().then(|| {
+            kept.resize(q.len() * model.nodes.len(), [V3::zero(); 2]);
+            kept.as_mut_slice()
+        });
+        let end = measure_lanes(
+            model,
+            env,
+            &root,
+            &motions,
+            q,
+            v,
+            contact,
+            pull.as_ref(),
+            samples,
+            check.kinetic,
+        );
+        let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
+        let finite = std::array::from_fn(|lane| finite_q[lane] && finite_v[lane]);
+        let end = |lane: usize| Some(end.strand(lane));
+        let retry_from = &mut standing.retry_from;
+        check_lanes(
+            check.guard,
+            finite,
+            measures,
+            retry_from,
+            end,
+            check.frame,
+            judged_by,
+        )
+    };
     for (lane, cause) in failed.into_iter().enumerate() {
         // A pinned strand is held, not judged.
         let cause = cause.filter(|_| !standing.lanes[lane].pinned);

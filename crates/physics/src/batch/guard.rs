@@ -144,32 +144,27 @@ fn lanes_in_contact(contact: &LaneContact<'_>, points: &[(V3<Lanes>, V3<Lanes>)]
     found
 }
 
-/// Checks one batch (`q`, `v`: N triples each) whose lanes started the
-/// frame measured as `measures` and ended it as `end`, by the energy of
-/// the dynamics `judged_by`, and leaves the end's measures in `measures`;
-/// a failing lane's start measure goes to `retry_from`, which its retry
-/// is judged against ([`super::retry`]). Returns, per lane, what failed
-/// (`None`: the lane passed), as the f64 guard names it.
-#[expect(
-    clippy::too_many_arguments,
-    reason = "the batch, both ends' measures, the frame and its dynamics"
-)]
+/// Checks one batch whose lanes started the frame measured as `measures`
+/// and ended it as `end` says (`None`: a lane not judged, a padding lane
+/// of a batch measured elsewhere), its state finite where `finite` says
+/// ([`finite_lanes`]), by the energy of the dynamics `judged_by`, and
+/// leaves the end's measures in `measures`; a failing lane's start measure
+/// goes to `retry_from`, which its retry is judged against
+/// ([`super::retry`]). Returns, per lane, what failed (`None`: the lane
+/// passed), as the f64 guard names it.
 pub fn check_lanes(
     guard: &Guard,
-    q: &[V3<Lanes>],
-    v: &[V3<Lanes>],
+    finite: [bool; LANES],
     measures: &mut [StrandMeasure; LANES],
     retry_from: &mut [StrandMeasure; LANES],
-    end: &LaneMeasures<'_, Lanes>,
+    end: impl Fn(usize) -> Option<StrandMeasure>,
     frame: SteppedFrame,
     judged_by: KineticEnergy,
 ) -> [Option<GuardCause>; LANES] {
-    let finite_q = finite_lanes(q);
-    let finite_v = finite_lanes(v);
     let mut failed = [None; LANES];
     for (lane, (start, failed)) in measures.iter_mut().zip(&mut failed).enumerate() {
-        let end = end.strand(lane);
-        *failed = if finite_q[lane] && finite_v[lane] {
+        let Some(end) = end(lane) else { continue };
+        *failed = if finite[lane] {
             let (from, to) = (start.judged_by(judged_by), end.judged_by(judged_by));
             guard.check_with_round_off(&[], &[], &from, &to, frame, F32_ENERGY_ROUND_OFF)
         } else {

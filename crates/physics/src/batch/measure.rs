@@ -185,26 +185,28 @@ pub fn measure_state<'m, T: Real + Default, H: SampleHook<T>>(
 
 /// Strands' measure as [`measure_state`] sums it, in lanes; each strand's
 /// [`StrandMeasure`] is read from it lane by lane ([`Self::strand`]), where
-/// it is needed, instead of all built and copied at once.
+/// it is needed, instead of all built and copied at once. The GPU
+/// engine's measure (`gpu::measure`) fills one strand's from the
+/// device's sums.
 #[derive(Clone, Copy, Debug)]
 pub struct LaneMeasures<'a, T> {
-    kinetic: T,
-    strain_kinetic: T,
-    block_kinetic: T,
-    elastic: T,
-    power: T,
-    fastest: T,
-    mass: T,
-    second_moment: T,
-    momentum: V3<T>,
-    angular: V3<T>,
-    force: V3<T>,
-    torque: V3<T>,
-    first_moment: V3<T>,
+    pub(crate) kinetic: T,
+    pub(crate) strain_kinetic: T,
+    pub(crate) block_kinetic: T,
+    pub(crate) elastic: T,
+    pub(crate) power: T,
+    pub(crate) fastest: T,
+    pub(crate) mass: T,
+    pub(crate) second_moment: T,
+    pub(crate) momentum: V3<T>,
+    pub(crate) angular: V3<T>,
+    pub(crate) force: V3<T>,
+    pub(crate) torque: V3<T>,
+    pub(crate) first_moment: V3<T>,
     /// Bit `lane`: whether the head's contact acts on that lane.
-    in_contact: u32,
-    motions: &'a [RigidMotion],
-    gravity_m_per_s2: DVec3,
+    pub(crate) in_contact: u32,
+    pub(crate) motions: &'a [RigidMotion],
+    pub(crate) gravity_m_per_s2: DVec3,
 }
 
 impl<T: Real> LaneMeasures<'_, T> {

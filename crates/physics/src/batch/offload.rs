@@ -1,15 +1,23 @@
 //! The batch engine's frame with its substeps taken elsewhere
 //! ([`SubstepOffload`]: the GPU engine, `gpu::GpuEngine`): the batch system
-//! keeps the constants, roots and a copy of the state, measures the
-//! frame's start, hands the substeps over, takes the state back once and
-//! judges and recovers the frame's end with its own guard, as
-//! [`BatchSystem::step_frame`] does its own.
+//! keeps the constants, roots and a copy of the state, hands the substeps
+//! over, takes the state back once with the guard's measure of every
+//! strand made there, and judges and recovers the frame's end with its own
+//! guard, as [`BatchSystem::step_frame`] does its own. A frame's start is
+//! the last frame's end, so a frame's measure is made once, where the
+//! state is; the CPU measures only a start it changed itself (the first
+//! frame, a retry, a state set from outside) and a batch it stepped
+//! itself (one the guard holds on Exact).
 
 use super::contact::SkinTest;
-use super::group::{Advance, FrameCheck, Group};
-use super::lanes::LANES;
+use super::group::{Advance, FrameCheck, Group, LaneEnds};
+use super::guard::{finite_lanes, measure_lanes};
+use super::lanes::{LANES, Lanes};
+use super::layout::RootMotion;
 use super::system::BatchSystem;
 use super::vec::{lane_of, set_lane};
+use super::volume::carried;
+use crate::frame_balance::{KineticEnergy, StrandMeasure};
 use crate::motion::{HeadTrajectory, RigidMotion};
 
 /// Every strand's (q, q̇), strand after strand in index order, one
@@ -28,6 +36,16 @@ pub trait SubstepOffload {
     fn substep(&mut self, motion: &RigidMotion);
     /// Every strand's state (q, q̇), or why it could not be read.
     fn download(&mut self) -> Result<FlatState, String>;
+    /// The guard's measure of every strand's current state, in index
+    /// order, with the head at `head` (its motion at the frame's end),
+    /// Block-diagonal's own kinetic energy summed where `judged_by` asks,
+    /// and whether each strand's state is finite; or why it could not be
+    /// made.
+    fn measure(
+        &mut self,
+        head: &RigidMotion,
+        judged_by: KineticEnergy,
+    ) -> Result<Vec<(StrandMeasure, bool)>, String>;
 }
 
 impl BatchSystem {
@@ -63,10 +81,17 @@ impl BatchSystem {
         for substep in 0..self.settings.substeps {
             offload.substep(&head.step_motion_at(start_secs + substep as f64 * h, h));
         }
-        // The start's measure (on the CPU) while the GPU steps.
+        // The start's checkpoint (and its measure, if this system changed
+        // it) while the GPU steps.
         self.start_frame(head, &env, kinetic);
+        let end_secs = start_secs + self.settings.substeps as f64 * h;
+        let measured = match &self.guard {
+            Some(_) => Some(offload.measure(&head.motion_at(end_secs), kinetic)?),
+            None => None,
+        };
         let (q, v) = offload.download()?;
         self.set_state_flat(&q, &v);
+        let ends = measured.map(|measured| self.lane_ends(&measured));
         // A batch the guard holds on Exact after a retry steps Exact here,
         // from the frame's start, as the batch engine's own frame steps it:
         // the device stepped it with the settings' own solver. The guard
@@ -92,7 +117,7 @@ impl BatchSystem {
             let check = check.map(|(guard, motion)| {
                 FrameCheck::new(guard, motion, &self.collider, &self.settings, kinetic)
             });
-            for group in &mut self.groups {
+            for (g, group) in self.groups.iter_mut().enumerate() {
                 group.step(
                     &motion,
                     &env,
@@ -102,12 +127,80 @@ impl BatchSystem {
                     check.as_ref(),
                     self.parallel,
                     Advance::Held,
+                    ends.as_ref().map(|ends| &ends[g][..]),
                 );
             }
             self.time_secs = end_secs;
         }
         self.end_frame(head, start_secs, env, kinds, kinetic);
-        Ok(held || !self.last_events.is_empty())
+        // A pinned strand is held at rest here each frame: the device must
+        // hold it there too.
+        let pinned = self.groups.iter().any(Group::any_pinned);
+        Ok(held || pinned || !self.last_events.is_empty())
+    }
+
+    /// Strand-ordered `(measure, finite)` pairs sorted into each group's
+    /// batches and lanes (padding lanes `None`).
+    fn lane_ends(&self, measured: &[(StrandMeasure, bool)]) -> Vec<Vec<LaneEnds>> {
+        let mut ends: Vec<Vec<LaneEnds>> = self
+            .groups
+            .iter()
+            .map(|g| vec![[None; LANES]; g.roots.len().div_ceil(LANES)])
+            .collect();
+        for (&(g, slot), &end) in self.slots.iter().zip(measured) {
+            ends[g][slot / LANES][slot % LANES] = Some(end);
+        }
+        ends
+    }
+
+    /// The guard's measure of every strand's current state, in index
+    /// order, with the head at `head`, as a frame's check makes it (the
+    /// head's contact over a substep, Block-diagonal's own kinetic energy
+    /// where `judged_by` asks), and whether each state is finite: what a
+    /// [`SubstepOffload::measure`] returns, made on the CPU (a stand-in
+    /// for the device in tests).
+    pub fn measure_strands(
+        &self,
+        head: &RigidMotion,
+        judged_by: KineticEnergy,
+    ) -> Vec<(StrandMeasure, bool)> {
+        let (env, _, _) = self.frame_setup();
+        let contact = SkinTest::of_head(&self.collider, self.settings.contact, head, env.h_secs);
+        let per_group: Vec<Vec<(StrandMeasure, bool)>> = self
+            .groups
+            .iter()
+            .map(|g| {
+                let n = g.n;
+                let batches = g.q.chunks(n).zip(g.v.chunks(n)).zip(g.roots.chunks(LANES));
+                let batches = batches.zip(&g.models);
+                batches
+                    .flat_map(|(((q, v), roots), model)| {
+                        let motions = carried(head, roots);
+                        let root = RootMotion::<Lanes>::gather(&motions);
+                        let measured = measure_lanes(
+                            &**model,
+                            &env,
+                            &root,
+                            &motions,
+                            q,
+                            v,
+                            contact.as_ref(),
+                            None,
+                            None,
+                            judged_by,
+                        );
+                        let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
+                        (0..LANES)
+                            .map(|lane| (measured.strand(lane), finite_q[lane] && finite_v[lane]))
+                            .collect::<Vec<_>>()
+                    })
+                    .collect()
+            })
+            .collect();
+        self.slots
+            .iter()
+            .map(|&(g, slot)| per_group[g][slot])
+            .collect()
     }
 
     /// Every strand's (q, q̇) in index order, one `[f32; 4]` per element

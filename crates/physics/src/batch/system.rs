@@ -313,6 +313,7 @@ impl BatchSystem {
                     check,
                     self.parallel,
                     Advance::All,
+                    None,
                 );
             }
             self.time_secs = end_secs;

@@ -6,11 +6,13 @@
 //! The GPU engine is the batch engine with its substeps taken on the GPU
 //! ([`BatchSystem::step_frame_offloaded`]): the batch system keeps every
 //! strand's constants, roots and a copy of the state; each frame the
-//! device steps every substep in its own memory, the state comes back
-//! once, and the batch system's guard judges the frame's end and
-//! recovers a failing strand on the CPU with its usual policy (the
-//! measure and the retries are the batch engine's, so the two engines
-//! judge alike). A state set from outside goes back to the device before
+//! device steps every substep in its own memory and measures every
+//! strand for the guard there ([`crate::gpu::measure`], the batch
+//! engine's measure), the state and the measures come back once, and the
+//! batch system's guard judges the frame's end from those measures and
+//! recovers a failing strand on the CPU with its usual policy (the check
+//! and the retries are the batch engine's, so the two engines judge
+//! alike). A state set from outside goes back to the device before
 //! the next frame. The device is built on
 //! the first frame and again after anything it holds changes (strands,
 //! collider, contact); a clone of the engine builds its own. It is built on

@@ -34,9 +34,11 @@
 //! engines take it) and dispatches one stage; nothing is read back in the
 //! frame loop.
 //!
-//! What the CPU engines have and this does not yet: the guard (the batch
-//! engine judges the frames this steps, [`crate::engine::EngineKind::Gpu`]),
-//! the hair–hair model, and Dense (which [`super::GpuSystem`] steps
+//! [`GpuEngine::measure`] measures every strand for the guard on the
+//! device ([`super::measure`]); the batch engine judges the frames this
+//! steps from those measures ([`crate::engine::EngineKind::Gpu`]). What
+//! the CPU engines have and this does not yet: the hair–hair model, and
+//! Dense (which [`super::GpuSystem`] steps
 //! velocity-explicit, for one shared strand's constants).
 
 use std::borrow::Cow;
@@ -50,11 +52,13 @@ use super::kernels::{
 use super::layout::{
     ElementConstGpu, ElementDataGpu, EliminationGpu, EngineParamsGpu, Mat3Gpu, StrandGpu,
 };
+use super::measure::{MeasureStage, StrandMeasureGpu};
 use super::{GpuContext, GpuError};
 use crate::batch::SubstepOffload;
 use crate::batch::layout::BatchModel;
 use crate::batch::step::block_implicit::BLOCK_THETA;
 use crate::collision::SignedDistanceField;
+use crate::frame_balance::{KineticEnergy, StrandMeasure};
 use crate::gmres::GMRES_TOLERANCE;
 use crate::motion::{HeadTrajectory, RigidMotion, RootPose};
 use crate::settings::{Method, SimSettings, StepScheme};
@@ -65,6 +69,10 @@ pub const ENGINE_WGSL: &str = include_str!("../../../../shaders/physics/engine.w
 /// `shaders/physics/curves.wgsl`: the drawn centrelines, after
 /// `engine.wgsl` ([`super::curves`]).
 pub const CURVES_WGSL: &str = include_str!("../../../../shaders/physics/curves.wgsl");
+
+/// `shaders/physics/measure.wgsl`: the guard's measure, after
+/// `engine.wgsl` ([`super::measure`]).
+pub const MEASURE_WGSL: &str = include_str!("../../../../shaders/physics/measure.wgsl");
 
 /// GMRES's vectors per element in the `krylov` buffer (WGSL `KRYLOV_SLOTS`).
 pub const KRYLOV_SLOTS: usize = 22;
@@ -106,7 +114,7 @@ const WORKGROUP: u32 = 64;
 
 /// The full source of the engine's kernel module.
 pub fn engine_source() -> String {
-    format!("{COMMON_WGSL}\n{ENGINE_WGSL}\n{CURVES_WGSL}")
+    format!("{COMMON_WGSL}\n{ENGINE_WGSL}\n{CURVES_WGSL}\n{MEASURE_WGSL}")
 }
 
 fn f4(v: glam::DVec3) -> [f32; 4] {
@@ -124,14 +132,23 @@ pub struct GpuEngine {
     settings: SimSettings,
     params: EngineParamsGpu,
     strands: Vec<StrandGpu>,
+    /// Each strand's root, where the guard's measure carries it.
+    roots: Vec<RootPose>,
     params_buffer: wgpu::Buffer,
     q_buffer: wgpu::Buffer,
     v_buffer: wgpu::Buffer,
+    /// The strands' table, constants and collider, which the measure
+    /// binds too.
+    strands_buffer: wgpu::Buffer,
+    elements_buffer: wgpu::Buffer,
+    field_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     module: wgpu::ShaderModule,
     pipeline: wgpu::ComputePipeline,
     /// The drawn centrelines' stage, built on the first ask.
     curves: Option<CurveStage>,
+    /// The guard's measure, built on the first ask.
+    measure: Option<MeasureStage>,
     time_secs: f64,
 }
 
@@ -293,13 +310,18 @@ impl GpuEngine {
             settings: settings.clone(),
             params,
             strands,
+            roots: roots.to_vec(),
             params_buffer,
             q_buffer,
             v_buffer,
+            strands_buffer,
+            elements_buffer,
+            field_buffer: field,
             bind_group,
             module,
             pipeline,
             curves: None,
+            measure: None,
             time_secs: 0.0,
         })
     }
@@ -414,6 +436,50 @@ impl GpuEngine {
         Ok(stage)
     }
 
+    /// The guard's measure of every strand in its current state with the
+    /// head at `head` (its motion at the frame's end), in strand order
+    /// ([`super::measure`]); Block-diagonal's own kinetic energy is summed
+    /// where `judged_by` asks for it. Waits for the steps submitted before
+    /// it and reads back one [`StrandMeasureGpu`] per strand.
+    pub fn measure(
+        &mut self,
+        head: &RigidMotion,
+        judged_by: KineticEnergy,
+    ) -> Result<Vec<StrandMeasureGpu>, GpuError> {
+        let block = judged_by == KineticEnergy::BlockDiagonal;
+        if self
+            .measure
+            .as_ref()
+            .is_none_or(|m| m.sums_block_kinetic() != block)
+        {
+            let elements = self.strands.iter().map(|s| s.elements as usize).sum();
+            let engine = [
+                (0, &self.params_buffer),
+                (1, &self.strands_buffer),
+                (2, &self.elements_buffer),
+                (3, &self.q_buffer),
+                (4, &self.v_buffer),
+                (8, &self.field_buffer),
+            ];
+            let stage = MeasureStage::new(
+                &self.ctx,
+                &self.module,
+                &engine,
+                self.strands.len(),
+                elements,
+                block,
+            )?;
+            self.measure = Some(stage);
+        }
+        let stage = self.measure.as_ref().expect("built above");
+        let params = self.params_at(head);
+        self.ctx
+            .queue
+            .write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
+        stage.submit(&self.ctx);
+        stage.read(&self.ctx)
+    }
+
     /// Reads (q, q̇) back: one vec4 per element, strand after strand.
     pub fn read_state(&self) -> Result<GpuState, GpuError> {
         Ok((
@@ -434,5 +500,19 @@ impl SubstepOffload for GpuEngine {
 
     fn download(&mut self) -> Result<GpuState, String> {
         self.read_state().map_err(|e| e.to_string())
+    }
+
+    fn measure(
+        &mut self,
+        head: &RigidMotion,
+        judged_by: KineticEnergy,
+    ) -> Result<Vec<(StrandMeasure, bool)>, String> {
+        let measured = GpuEngine::measure(self, head, judged_by).map_err(|e| e.to_string())?;
+        let gravity = self.settings.gravity_m_per_s2;
+        Ok(measured
+            .iter()
+            .zip(&self.roots)
+            .map(|(m, root)| (m.strand(&head.carry(root), gravity), m.state_is_finite()))
+            .collect())
     }
 }

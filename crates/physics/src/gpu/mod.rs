@@ -15,6 +15,9 @@
 //! - [`curves`]: the strands' centrelines written on the engine's device
 //!   for a renderer (the points buffer's layout is documented there), and
 //!   the CPU twin of that stage.
+//! - [`measure`]: the guard's measure of every strand on the engine's
+//!   device, so that a frame reads back one measure per strand instead of
+//!   the state, and its CPU twin, the batch engine's measure at f32.
 //! - [`kernels`]: [`GpuSystem`], the velocity-explicit Dense kernel (one
 //!   strand's constants shared by all), and the buffer and dispatch
 //!   helpers both paths use.
@@ -38,6 +41,7 @@ pub mod engine_twin;
 pub mod error;
 pub mod kernels;
 pub mod layout;
+pub mod measure;
 pub mod twin;
 
 pub use engine::GpuEngine;
