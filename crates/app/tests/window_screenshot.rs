@@ -255,6 +255,12 @@ fn a_groomed_example_on_the_gpu_engine_is_drawn_from_its_buffers() {
         stdout.contains("strands drawn from the GPU engine's buffers"),
         "{stdout}"
     );
+    // Drawn from the device and showing nothing of the state, the window
+    // reads none of it back: only the guard's measures cross.
+    assert!(
+        stdout.contains("state: read back from the GPU 0 times in 20 frames"),
+        "{stdout}"
+    );
     eprintln!("device-drawn groomed curls cover {hair:.3} of the view");
     assert!(hair > 0.03, "only {hair:.3} of the view is hair-coloured");
 }

@@ -148,9 +148,15 @@ fn a_block_diagonal_blow_up_on_a_hanging_curl_is_handed_to_exact() {
 /// A stand-in for the GPU engine: the same strands on an unguarded batch
 /// system, stepped one substep at a time with the settings' own solver,
 /// as the device steps them.
-struct CpuOffload(BatchSystem);
+struct CpuOffload(BatchSystem, FlatState);
 
 impl SubstepOffload for CpuOffload {
+    fn keep_start(&mut self) {
+        self.1 = self.0.state_flat();
+    }
+    fn download_start(&mut self) -> Result<FlatState, String> {
+        Ok(self.1.clone())
+    }
     fn upload(&mut self, q: &[[f32; 4]], v: &[[f32; 4]]) {
         self.0.set_state_flat(q, v);
     }
@@ -182,8 +188,8 @@ fn the_offloaded_frame_follows_the_batch_guard_through_retries_and_holds() {
     let still = at_rest(glam::DMat3::IDENTITY);
     let mut own = exploding_curls(Some(Guard::default()));
     let mut offloaded = exploding_curls(Some(Guard::default()));
-    let mut device = CpuOffload(exploding_curls(None));
-    let (mut upload, mut held_frames) = (true, 0);
+    let mut device = CpuOffload(exploding_curls(None), Default::default());
+    let (mut upload, mut held_frames, mut elsewhere_frames) = (true, 0, 0);
     for frame in 0..240 {
         own.step_frame(&still);
         upload = offloaded
@@ -191,18 +197,23 @@ fn the_offloaded_frame_follows_the_batch_guard_through_retries_and_holds() {
             .expect("the stand-in reads back");
         let (a, b) = (own.last_guard_events(), offloaded.last_guard_events());
         assert_eq!(format!("{a:?}"), format!("{b:?}"), "frame {frame}");
-        assert_eq!(
-            states(&own, 0..2),
-            states(&offloaded, 0..2),
-            "frame {frame}"
-        );
+        // The state stays on the stand-in where no strand needed it here.
+        let now = if offloaded.state_is_elsewhere() {
+            elsewhere_frames += 1;
+            &device.0
+        } else {
+            &offloaded
+        };
+        assert_eq!(states(&own, 0..2), states(now, 0..2), "frame {frame}");
         // An upload with no event: a held batch was stepped on the CPU.
         held_frames += usize::from(upload && b.is_empty());
     }
     assert!(own.guard_event_count() > 0, "the guard never stepped in");
     assert!(held_frames > 0, "no frame held a retry's step");
+    assert!(elsewhere_frames > 0, "every frame read the state back");
     println!(
-        "{} events; {held_frames} frames with a batch held on Exact",
+        "{} events; {held_frames} frames with a batch held on Exact; {elsewhere_frames} frames \
+         left the state on the stand-in",
         own.guard_event_count()
     );
 }
@@ -347,13 +358,23 @@ fn the_gpu_engine_device_holds_the_state_the_guard_left() {
         (model, horizontal_root()),
     ];
     let mut side = GpuSide::new();
-    let mut event_frames = 0;
+    let (mut event_frames, mut elsewhere_frames) = (0, 0);
     for frame in 0..120 {
         side.step_frame(&mut system, &strands, &still);
         event_frames += usize::from(!system.last_guard_events().is_empty());
+        elsewhere_frames += usize::from(system.state_is_elsewhere());
         let device = side.device().expect("the device builds");
         let (q, v) = device.read_state().expect("reads back");
-        assert_eq!((q, v), system.state_flat(), "frame {frame}");
+        // After a frame the guard changed, the state it left is here and on
+        // the device; otherwise only on the device, where readers find it.
+        if !system.last_guard_events().is_empty() {
+            assert!(
+                !system.state_is_elsewhere(),
+                "frame {frame}: the retry's state"
+            );
+        }
+        assert_eq!((q, v), side.current(&system).state_flat(), "frame {frame}");
     }
     assert!(event_frames > 0, "the guard never stepped in");
+    assert!(elsewhere_frames > 0, "every frame read the state back");
 }

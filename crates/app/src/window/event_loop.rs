@@ -302,6 +302,13 @@ impl Handler {
             Some(n) => println!("hair: {n} strands drawn from the GPU engine's buffers"),
             None => println!("hair: drawn strands rebuilt on the CPU from the guides"),
         }
+        if let Some(side) = self.app.sim().engine().gpu_side() {
+            println!(
+                "state: read back from the GPU {} times in {} frames (a retry's reads aside)",
+                side.state_reads(),
+                self.frames
+            );
+        }
         if self.args.profile {
             println!("{}", self.profile.line(n));
         }

@@ -329,6 +329,13 @@ impl Group {
         self.standing.iter().any(|s| s.hold_frames > 0)
     }
 
+    /// Whether the last check found a lane failing.
+    pub(super) fn any_failed(&self) -> bool {
+        self.standing
+            .iter()
+            .any(|s| s.failed.iter().any(Option::is_some))
+    }
+
     /// Whether a lane is pinned in its rest pose.
     pub(super) fn any_pinned(&self) -> bool {
         self.standing

@@ -93,8 +93,10 @@
 //!   and a strand that keeps failing is pinned
 //!   ([`crate::guard::ResetMemory`]).
 //! - **Offload** (`offload.rs`): [`BatchSystem::step_frame_offloaded`]
-//!   hands a frame's substeps to a [`SubstepOffload`] (the GPU engine)
-//!   and judges and recovers the state it hands back with the guard above.
+//!   hands a frame's substeps and the guard's measure to a
+//!   [`SubstepOffload`] (the GPU engine), judges the frame from the
+//!   measures it hands back with the guard above, and reads the state back
+//!   only to recover a strand ([`BatchSystem::state_is_elsewhere`]).
 //!
 //! The quadrature is the settings' (`SimSettings::quadrature_points`), so a
 //! comparison with the f64 reference is like with like. External forces

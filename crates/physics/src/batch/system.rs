@@ -71,6 +71,13 @@ pub struct BatchSystem {
     event_count: usize,
     /// The hair–hair model, when on ([`super::volume`]).
     pub(super) volume: Option<BatchVolume>,
+    /// The current state is held where the frame was stepped (the GPU
+    /// engine's device) and the lanes are the last copy read back
+    /// ([`Self::state_is_elsewhere`]).
+    pub(super) state_elsewhere: bool,
+    /// With the state elsewhere: the last frame's guard found every strand
+    /// finite.
+    pub(super) elsewhere_known_finite: bool,
 }
 
 impl BatchSystem {
@@ -104,6 +111,8 @@ impl BatchSystem {
             reset_count: 0,
             event_count: 0,
             volume: interaction.enabled.then(|| BatchVolume::new(interaction)),
+            state_elsewhere: false,
+            elsewhere_known_finite: false,
         })
     }
 
@@ -281,6 +290,10 @@ impl BatchSystem {
     /// ([`HeadTrajectory::step_motion_at`]). With the guard on, strands
     /// that fail its checks are recovered by its policy ([`super::retry`]).
     pub fn step_frame(&mut self, head: &dyn HeadTrajectory) {
+        assert!(
+            !self.state_elsewhere,
+            "a frame on the CPU from a state not current (read it back first)"
+        );
         let (env, kinds, kinetic) = self.frame_setup();
         let h = env.h_secs;
         let start_secs = self.time_secs;
@@ -358,7 +371,11 @@ impl BatchSystem {
         let volume = self.volume.as_ref();
         let contact = SkinTest::of_head(&self.collider, self.settings.contact, &motion, h);
         for (i, group) in self.groups.iter_mut().enumerate() {
-            group.save_checkpoint();
+            // Where the state is elsewhere, so is the frame's start
+            // (`step_frame_offloaded` reads it back for a retry).
+            if !self.state_elsewhere {
+                group.save_checkpoint();
+            }
             if !group.measured {
                 let pulls = volume.map(|v| (v, i));
                 let contact = contact.as_ref();

@@ -8,12 +8,18 @@
 //! strand's constants, roots and a copy of the state; each frame the
 //! device steps every substep in its own memory and measures every
 //! strand for the guard there ([`crate::gpu::measure`], the batch
-//! engine's measure), the state and the measures come back once, and the
-//! batch system's guard judges the frame's end from those measures and
-//! recovers a failing strand on the CPU with its usual policy (the check
-//! and the retries are the batch engine's, so the two engines judge
-//! alike). A state set from outside goes back to the device before
-//! the next frame. The device is built on
+//! engine's measure), the measures come back, and the batch system's
+//! guard judges the frame's end from them and recovers a failing strand
+//! on the CPU with its usual policy (the check and the retries are the
+//! batch engine's, so the two engines judge alike). The state comes back
+//! only where the CPU needs it: for a retry (with the frame's start, which
+//! the device keeps), for a reader ([`GpuSide::current`]: the engine's
+//! `q`, `v`, points, energies, export, once a frame on the first ask) and
+//! before anything changes the state or steps it on the CPU
+//! ([`GpuSide::sync`]). A window that draws from the device and shows
+//! nothing of the state reads none ([`GpuSide::state_reads`]). A state set
+//! from outside goes back to the device before the next frame. The
+//! device is built on
 //! the first frame and again after anything it holds changes (strands,
 //! collider, contact); a clone of the engine builds its own. It is built on
 //! a headless device of its own, or on the one [`GpuSide::use_context`]
@@ -24,13 +30,15 @@
 //!
 //! Where the GPU cannot take the frame, the batch engine steps it on the
 //! CPU and [`GpuSide::note`] says why, once in words: no adapter or a
-//! device lost mid-run (the frame is then stepped again on the CPU from
-//! its start), a build without the cargo feature `gpu`, the hair–hair
+//! device lost mid-run (the hair then goes on on the CPU from the last
+//! state read back: the frame's start if the guard read it, else the last
+//! frame a reader or a retry read; the device's memory is gone), a build without the cargo feature `gpu`, the hair–hair
 //! model (not on the GPU). Exact and Block-diagonal, the batch engine's
 //! two methods, both step on the device.
 
 use std::fmt;
-use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock};
 
 use crate::batch::BatchSystem;
 use crate::model::StrandModel;
@@ -54,6 +62,13 @@ pub struct GpuSide {
     failed: bool,
     /// What steps the frames, in words: the adapter, or why the CPU does.
     note: String,
+    /// With the state on the device, the batch system made current from
+    /// it for readers, once a frame on the first ask (`None`: the device
+    /// could not be read): [`GpuSide::current`].
+    synced: OnceLock<Option<Box<BatchSystem>>>,
+    /// Times a reader or a change brought the state back from the device
+    /// ([`Self::state_reads`]).
+    state_reads: AtomicUsize,
 }
 
 impl GpuSide {
@@ -68,7 +83,71 @@ impl GpuSide {
             upload: true,
             failed: false,
             note: "the GPU engine starts on the first frame".to_string(),
+            synced: OnceLock::new(),
+            state_reads: AtomicUsize::new(0),
         }
+    }
+
+    /// How many times the state was read back from the device for a reader
+    /// or a change on the CPU since this side was built (the guard's own
+    /// reads for a retry are not counted): a window that draws from the
+    /// device and shows nothing of the state reads none.
+    pub fn state_reads(&self) -> usize {
+        self.state_reads.load(Ordering::Relaxed)
+    }
+
+    /// `system` as its state stands now: itself, or, where its state is on
+    /// the device ([`BatchSystem::state_is_elsewhere`]), a copy made
+    /// current from the device, read back once a frame on the first ask
+    /// (if the device cannot be read, `system` itself, the last state
+    /// read).
+    pub fn current<'a>(&'a self, system: &'a BatchSystem) -> &'a BatchSystem {
+        if !system.state_is_elsewhere() {
+            return system;
+        }
+        let synced = self.synced.get_or_init(|| {
+            let (q, v) = self.read_device_state()?;
+            let mut copy = Box::new(system.clone());
+            copy.set_state_flat(&q, &v);
+            Some(copy)
+        });
+        synced.as_deref().unwrap_or(system)
+    }
+
+    /// Brings the state back into `system` where it is on the device:
+    /// before anything changes it, steps it on the CPU or builds the device
+    /// again. If the device cannot be read, the hair goes on from the last
+    /// state read, and [`Self::note`] says so.
+    pub fn sync(&mut self, system: &mut BatchSystem) {
+        if !system.state_is_elsewhere() {
+            return;
+        }
+        let read = match self.synced.take() {
+            Some(Some(copy)) => Some(copy.state_flat()),
+            _ => self.read_device_state(),
+        };
+        match read {
+            Some((q, v)) => system.set_state_flat(&q, &v),
+            None => {
+                system.keep_last_read_state();
+                self.failed = true;
+                self.note = "the GPU could not be read back; the CPU batch engine steps the \
+                             hair from its last state read"
+                    .to_string();
+            }
+        }
+    }
+
+    /// The device's state, if it can be read.
+    #[cfg(feature = "gpu")]
+    fn read_device_state(&self) -> Option<crate::batch::FlatState> {
+        self.state_reads.fetch_add(1, Ordering::Relaxed);
+        self.device.as_deref()?.read_state().ok()
+    }
+
+    #[cfg(not(feature = "gpu"))]
+    fn read_device_state(&self) -> Option<crate::batch::FlatState> {
+        None
     }
 
     /// Strands, collider or contact changed: build the device again.
@@ -150,11 +229,14 @@ impl GpuSide {
         head: &dyn HeadTrajectory,
     ) {
         if let Some(reason) = self.unsupported(system) {
+            self.sync(system);
             self.note = reason;
             system.step_frame(head);
             return;
         }
         self.step_on_device(system, strands, head);
+        // The readers' copy is of the last frame.
+        self.synced = OnceLock::new();
     }
 
     #[cfg(feature = "gpu")]
@@ -167,10 +249,13 @@ impl GpuSide {
         use crate::batch::layout::BatchModel;
         use crate::gpu::{GpuContext, GpuEngine, GpuError};
         if self.failed {
+            self.sync(system);
             system.step_frame(head);
             return;
         }
         if self.stale || self.device.is_none() {
+            // A device built again starts from this system's state.
+            self.sync(system);
             let models: Vec<BatchModel> = strands.iter().map(|(m, _)| BatchModel::new(m)).collect();
             let roots: Vec<RootPose> = strands.iter().map(|(_, r)| *r).collect();
             let collider = system.collider().map(|c| &**c);
@@ -198,6 +283,7 @@ impl GpuSide {
             }
         }
         let Some(device) = self.device.as_deref_mut() else {
+            self.sync(system);
             system.step_frame(head);
             return;
         };
@@ -212,10 +298,20 @@ impl GpuSide {
                 self.upload = false;
             }
             Err(e) => {
+                // The device's memory is gone: the hair goes on from the
+                // last state read back (this frame's start, where the
+                // guard read it).
+                let behind = system.state_is_elsewhere();
+                system.keep_last_read_state();
                 self.failed = true;
                 self.device = None;
                 self.note = format!(
-                    "the GPU was lost ({e}); the CPU batch engine steps the hair from this frame on"
+                    "the GPU was lost ({e}); the CPU batch engine steps the hair from {}",
+                    if behind {
+                        "its last state read back"
+                    } else {
+                        "this frame on"
+                    }
                 );
                 system.step_frame(head);
             }

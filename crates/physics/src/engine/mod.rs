@@ -118,7 +118,7 @@ impl EngineKind {
 }
 
 /// A hair system on one of the two engines (see the [module docs](self)).
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub enum Engine {
     /// The f64 reference.
     Reference(HairSystem),
@@ -132,6 +132,26 @@ pub enum Engine {
         /// With [`EngineKind::Gpu`], the device that takes the substeps.
         gpu: Option<GpuSide>,
     },
+}
+
+/// A clone holds the state as it stands (a GPU engine's read back from
+/// its device where it is there); a GPU engine's clone builds its own
+/// device on its first frame.
+impl Clone for Engine {
+    fn clone(&self) -> Self {
+        match self {
+            Self::Reference(system) => Self::Reference(system.clone()),
+            Self::Batch {
+                system,
+                strands,
+                gpu,
+            } => Self::Batch {
+                system: current(system, gpu).clone(),
+                strands: strands.clone(),
+                gpu: gpu.clone(),
+            },
+        }
+    }
 }
 
 impl Engine {
@@ -171,6 +191,7 @@ impl Engine {
                 strands,
                 gpu,
             } => {
+                sync(system, gpu);
                 let model = Arc::new(StrandModel::new(
                     params,
                     system.settings().quadrature_points,
@@ -193,11 +214,13 @@ impl Engine {
         }
     }
 
-    /// The batch system, when this is the batch engine.
+    /// The batch system, when this is the batch engine, with its state
+    /// current (on the GPU engine, read back from the device once a frame
+    /// where something asks: [`GpuSide::current`]).
     pub fn batch(&self) -> Option<&BatchSystem> {
         match self {
             Self::Reference(_) => None,
-            Self::Batch { system, .. } => Some(system),
+            Self::Batch { system, gpu, .. } => Some(current(system, gpu)),
         }
     }
 
@@ -214,6 +237,7 @@ impl Engine {
         match self {
             Self::Reference(system) => system.set_contact_settings(settings),
             Self::Batch { system, gpu, .. } => {
+                sync(system, gpu);
                 system.set_contact_settings(settings);
                 if let Some(gpu) = gpu {
                     gpu.invalidate();
@@ -248,6 +272,7 @@ impl Engine {
         match self {
             Self::Reference(system) => system.set_collider(collider),
             Self::Batch { system, gpu, .. } => {
+                sync(system, gpu);
                 system.set_collider(collider);
                 if let Some(gpu) = gpu {
                     gpu.invalidate();
@@ -281,7 +306,10 @@ impl Engine {
     pub fn set_guard(&mut self, guard: Option<crate::guard::Guard>) {
         match self {
             Self::Reference(system) => system.set_guard(guard),
-            Self::Batch { system, .. } => system.set_guard(guard),
+            Self::Batch { system, gpu, .. } => {
+                sync(system, gpu);
+                system.set_guard(guard);
+            }
         }
     }
 
@@ -291,6 +319,7 @@ impl Engine {
         match self {
             Self::Reference(system) => system.set_interaction(settings),
             Self::Batch { system, gpu, .. } => {
+                sync(system, gpu);
                 if let Some(gpu) = gpu {
                     gpu.invalidate();
                 }
@@ -340,12 +369,15 @@ impl Engine {
     /// batch and GPU engines start alike and no device is built for it.
     pub fn cpu_copy(&self) -> Self {
         match self {
-            Self::Batch {
-                system, strands, ..
-            } => Self::Batch {
-                system: system.clone(),
-                strands: strands.clone(),
-                gpu: None,
+            Self::Batch { .. } => match self.clone() {
+                Self::Batch {
+                    system, strands, ..
+                } => Self::Batch {
+                    system,
+                    strands,
+                    gpu: None,
+                },
+                reference => reference,
             },
             Self::Reference(_) => self.clone(),
         }
@@ -410,11 +442,13 @@ impl Engine {
         }
     }
 
-    /// Whether every strand's state is finite.
+    /// Whether every strand's state is finite (on the GPU engine with the
+    /// guard on, from its measures where the state is, without a readback).
     pub fn is_finite(&self) -> bool {
         match self {
             Self::Reference(system) => system.is_finite(),
-            Self::Batch { system, .. } => system.is_finite(),
+            Self::Batch { system, .. } if system.elsewhere_known_finite() => true,
+            Self::Batch { system, gpu, .. } => current(system, gpu).is_finite(),
         }
     }
 
@@ -440,7 +474,7 @@ impl Engine {
     pub fn boundary_points_world(&self, index: usize) -> Vec<DVec3> {
         match self {
             Self::Reference(system) => system.boundary_points_world(index),
-            Self::Batch { system, .. } => system
+            Self::Batch { system, gpu, .. } => current(system, gpu)
                 .boundary_points_world(index)
                 .into_iter()
                 .map(|p| p.as_dvec3())
@@ -452,7 +486,7 @@ impl Engine {
     pub fn q(&self, index: usize) -> Vec<DVec3> {
         match self {
             Self::Reference(system) => system.strands()[index].q().to_vec(),
-            Self::Batch { system, .. } => system.q(index),
+            Self::Batch { system, gpu, .. } => current(system, gpu).q(index),
         }
     }
 
@@ -460,7 +494,7 @@ impl Engine {
     pub fn v(&self, index: usize) -> Vec<DVec3> {
         match self {
             Self::Reference(system) => system.strands()[index].v().to_vec(),
-            Self::Batch { system, .. } => system.v(index),
+            Self::Batch { system, gpu, .. } => current(system, gpu).v(index),
         }
     }
 
@@ -470,6 +504,7 @@ impl Engine {
         match self {
             Self::Reference(system) => system.strands_mut()[index].set_state(q, v),
             Self::Batch { system, gpu, .. } => {
+                sync(system, gpu);
                 system.set_state(index, q, v);
                 if let Some(gpu) = gpu {
                     gpu.state_changed();
@@ -486,7 +521,10 @@ impl Engine {
     pub fn set_rest_pose(&mut self, index: usize, q: &[DVec3]) {
         match self {
             Self::Reference(system) => system.set_rest_pose(index, q),
-            Self::Batch { system, .. } => system.set_rest_pose(index, q),
+            Self::Batch { system, gpu, .. } => {
+                sync(system, gpu);
+                system.set_rest_pose(index, q);
+            }
         }
     }
 
@@ -530,8 +568,11 @@ impl Engine {
         match self {
             Self::Reference(system) => system.energies(),
             Self::Batch {
-                system, strands, ..
+                system,
+                strands,
+                gpu,
             } => {
+                let system = current(system, gpu);
                 let gravity = system.settings().gravity_m_per_s2;
                 let mut total = Energies::default();
                 for (i, (model, root)) in strands.iter().enumerate() {
@@ -542,5 +583,22 @@ impl Engine {
                 total
             }
         }
+    }
+}
+
+/// The batch system as its state stands: on the GPU engine with the state
+/// on the device, the copy [`GpuSide::current`] reads back.
+fn current<'a>(system: &'a BatchSystem, gpu: &'a Option<GpuSide>) -> &'a BatchSystem {
+    match gpu {
+        Some(gpu) => gpu.current(system),
+        None => system,
+    }
+}
+
+/// Brings a GPU engine's state back into its batch system before anything
+/// changes the system ([`GpuSide::sync`]).
+fn sync(system: &mut BatchSystem, gpu: &mut Option<GpuSide>) {
+    if let Some(gpu) = gpu {
+        gpu.sync(system);
     }
 }

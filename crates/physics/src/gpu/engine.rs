@@ -137,6 +137,8 @@ pub struct GpuEngine {
     params_buffer: wgpu::Buffer,
     q_buffer: wgpu::Buffer,
     v_buffer: wgpu::Buffer,
+    /// The state at the frame's start ([`Self::keep_start`]).
+    start_buffers: (wgpu::Buffer, wgpu::Buffer),
     /// The strands' table, constants and collider, which the measure
     /// binds too.
     strands_buffer: wgpu::Buffer,
@@ -274,6 +276,10 @@ impl GpuEngine {
         let elements_buffer = storage_buffer(&ctx, "elements", &at_least_one(&elements))?;
         let q_buffer = storage_buffer(&ctx, "q", &at_least_one(&natural))?;
         let v_buffer = scratch_buffer(&ctx, "v", count * 16)?;
+        let start_buffers = (
+            scratch_buffer(&ctx, "q at the start", count * 16)?,
+            scratch_buffer(&ctx, "v at the start", count * 16)?,
+        );
         let scratch = scratch_buffer(&ctx, "element data", count * size_of::<ElementDataGpu>())?;
         let elimination = scratch_buffer(&ctx, "elimination", count * size_of::<EliminationGpu>())?;
         let krylov = scratch_buffer(&ctx, "krylov", count * slots * 16)?;
@@ -314,6 +320,7 @@ impl GpuEngine {
             params_buffer,
             q_buffer,
             v_buffer,
+            start_buffers,
             strands_buffer,
             elements_buffer,
             field_buffer: field,
@@ -480,6 +487,29 @@ impl GpuEngine {
         stage.read(&self.ctx)
     }
 
+    /// Keeps a copy of the state on the device as the frame's start (where
+    /// a failing strand's retry starts from), after the steps submitted
+    /// before it. Nothing waits.
+    pub fn keep_start(&self) {
+        let mut encoder = self
+            .ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("keep the start"),
+            });
+        let (q, v) = &self.start_buffers;
+        encoder.copy_buffer_to_buffer(&self.q_buffer, 0, q, 0, None);
+        encoder.copy_buffer_to_buffer(&self.v_buffer, 0, v, 0, None);
+        self.ctx.queue.submit([encoder.finish()]);
+    }
+
+    /// Reads the state [`Self::keep_start`] kept back, as
+    /// [`Self::read_state`] reads the current one.
+    pub fn read_start(&self) -> Result<GpuState, GpuError> {
+        let (q, v) = &self.start_buffers;
+        Ok((read_vec4(&self.ctx, q)?, read_vec4(&self.ctx, v)?))
+    }
+
     /// Reads (q, q̇) back: one vec4 per element, strand after strand.
     pub fn read_state(&self) -> Result<GpuState, GpuError> {
         Ok((
@@ -498,8 +528,16 @@ impl SubstepOffload for GpuEngine {
         GpuEngine::substep(self, motion);
     }
 
+    fn keep_start(&mut self) {
+        GpuEngine::keep_start(self);
+    }
+
     fn download(&mut self) -> Result<GpuState, String> {
         self.read_state().map_err(|e| e.to_string())
+    }
+
+    fn download_start(&mut self) -> Result<GpuState, String> {
+        self.read_start().map_err(|e| e.to_string())
     }
 
     fn measure(

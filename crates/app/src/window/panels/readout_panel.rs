@@ -73,6 +73,12 @@ pub fn readouts(ui: &mut Ui, app: &AppState) {
         Some(n) => format!("hair: {n} strands drawn from the GPU engine's buffers"),
         None => "hair: drawn strands rebuilt on the CPU from the guides".to_owned(),
     });
+    if let Some(side) = engine.gpu_side() {
+        ui.label(format!(
+            "state: read back from the GPU {} times",
+            side.state_reads()
+        ));
+    }
     ui.separator();
     let history: Vec<&PhysicsSample> = r.history().collect();
     if batch {
