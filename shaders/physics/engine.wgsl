@@ -70,7 +70,10 @@ struct Params {
 struct Strand {
     first: u32,
     elements: u32,
-    _pad0: u32,
+    // Its index among the engine's strands: the table is ordered by
+    // element count, so that the invocations of one SIMD group (a warp)
+    // take strands of one length and none waits on a longer one.
+    index: u32,
     _pad1: u32,
     mass_per_length: f32,
     air_drag: f32,

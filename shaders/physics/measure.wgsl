@@ -176,5 +176,5 @@ fn stage_measure(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
     out.force = vec4<f32>(force, 0.0);
     out.torque = vec4<f32>(torque, 0.0);
     out.first_moment = vec4<f32>(first_moment, 0.0);
-    measures[index] = out;
+    measures[st.index] = out;
 }

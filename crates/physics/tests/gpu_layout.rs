@@ -166,7 +166,8 @@ fn the_engine_kernel_validates_and_its_host_structs_match() {
         block_h_secs => "block_h_secs",
     ]);
     check!(&engine, "Strand", StrandGpu, [
-        first => "first", elements => "elements", mass_per_length => "mass_per_length",
+        first => "first", elements => "elements", index => "index",
+        mass_per_length => "mass_per_length",
         air_drag => "air_drag", position_m => "position_m", head_from_root => "head_from_root",
     ]);
     check!(&engine, "ElementConst", ElementConstGpu, [

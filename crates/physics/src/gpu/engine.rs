@@ -22,6 +22,14 @@
 //! wide, so the parity tests compare the kernel with the batch engine's
 //! own arithmetic.
 //!
+//! The strands' table is ordered by element count and each entry names its
+//! strand ([`StrandGpu::index`]): the invocations of one SIMD group (a
+//! warp; llvmpipe's eight lanes) then take strands of one length, and none
+//! idles while a longer one finishes. Memory stays in strand order. On
+//! the Sintel groom (1 to 9 elements a strand) on lavapipe a step took a
+//! median 0.81 of the unordered table's time (six alternated pairs), the
+//! results the same to the bit.
+//!
 //! Buffers: the strands' table ([`StrandGpu`]), the per-element constants,
 //! q and q̇ (one vec4 per element, strand after strand, each strand's
 //! elements contiguous from [`StrandGpu::first`]), the sweep's element
@@ -207,7 +215,8 @@ impl GpuEngine {
             strands.push(StrandGpu {
                 first: elements.len() as u32,
                 elements: model.elements() as u32,
-                pad0: [0; 2],
+                index: strands.len() as u32,
+                pad0: 0,
                 mass_per_length: model.mass_per_length,
                 air_drag: model.air_drag,
                 pad1: [0.0; 2],
@@ -272,7 +281,11 @@ impl GpuEngine {
         // A binding holds at least one element, even with no strands.
         let count = elements.len().max(1);
         let params_buffer = uniform_buffer(&ctx, "engine params", bytemuck::bytes_of(&params))?;
-        let strands_buffer = storage_buffer(&ctx, "strands", &at_least_one(&strands))?;
+        // The invocations take the strands by element count (WGSL
+        // `Strand::index`): one SIMD group, strands of one length.
+        let mut table = strands.clone();
+        table.sort_by_key(|s| s.elements);
+        let strands_buffer = storage_buffer(&ctx, "strands", &at_least_one(&table))?;
         let elements_buffer = storage_buffer(&ctx, "elements", &at_least_one(&elements))?;
         let q_buffer = storage_buffer(&ctx, "q", &at_least_one(&natural))?;
         let v_buffer = scratch_buffer(&ctx, "v", count * 16)?;

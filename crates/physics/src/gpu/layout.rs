@@ -232,8 +232,11 @@ pub struct StrandGpu {
     pub first: u32,
     /// Its element count N.
     pub elements: u32,
+    /// Its index among the engine's strands (the table is in the order
+    /// the invocations take them, [`crate::gpu::GpuEngine`]).
+    pub index: u32,
     /// Padding.
-    pub pad0: [u32; 2],
+    pub pad0: u32,
     /// ρS, kg/m.
     pub mass_per_length: f32,
     /// ν, N·s/m².
