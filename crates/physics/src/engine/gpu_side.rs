@@ -32,9 +32,10 @@
 //! CPU and [`GpuSide::note`] says why, once in words: no adapter or a
 //! device lost mid-run (the hair then goes on on the CPU from the last
 //! state read back: the frame's start if the guard read it, else the last
-//! frame a reader or a retry read; the device's memory is gone), a build without the cargo feature `gpu`, the hair–hair
-//! model (not on the GPU). Exact and Block-diagonal, the batch engine's
-//! two methods, both step on the device.
+//! frame a reader or a retry read; the device's memory is gone), a build
+//! without the cargo feature `gpu`, the hair–hair model (not on the GPU).
+//! Exact and Block-diagonal, the batch engine's two methods, both step on
+//! the device.
 
 use std::fmt;
 use std::sync::atomic::{AtomicUsize, Ordering};
