@@ -14,9 +14,9 @@ use crate::common;
 
 use std::sync::Arc;
 
-use common::gpu::context;
-use common::shake_scene::{curly_25_cm, head_roots, straight_30_cm, wavy_30_cm};
-use common::sphere::{RADIUS_M, sphere_field};
+use common::gpu::{context, draping_strands};
+use common::shake_scene::head_roots;
+use common::sphere::sphere_field;
 use common::{curl, shake};
 use helixhair_physics::batch::BatchSystem;
 use helixhair_physics::batch::contact::NearCells;
@@ -66,27 +66,9 @@ struct Scene {
 /// The batch engine's two methods, which the GPU engine runs.
 const METHODS: [Method; 2] = [Method::Exact, Method::BlockDiagonal];
 
-/// Four kinds of strand, each on the two roots of the shake scene moved
-/// onto the sphere's surface: 30 cm straight and wavy (12 elements), 25 cm
-/// curls (15), 12 cm tight curls (10), stepped with `method`.
+/// The draping scene ([`draping_strands`]) with the sphere.
 fn scene(method: Method) -> Scene {
-    let settings = SimSettings {
-        method,
-        substeps: 1,
-        ..SimSettings::default()
-    };
-    let mut models = Vec::new();
-    let mut roots = Vec::new();
-    for params in [straight_30_cm(), wavy_30_cm(), curly_25_cm(), curl(10)] {
-        let model = StrandModel::new(&params, settings.quadrature_points).expect("valid params");
-        for root in head_roots() {
-            models.push(BatchModel::new(&model));
-            roots.push(RootPose {
-                position_m: root.position_m.normalize() * RADIUS_M,
-                ..root
-            });
-        }
-    }
+    let (settings, models, roots) = draping_strands(method);
     Scene {
         settings,
         models,

@@ -12,10 +12,9 @@
 
 use crate::common;
 
-use common::gpu::context;
-use common::shake_scene::{curly_25_cm, head_roots, straight_30_cm, wavy_30_cm};
-use common::sphere::{RADIUS_M, sphere_field};
-use common::{curl, shake};
+use common::gpu::{context, draping_strands};
+use common::shake;
+use common::sphere::sphere_field;
 use glam::{DMat3, DVec3};
 use helixhair_physics::batch::contact::NearCells;
 use helixhair_physics::batch::layout::BatchModel;
@@ -41,29 +40,6 @@ const FRAMES: usize = 20;
 
 /// Known answers in f32: a few ulps of the sums.
 const KNOWN_TOL: f64 = 1e-5;
-
-/// The four kinds of strand of `tests/gpu_engine.rs` on the shake
-/// scene's two roots moved onto the sphere.
-fn scene(method: Method) -> (SimSettings, Vec<BatchModel>, Vec<RootPose>) {
-    let settings = SimSettings {
-        method,
-        substeps: 1,
-        ..SimSettings::default()
-    };
-    let mut models = Vec::new();
-    let mut roots = Vec::new();
-    for params in [straight_30_cm(), wavy_30_cm(), curly_25_cm(), curl(10)] {
-        let model = StrandModel::new(&params, settings.quadrature_points).expect("valid params");
-        for root in head_roots() {
-            models.push(BatchModel::new(&model));
-            roots.push(RootPose {
-                position_m: root.position_m.normalize() * RADIUS_M,
-                ..root
-            });
-        }
-    }
-    (settings, models, roots)
-}
 
 fn to_v3(x: &[[f32; 4]]) -> Vec<V3<f32>> {
     x.iter().map(|a| V3::new(a[0], a[1], a[2])).collect()
@@ -113,7 +89,7 @@ fn the_gpu_measure_is_its_twins() {
     for ((method, judged_by), with_field) in cases.into_iter().flat_map(|c| [(c, true), (c, false)])
     {
         let Some(ctx) = context() else { return };
-        let (settings, models, roots) = scene(method);
+        let (settings, models, roots) = draping_strands(method);
         let collider = with_field.then_some(&field);
         let mut gpu =
             GpuEngine::new(ctx, &settings, &models, &roots, collider).expect("GPU engine");
@@ -263,7 +239,7 @@ fn the_gpu_measure_of_a_spinning_straight_strand_is_the_rigid_bodys() {
 /// from its measure alone, and only that strand.
 #[test]
 fn the_gpu_measure_finds_a_state_that_is_not_finite() {
-    let (settings, models, roots) = scene(Method::Exact);
+    let (settings, models, roots) = draping_strands(Method::Exact);
     for bad in [f32::NAN, f32::INFINITY] {
         for in_rates in [false, true] {
             let Some(ctx) = context() else { return };

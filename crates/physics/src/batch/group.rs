@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::contact::{LaneContact, NearCells, SkinTest};
 use super::forward::NoContact;
-use super::guard::{check_lanes, finite_lanes, measure_lanes, set_at_rest};
+use super::guard::{check_lanes, finite_state, measure_lanes, set_at_rest};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes};
 use super::layout::{BatchModel, RootMotion, StepEnv};
@@ -599,53 +599,47 @@ fn judge_batch(
     } else {
         KineticEnergy::True
     };
-    let failed = if let Some(given) = given {
-        let finite = std::array::from_fn(|lane| given[lane].is_none_or(|(_, finite)| finite));
-        let end = |lane: usize| given[lane].map(|(measure, _)| measure);
-        let retry_from = &mut standing.retry_from;
-        check_lanes(
-            check.guard,
-            finite,
-            measures,
-            retry_from,
-            end,
-            check.frame,
-            judged_by,
-        )
-    } else {
-        let motions = carried(check.motion, roots);
-        let root = RootMotion::<Lanes>::gather(&motions);
-        let contact = check.contact.as_ref();
-        let samples = pull.is_some().then(|| {
-            kept.resize(q.len() * model.nodes.len(), [V3::zero(); 2]);
-            kept.as_mut_slice()
-        });
-        let end = measure_lanes(
-            model,
-            env,
-            &root,
-            &motions,
-            q,
-            v,
-            contact,
-            pull.as_ref(),
-            samples,
-            check.kinetic,
-        );
-        let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
-        let finite = std::array::from_fn(|lane| finite_q[lane] && finite_v[lane]);
-        let end = |lane: usize| Some(end.strand(lane));
-        let retry_from = &mut standing.retry_from;
-        check_lanes(
-            check.guard,
-            finite,
-            measures,
-            retry_from,
-            end,
-            check.frame,
-            judged_by,
-        )
+    // The lanes' end measures and finiteness: given, or swept here.
+    let (finite, ends): ([bool; LANES], [Option<StrandMeasure>; LANES]) = match given {
+        Some(given) => (
+            std::array::from_fn(|lane| given[lane].is_none_or(|(_, finite)| finite)),
+            (*given).map(|end| end.map(|(measure, _)| measure)),
+        ),
+        None => {
+            let motions = carried(check.motion, roots);
+            let root = RootMotion::<Lanes>::gather(&motions);
+            let contact = check.contact.as_ref();
+            let samples = pull.is_some().then(|| {
+                kept.resize(q.len() * model.nodes.len(), [V3::zero(); 2]);
+                kept.as_mut_slice()
+            });
+            let end = measure_lanes(
+                model,
+                env,
+                &root,
+                &motions,
+                q,
+                v,
+                contact,
+                pull.as_ref(),
+                samples,
+                check.kinetic,
+            );
+            (
+                finite_state(q, v),
+                std::array::from_fn(|lane| Some(end.strand(lane))),
+            )
+        }
     };
+    let failed = check_lanes(
+        check.guard,
+        finite,
+        measures,
+        &mut standing.retry_from,
+        |lane| ends[lane],
+        check.frame,
+        judged_by,
+    );
     for (lane, cause) in failed.into_iter().enumerate() {
         // A pinned strand is held, not judged.
         let cause = cause.filter(|_| !standing.lanes[lane].pinned);

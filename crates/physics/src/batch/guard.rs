@@ -53,13 +53,19 @@ pub fn speed_bound_m_per_s(model: &impl Constants<Lanes>, v: &[V3<Lanes>]) -> La
 }
 
 /// Per lane, whether every value of `values` is finite.
-pub(super) fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
+fn finite_lanes(values: &[V3<Lanes>]) -> [bool; LANES] {
     let zero = Lanes::splat(0.0);
     let mut nan_if_not = zero;
     for x in values {
         nan_if_not += x.x * zero + x.y * zero + x.z * zero;
     }
     std::array::from_fn(|i| nan_if_not.lane(i) == 0.0)
+}
+
+/// Per lane of a batch, whether every strain and rate is finite.
+pub(super) fn finite_state(q: &[V3<Lanes>], v: &[V3<Lanes>]) -> [bool; LANES] {
+    let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
+    std::array::from_fn(|lane| finite_q[lane] && finite_v[lane])
 }
 
 /// Relative round-off allowed on an f32 lane's energy balance (of the
@@ -147,7 +153,7 @@ fn lanes_in_contact(contact: &LaneContact<'_>, points: &[(V3<Lanes>, V3<Lanes>)]
 /// Checks one batch whose lanes started the frame measured as `measures`
 /// and ended it as `end` says (`None`: a lane not judged, a padding lane
 /// of a batch measured elsewhere), its state finite where `finite` says
-/// ([`finite_lanes`]), by the energy of the dynamics `judged_by`, and
+/// ([`finite_state`]), by the energy of the dynamics `judged_by`, and
 /// leaves the end's measures in `measures`; a failing lane's start measure
 /// goes to `retry_from`, which its retry is judged against
 /// ([`super::retry`]). Returns, per lane, what failed (`None`: the lane

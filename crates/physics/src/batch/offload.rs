@@ -14,7 +14,7 @@
 
 use super::contact::SkinTest;
 use super::group::{Advance, FrameCheck, Group, LaneEnds};
-use super::guard::{finite_lanes, measure_lanes};
+use super::guard::{finite_state, measure_lanes};
 use super::lanes::{LANES, Lanes};
 use super::layout::RootMotion;
 use super::system::BatchSystem;
@@ -245,9 +245,9 @@ impl BatchSystem {
                             None,
                             judged_by,
                         );
-                        let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
+                        let finite = finite_state(q, v);
                         (0..LANES)
-                            .map(|lane| (measured.strand(lane), finite_q[lane] && finite_v[lane]))
+                            .map(|lane| (measured.strand(lane), finite[lane]))
                             .collect::<Vec<_>>()
                     })
                     .collect()

@@ -28,7 +28,7 @@ use std::sync::Arc;
 use super::contact::NearCells;
 use super::contact::SkinTest;
 use super::group::{BatchStanding, Group, StepKinds, step_one_batch};
-use super::guard::{F32_ENERGY_ROUND_OFF, finite_lanes, measure_lanes, set_at_rest};
+use super::guard::{F32_ENERGY_ROUND_OFF, finite_state, measure_lanes, set_at_rest};
 use super::lane_model::LaneModel;
 use super::lanes::{LANES, Lanes};
 use super::layout::{RootMotion, StepEnv};
@@ -175,7 +175,7 @@ fn retry_batch(
                 None,
                 inputs.measured,
             );
-            let (finite_q, finite_v) = (finite_lanes(q), finite_lanes(v));
+            let finite = finite_state(q, v);
             let stepped = SteppedFrame {
                 dt_secs: frame.dt_secs,
                 substeps,
@@ -186,8 +186,7 @@ fn retry_batch(
                 }
                 let to = end.strand(lane);
                 let from = &standing.retry_from[lane];
-                let passed = finite_q[lane]
-                    && finite_v[lane]
+                let passed = finite[lane]
                     && guard
                         .check_with_round_off(&[], &[], from, &to, stepped, F32_ENERGY_ROUND_OFF)
                         .is_none();

@@ -39,6 +39,61 @@ impl TwinBuffers {
     }
 }
 
+/// What a CPU twin of an engine stage takes for one strand, as the kernel
+/// sees it: the substep's forces, the root carried by the head, and the
+/// head's contact where there is a collider (the batch engine's hook at
+/// width one).
+pub(crate) struct OneStrand<'a> {
+    /// Gravity, air and the substep's h.
+    pub env: StepEnv,
+    /// The root's motion, as the head carries it.
+    pub motion: RigidMotion,
+    /// The same, one lane wide.
+    pub root_motion: RootMotion<f32>,
+    /// The head's contact, if there is a collider.
+    pub contact: Option<LaneContact<'a>>,
+}
+
+impl<'a> OneStrand<'a> {
+    /// Strand `model` rooted at `root`, the head moving as `head`, with the
+    /// head `collider` and its near cells if any, under `settings`.
+    pub(crate) fn new(
+        settings: &SimSettings,
+        model: &BatchModel,
+        root: &RootPose,
+        head: &'a RigidMotion,
+        collider: Option<(&'a SignedDistanceField, &'a NearCells)>,
+    ) -> Self {
+        let h_secs = settings.substep_secs();
+        let env = StepEnv {
+            h_secs,
+            gravity_m_per_s2: settings.gravity_m_per_s2.to_array(),
+            air_velocity_m_per_s: settings.air_velocity_m_per_s.to_array(),
+        };
+        let motion = head.carry(root);
+        let root_motion = RootMotion::<f32>::gather(std::slice::from_ref(&motion));
+        let contact = collider.map(|(field, near)| {
+            let inputs = ContactInputs {
+                collider: field,
+                head,
+                settings: settings.contact,
+                h_secs,
+            };
+            LaneContact::new(
+                SkinTest::new(inputs, near),
+                Lanes::splat(model.mass_per_length),
+                [motion.position_m; LANES],
+            )
+        });
+        Self {
+            env,
+            motion,
+            root_motion,
+            contact,
+        }
+    }
+}
+
 /// WGSL `stage_step` for one strand (`model` rooted at `root`, state `q`,
 /// `v`) while the head moves as `head` over the step (its
 /// [`crate::HeadTrajectory::step_motion_at`]), with the head `collider`
@@ -57,32 +112,17 @@ pub fn stage_step(
     v: &mut [V3<f32>],
     buffers: &mut TwinBuffers,
 ) -> usize {
-    let h_secs = settings.substep_secs();
-    let env = StepEnv {
-        h_secs,
-        gravity_m_per_s2: settings.gravity_m_per_s2.to_array(),
-        air_velocity_m_per_s: settings.air_velocity_m_per_s.to_array(),
-    };
-    let motion = head.carry(root);
-    let root_motion = RootMotion::<f32>::gather(std::slice::from_ref(&motion));
+    let OneStrand {
+        env,
+        root_motion,
+        contact,
+        ..
+    } = OneStrand::new(settings, model, root, head, collider);
     let TwinBuffers {
         scratch,
         elimination,
         krylov,
     } = buffers;
-    let contact = collider.map(|(field, near)| {
-        let inputs = ContactInputs {
-            collider: field,
-            head,
-            settings: settings.contact,
-            h_secs,
-        };
-        LaneContact::new(
-            SkinTest::new(inputs, near),
-            Lanes::splat(model.mass_per_length),
-            [motion.position_m; LANES],
-        )
-    });
     let step = BatchStep::of(settings);
     let buffers = (&mut scratch[..], &mut elimination[..], krylov);
     // One branch per step, as the batch engine takes it: without a

@@ -38,16 +38,16 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
+use super::engine_twin::OneStrand;
 use super::kernels::{dispatch_dims, read_pod, scratch_buffer, submit_pass, uniform_buffer};
 use super::layout::Mat3Gpu;
 use super::{GpuContext, GpuError};
-use crate::batch::contact::{LaneContact, NearCells, SkinTest};
+use crate::batch::contact::NearCells;
 use crate::batch::forward::NoContact;
-use crate::batch::layout::{BatchModel, RootMotion, StepEnv};
+use crate::batch::layout::BatchModel;
 use crate::batch::measure::{LaneMeasures, MeasureInputs, MeasureScratch, measure_state};
 use crate::batch::vec::V3;
-use crate::batch::{LANES, Lanes, Real};
-use crate::collision::{ContactInputs, SignedDistanceField};
+use crate::collision::SignedDistanceField;
 use crate::frame_balance::{KineticEnergy, StrandMeasure};
 use crate::motion::{RigidMotion, RootPose};
 use crate::settings::SimSettings;
@@ -269,27 +269,12 @@ pub fn stage_measure(
     (q, v): (&[V3<f32>], &[V3<f32>]),
     judged_by: KineticEnergy,
 ) -> StrandMeasureGpu {
-    let h_secs = settings.substep_secs();
-    let env = StepEnv {
-        h_secs,
-        gravity_m_per_s2: settings.gravity_m_per_s2.to_array(),
-        air_velocity_m_per_s: settings.air_velocity_m_per_s.to_array(),
-    };
-    let motion = head.carry(root);
-    let root_motion = RootMotion::<f32>::gather(std::slice::from_ref(&motion));
-    let contact = collider.map(|(field, near)| {
-        let inputs = ContactInputs {
-            collider: field,
-            head,
-            settings: settings.contact,
-            h_secs,
-        };
-        LaneContact::new(
-            SkinTest::new(inputs, near),
-            Lanes::splat(model.mass_per_length),
-            [motion.position_m; LANES],
-        )
-    });
+    let OneStrand {
+        env,
+        motion,
+        root_motion,
+        contact,
+    } = OneStrand::new(settings, model, root, head, collider);
     let touching = contact.as_ref().map(|contact| {
         move |points: &[(V3<f32>, V3<f32>)]| {
             let hit = points
